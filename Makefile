@@ -1,0 +1,26 @@
+# The two commands of the quick start: `make demo` and `make test`. Both install what is missing first.
+BUILD ?= build
+JOBS  ?= $(shell nproc)
+
+.PHONY: setup build demo test bench clean
+setup:
+	@bash tools/setup.sh
+
+build: setup
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null
+	@cmake --build $(BUILD) -j $(JOBS)
+
+demo: build
+	@mkdir -p out
+	$(BUILD)/mesocrack run scenes/demo.toml -o out/demo.h5
+	$(BUILD)/mesocrack summary out/demo.h5
+	$(BUILD)/mesocrack report out/demo.h5
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+bench: build
+	$(BUILD)/benchmarks/throughput
+
+clean:
+	rm -rf $(BUILD) out

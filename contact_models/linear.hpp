@@ -1,0 +1,101 @@
+// Linear contact with Coulomb slip and optional viscous dashpots.
+// Springs in series, Tang (2013) eqs. 3.25–3.26; normal force from overlap (3.9); incremental shear force
+// (3.5–3.10); slip at μ|F^n| (3.36); ball stiffness from the contact modulus (3.38).
+#pragma once
+#include <cmath>
+#include <string>
+
+#include "engine/contact_geometry.hpp"
+
+namespace mc {
+
+struct LinearParams {
+  double modulus = kNaN;      // contact modulus E_c [Pa]: ball k_n = 2 t E_c (2D, t = 1 m) or 4 R E_c (3D), Tang (3.38)
+  double kn_ks_ratio = 1.0;   // k_n / k_s [-]
+  double friction = 0.0;      // μ [-], Tang (3.36)
+  double damping_ratio = 0.0; // ζ [-], fraction of critical damping of normal and shear dashpots
+};
+
+// What a wall brings to a ball–wall contact: its own springs (in series with the ball's) and friction.
+struct WallMaterial {
+  double kn = kNaN;           // N/m
+  double ks = kNaN;           // N/m
+  double friction = 0.0;      // μ [-]
+};
+
+struct Linear {
+  static constexpr const char* name = "linear";
+  using Params = LinearParams;
+  template <int D>
+  struct State {
+    Vec<D> fs = Vec<D>::Zero();  // shear force on B [N]
+  };
+  struct Coeffs {
+    double kn, ks, mu, zeta;
+  };
+
+  template <int D>
+  static double ball_kn(const Params& p, double r) {
+    return D == 2 ? 2.0 * p.modulus : 4.0 * r * p.modulus;  // Tang (3.38), t = 1 m
+  }
+  static double series(double a, double b) { return a * b / (a + b); }  // Tang (3.25)
+
+  template <int D>
+  static Coeffs pair(const Params& p, double ra, double rb) {
+    const double kn = series(ball_kn<D>(p, ra), ball_kn<D>(p, rb));
+    return {kn, kn / p.kn_ks_ratio, p.friction, p.damping_ratio};
+  }
+  template <int D>
+  static Coeffs wall(const Params& p, const WallMaterial& w, double rb) {
+    const double kb = ball_kn<D>(p, rb);
+    return {series(kb, w.kn), series(kb / p.kn_ks_ratio, w.ks), w.friction, p.damping_ratio};
+  }
+
+  template <int D, bool Energy>
+  static ContactForce<D> force(const Coeffs& c, const ContactGeometry<D>& g, State<D>& s) {
+    ContactForce<D> out;
+    if (g.overlap <= 0) {  // separated: no force, and the shear history starts again at the next touch
+      s.fs.setZero();
+      return out;
+    }
+    const double vn = g.v_rel.dot(g.n);
+    const Vec<D> vs = g.v_rel - vn * g.n;
+    const double fn = c.kn * g.overlap;                            // Tang (3.9)
+    Vec<D> fs = carry_shear<D>(s.fs, g.n, g.spin_n, g.dt) - c.ks * vs * g.dt;  // Tang (3.5), (3.10)
+    const double fs_max = c.mu * fn;                               // Tang (3.36)
+    const double fs_mag = fs.norm();
+    const bool slipping = fs_mag > fs_max;
+    if (slipping) {
+      if constexpr (Energy) out.dissipated += fs_max * (fs_mag - fs_max) / c.ks;  // Tang (3.77)–(3.78)
+      fs *= fs_max / fs_mag;
+    }
+    s.fs = fs;
+    out.force = fn * g.n + fs;
+    if (c.zeta > 0) {
+      // Dashpots act beside the springs and store nothing; the shear dashpot rests while the contact slides.
+      const double cn = 2.0 * c.zeta * std::sqrt(g.m_eff * c.kn);
+      Vec<D> fd = -cn * vn * g.n;
+      if (!slipping) fd -= 2.0 * c.zeta * std::sqrt(g.m_eff * c.ks) * vs;
+      out.force += fd;
+      if constexpr (Energy) out.dissipated -= fd.dot(g.v_rel) * g.dt;
+    }
+    return out;
+  }
+
+  template <int D>
+  static ContactStiffness stiffness(const Coeffs& c, const ContactGeometry<D>&, const State<D>&) {
+    return {c.kn, c.ks, 0.0};
+  }
+
+  template <int D>
+  static double strain_energy(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
+    if (g.overlap <= 0) return 0;
+    const double fn = c.kn * g.overlap;
+    return 0.5 * (fn * fn / c.kn + s.fs.squaredNorm() / c.ks);  // Tang (3.80)
+  }
+
+  template <int D>
+  static bool persistent(const State<D>&) { return false; }
+};
+
+}  // namespace mc

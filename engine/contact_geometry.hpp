@@ -1,0 +1,52 @@
+// What a contact model receives for one contact, and what it returns. The engine computes the geometry
+// (Tang 3.1–3.4, 3.6) once; models only turn it into forces.
+#pragma once
+#include "engine/dim.hpp"
+
+namespace mc {
+
+// Partner A (index i, or the wall) and partner B (index j, the ball for a ball–wall contact).
+template <int D>
+struct ContactGeometry {
+  Vec<D> n;          // unit normal from A to B, Tang (3.1)
+  double overlap;    // U^n = R_A + R_B − d (> 0 when touching), Tang (3.3)
+  Vec<D> v_rel;      // velocity of B relative to A at the contact point, Tang (3.6)
+  Rot<D> w_rel;      // ω_B − ω_A (bending and twisting of bonds)
+  double spin_n;     // ½(ω_A + ω_B)·n (3D): rigid spin of the contact plane about its normal
+  double r_a, r_b;   // radii (r_a = ∞ for a wall)
+  double m_eff;      // m_A m_B / (m_A + m_B) (m_B for a wall): critical damping of dashpots
+  double dt;
+};
+
+// Force on B (A receives −force). `moment` is a moment on B carried by the model itself (bond bending and
+// twisting); A receives −moment. Moments of `force` about the particle centres are added by the engine.
+template <int D>
+struct ContactForce {
+  Vec<D> force = Vec<D>::Zero();
+  Rot<D> moment = Rot<D>::Zero();
+  double dissipated = 0;  // friction and dashpot work this step [J], filled only when energy is traced
+};
+
+// Stiffness seen by the timestep estimate, Tang (3.22)–(3.24).
+struct ContactStiffness {
+  double normal = 0;      // N/m
+  double shear = 0;       // N/m; acting at the contact point it also resists rotation (shear·lever², added by the engine)
+  double rotational = 0;  // N m/rad carried by the model itself (bond bending)
+};
+
+// An incremental shear force lives in the contact plane. When the plane tilts (new normal) or spins about
+// its normal, the stored force must turn with it, else it would do spurious work (Tang §3.2.1, PFC3D).
+template <int D>
+inline Vec<D> carry_shear(const Vec<D>& fs, const Vec<D>& n, double spin_n, double dt) {
+  const double mag = fs.norm();
+  if (mag == 0) return fs;
+  Vec<D> t = fs - fs.dot(n) * n;
+  if constexpr (D == 3) {
+    const double a = spin_n * dt;
+    if (a != 0) t = t * std::cos(a) + n.cross(t) * std::sin(a);
+  }
+  const double tm = t.norm();
+  return tm > 0 ? Vec<D>(t * (mag / tm)) : Vec<D>::Zero();
+}
+
+}  // namespace mc

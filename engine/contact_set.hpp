@@ -1,0 +1,299 @@
+// The contacts of one contact model: a homogeneous array of pairs with the model's history beside them, and
+// the loops over it. The engine holds one set per model in use; dispatch happens once per set, never per contact.
+#pragma once
+#include <omp.h>
+
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <type_traits>
+#include <vector>
+
+#include "engine/cell_grid.hpp"
+#include "engine/contact_geometry.hpp"
+#include "engine/particles.hpp"
+#include "engine/wall.hpp"
+
+namespace mc {
+
+// Every contact owns one slot: the force on B and the moments on A and B. Each particle then sums its own
+// slots in a fixed order (the gather), so no two threads ever add into the same particle.
+template <int D>
+struct Slots {
+  std::vector<Vec<D>> f;
+  std::vector<Rot<D>> ma, mb;
+  void resize(std::size_t n) {
+    f.assign(n, Vec<D>::Zero());
+    ma.assign(n, Rot<D>::Zero());
+    mb.assign(n, Rot<D>::Zero());
+  }
+};
+
+// Stiffness of each slot for the timestep estimate: translational, and rotational about A's and B's centres.
+struct SlotStiffness {
+  std::vector<double> kt, kra, krb;
+};
+
+// Sums of floating-point numbers must not depend on the thread count: contacts are summed in fixed blocks,
+// and the block sums are added in order.
+inline constexpr int kBlock = 1024;
+inline int block_count(std::size_t n) { return static_cast<int>((n + kBlock - 1) / kBlock); }
+
+template <int D>
+class ContactSetBase {
+ public:
+  virtual ~ContactSetBase() = default;
+  virtual const char* model() const = 0;
+  virtual const std::vector<Pair>& pairs() const = 0;       // ball–ball (i, j), i < j, sorted
+  virtual const std::vector<Pair>& wall_pairs() const = 0;  // (wall, particle), sorted
+  // New candidate lists; the history of pairs present before is carried over, and pairs the model must keep
+  // (intact bonds) stay even when they are no longer candidates.
+  virtual void set_pairs(const std::vector<Pair>& candidates) = 0;
+  virtual void set_wall_pairs(const std::vector<Pair>& candidates) = 0;
+  // Forces into slots [offset, offset + size) and [wall_offset, wall_offset + wall size). Returns the
+  // energy dissipated this step (friction, dashpots) when `energy` is set, else 0.
+  virtual double forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy,
+                        Slots<D>& slots, std::size_t offset, std::size_t wall_offset) = 0;
+  virtual void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness& k,
+                         std::size_t offset, std::size_t wall_offset) const = 0;
+  virtual ContactStiffness nominal_stiffness(double r) const = 0;  // one contact with an identical particle
+  virtual double strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const = 0;
+  // The whole history as bytes (checkpoints): pairs, wall pairs and states.
+  virtual std::vector<std::uint8_t> save() const = 0;
+  virtual void load(const std::vector<std::uint8_t>& bytes) = 0;
+};
+
+template <int D>
+inline ContactGeometry<D> ball_geometry(const Particles<D>& p, int i, int j, double dt, Vec<D>& ca, Vec<D>& cb) {
+  ContactGeometry<D> g;
+  const Vec<D> d = p.x[j] - p.x[i];
+  const double dist = d.norm();
+  g.n = d / dist;
+  g.overlap = p.radius[i] + p.radius[j] - dist;
+  ca = (p.radius[i] - 0.5 * g.overlap) * g.n;  // centre of A to the contact point, Tang (3.4)
+  cb = ca - d;                                 // centre of B to the contact point
+  g.v_rel = (p.v[j] + Dim<D>::cross(p.w[j], cb)) - (p.v[i] + Dim<D>::cross(p.w[i], ca));
+  g.w_rel = p.w[j] - p.w[i];
+  if constexpr (D == 3) g.spin_n = 0.5 * (p.w[i] + p.w[j]).dot(g.n); else g.spin_n = 0;
+  g.r_a = p.radius[i];
+  g.r_b = p.radius[j];
+  g.m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+  g.dt = dt;
+  return g;
+}
+
+template <int D>
+inline ContactGeometry<D> wall_geometry(const Particles<D>& p, const Wall<D>& w, int j, double dt, Vec<D>& cw,
+                                        Vec<D>& cb) {
+  ContactGeometry<D> g;
+  const Vec<D> c = w.closest(p.x[j]);
+  const Vec<D> d = p.x[j] - c;
+  const double dist = d.norm();
+  g.n = dist > 0 ? Vec<D>(d / dist) : w.normal;
+  g.overlap = p.radius[j] - dist;                   // Tang (3.3), ball–wall
+  cb = -(p.radius[j] - 0.5 * g.overlap) * g.n;      // Tang (3.4)
+  cw = p.x[j] + cb - w.origin;                       // contact point about the wall origin
+  g.v_rel = p.v[j] + Dim<D>::cross(p.w[j], cb) - w.velocity;
+  g.w_rel = p.w[j];
+  if constexpr (D == 3) g.spin_n = 0.5 * p.w[j].dot(g.n); else g.spin_n = 0;
+  g.r_a = kInf;
+  g.r_b = p.radius[j];
+  g.m_eff = p.mass[j];
+  g.dt = dt;
+  return g;
+}
+
+template <class Model, int D>
+class ContactSet final : public ContactSetBase<D> {
+ public:
+  using State = typename Model::template State<D>;
+  // States hold plain numbers (fixed-size Eigen vectors, doubles, flags): checkpoints copy them as bytes.
+  static_assert(sizeof(State) % sizeof(double) == 0 || sizeof(State) < sizeof(double));
+
+  explicit ContactSet(typename Model::Params params) : params_(params) {}
+  const typename Model::Params& params() const { return params_; }
+  const char* model() const override { return Model::name; }
+  const std::vector<Pair>& pairs() const override { return pairs_; }
+  const std::vector<Pair>& wall_pairs() const override { return wall_pairs_; }
+  std::vector<State>& states() { return states_; }
+  const std::vector<State>& states() const { return states_; }
+  const std::vector<State>& wall_states() const { return wall_states_; }
+
+  void set_pairs(const std::vector<Pair>& c) override { merge(pairs_, states_, c); }
+  void set_wall_pairs(const std::vector<Pair>& c) override { merge(wall_pairs_, wall_states_, c); }
+
+  double forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy, Slots<D>& s,
+                std::size_t off, std::size_t woff) override {
+    return energy ? forces_impl<true>(p, walls, dt, s, off, woff) : forces_impl<false>(p, walls, dt, s, off, woff);
+  }
+
+  void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness& k, std::size_t off,
+                 std::size_t woff) const override {
+    const int n = static_cast<int>(pairs_.size());
+#pragma omp parallel for schedule(static)
+    for (int c = 0; c < n; ++c) {
+      const auto [i, j] = pairs_[c];
+      Vec<D> ca, cb;
+      const auto g = ball_geometry(p, i, j, 0.0, ca, cb);
+      const auto st = Model::template stiffness<D>(Model::template pair<D>(params_, g.r_a, g.r_b), g, states_[c]);
+      k.kt[off + c] = st.normal + st.shear;
+      k.kra[off + c] = st.shear * ca.squaredNorm() + st.rotational;
+      k.krb[off + c] = st.shear * cb.squaredNorm() + st.rotational;
+    }
+    const int nw = static_cast<int>(wall_pairs_.size());
+    for (int c = 0; c < nw; ++c) {
+      const auto [w, j] = wall_pairs_[c];
+      Vec<D> cw, cb;
+      const auto g = wall_geometry(p, walls[w], j, 0.0, cw, cb);
+      const auto st = Model::template stiffness<D>(Model::template wall<D>(params_, walls[w].material, g.r_b), g,
+                                                   wall_states_[c]);
+      k.kt[woff + c] = st.normal + st.shear;
+      k.kra[woff + c] = 0;
+      k.krb[woff + c] = st.shear * cb.squaredNorm() + st.rotational;
+    }
+  }
+
+  ContactStiffness nominal_stiffness(double r) const override {
+    ContactGeometry<D> g{};
+    g.r_a = g.r_b = r;
+    g.overlap = 0;
+    return Model::template stiffness<D>(Model::template pair<D>(params_, r, r), g, State{});
+  }
+
+  double strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const override {
+    std::vector<double> part(block_count(pairs_.size()), 0.0);
+#pragma omp parallel for schedule(static)
+    for (int b = 0; b < static_cast<int>(part.size()); ++b) {
+      const std::size_t end = std::min(pairs_.size(), std::size_t(b + 1) * kBlock);
+      for (std::size_t c = std::size_t(b) * kBlock; c < end; ++c) {
+        Vec<D> ca, cb;
+        const auto g = ball_geometry(p, pairs_[c][0], pairs_[c][1], 0.0, ca, cb);
+        part[b] += Model::template strain_energy<D>(Model::template pair<D>(params_, g.r_a, g.r_b), g, states_[c]);
+      }
+    }
+    double e = 0;
+    for (double x : part) e += x;
+    for (std::size_t c = 0; c < wall_pairs_.size(); ++c) {
+      const auto [w, j] = wall_pairs_[c];
+      Vec<D> cw, cb;
+      const auto g = wall_geometry(p, walls[w], j, 0.0, cw, cb);
+      e += Model::template strain_energy<D>(Model::template wall<D>(params_, walls[w].material, g.r_b), g,
+                                            wall_states_[c]);
+    }
+    return e;
+  }
+
+  std::vector<std::uint8_t> save() const override {
+    std::vector<std::uint8_t> out;
+    put(out, pairs_);
+    put(out, states_);
+    put(out, wall_pairs_);
+    put(out, wall_states_);
+    return out;
+  }
+  void load(const std::vector<std::uint8_t>& in) override {
+    std::size_t at = 0;
+    get(in, at, pairs_);
+    get(in, at, states_);
+    get(in, at, wall_pairs_);
+    get(in, at, wall_states_);
+  }
+
+ private:
+  template <bool Energy>
+  double forces_impl(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, Slots<D>& s,
+                     std::size_t off, std::size_t woff) {
+    const std::size_t n = pairs_.size();
+    std::vector<double> part(Energy ? block_count(n) : 0, 0.0);
+#pragma omp parallel for schedule(static)
+    for (int b = 0; b < block_count(n); ++b) {
+      const std::size_t end = std::min(n, std::size_t(b + 1) * kBlock);
+      double dissipated = 0;
+      for (std::size_t c = std::size_t(b) * kBlock; c < end; ++c) {
+        const auto [i, j] = pairs_[c];
+        State& st = states_[c];
+        const std::size_t slot = off + c;
+        const Vec<D> d = p.x[j] - p.x[i];
+        const double reach = p.radius[i] + p.radius[j];
+        if (d.squaredNorm() >= reach * reach && !Model::template persistent<D>(st)) {
+          st = State{};  // apart and unbonded: no force, no history
+          s.f[slot].setZero();
+          s.ma[slot].setZero();
+          s.mb[slot].setZero();
+          continue;
+        }
+        Vec<D> ca, cb;
+        const auto g = ball_geometry(p, i, j, dt, ca, cb);
+        const auto r = Model::template force<D, Energy>(Model::template pair<D>(params_, g.r_a, g.r_b), g, st);
+        s.f[slot] = r.force;
+        s.ma[slot] = Dim<D>::cross(ca, Vec<D>(-r.force)) - r.moment;
+        s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
+        if constexpr (Energy) dissipated += r.dissipated;
+      }
+      if constexpr (Energy) part[b] = dissipated;
+    }
+    double e = 0;
+    for (double x : part) e += x;
+    // Walls touch few balls; a serial loop keeps the order fixed.
+    for (std::size_t c = 0; c < wall_pairs_.size(); ++c) {
+      const auto [w, j] = wall_pairs_[c];
+      const std::size_t slot = woff + c;
+      Vec<D> cw, cb;
+      const auto g = wall_geometry(p, walls[w], j, dt, cw, cb);
+      const auto r =
+          Model::template force<D, Energy>(Model::template wall<D>(params_, walls[w].material, g.r_b), g, wall_states_[c]);
+      s.f[slot] = r.force;
+      s.ma[slot] = Dim<D>::cross(cw, Vec<D>(-r.force)) - r.moment;  // on the wall, about its origin
+      s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
+      if constexpr (Energy) e += r.dissipated;
+    }
+    return e;
+  }
+
+  // Sorted merge of the old (pair, state) list with the new candidates.
+  void merge(std::vector<Pair>& pairs, std::vector<State>& states, const std::vector<Pair>& cand) {
+    std::vector<Pair> np;
+    std::vector<State> ns;
+    np.reserve(cand.size());
+    ns.reserve(cand.size());
+    std::size_t a = 0, b = 0;
+    while (a < pairs.size() || b < cand.size()) {
+      if (b == cand.size() || (a < pairs.size() && pairs[a] < cand[b])) {
+        if (Model::template persistent<D>(states[a])) np.push_back(pairs[a]), ns.push_back(states[a]);
+        ++a;
+      } else if (a < pairs.size() && pairs[a] == cand[b]) {
+        np.push_back(pairs[a]), ns.push_back(states[a]);
+        ++a, ++b;
+      } else {
+        np.push_back(cand[b]), ns.push_back(State{});
+        ++b;
+      }
+    }
+    pairs.swap(np);
+    states.swap(ns);
+  }
+
+  template <class T>
+  static void put(std::vector<std::uint8_t>& out, const std::vector<T>& v) {
+    const std::uint64_t n = v.size();
+    const auto* p = reinterpret_cast<const std::uint8_t*>(&n);
+    out.insert(out.end(), p, p + sizeof n);
+    const auto* q = reinterpret_cast<const std::uint8_t*>(v.data());
+    out.insert(out.end(), q, q + n * sizeof(T));
+  }
+  template <class T>
+  static void get(const std::vector<std::uint8_t>& in, std::size_t& at, std::vector<T>& v) {
+    std::uint64_t n;
+    std::memcpy(&n, in.data() + at, sizeof n);
+    at += sizeof n;
+    v.resize(n);
+    std::memcpy(v.data(), in.data() + at, n * sizeof(T));
+    at += n * sizeof(T);
+  }
+
+  typename Model::Params params_;
+  std::vector<Pair> pairs_, wall_pairs_;
+  std::vector<State> states_, wall_states_;
+};
+
+}  // namespace mc

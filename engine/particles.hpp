@@ -1,0 +1,53 @@
+// Particle state as contiguous arrays (structure of arrays): the force loop and the law of motion stream
+// through each field, and a particle's index is its identity for the whole run.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "engine/dim.hpp"
+
+namespace mc {
+
+// Per-degree-of-freedom fixity: bit k (k < D) holds translation k, bit D+k holds rotation k.
+// A fixed degree of freedom keeps its current velocity (PFC "fix").
+using FixMask = std::uint8_t;
+
+template <int D>
+struct Particles {
+  using R = Rot<D>;
+  std::vector<Vec<D>> x, v, f;            // position [m], velocity at t−Δt/2 [m/s], resultant force [N]
+  std::vector<R> w, m;                    // angular velocity [rad/s], resultant moment [N m]
+  std::vector<typename Dim<D>::Orientation> q;
+  std::vector<double> radius, mass, inertia;   // [m], [kg], [kg m²]
+  std::vector<int> phase;
+  std::vector<FixMask> fix;
+  std::vector<Vec<D>> f_applied;          // declared external loads (empty unless the scene applies any)
+  std::vector<R> m_applied;
+
+  int size() const { return static_cast<int>(x.size()); }
+
+  // density in kg/m³; in 2D the disc has unit thickness, so mass = ρ π R² · 1 m.
+  int add(const Vec<D>& pos, double r, double density, int ph) {
+    x.push_back(pos);
+    v.push_back(Vec<D>::Zero());
+    f.push_back(Vec<D>::Zero());
+    w.push_back(R::Zero());
+    m.push_back(R::Zero());
+    q.push_back(Dim<D>::identity());
+    radius.push_back(r);
+    const double mass_ = density * Dim<D>::volume(r);
+    mass.push_back(mass_);
+    inertia.push_back(Dim<D>::inertia_factor * mass_ * r * r);
+    phase.push_back(ph);
+    fix.push_back(0);
+    return size() - 1;
+  }
+
+  double max_radius() const {
+    double r = 0;
+    for (double ri : radius) r = std::max(r, ri);
+    return r;
+  }
+};
+
+}  // namespace mc

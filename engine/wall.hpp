@@ -1,0 +1,123 @@
+// Rigid walls: 2D line segments, 3D planar rectangles, and infinite lines/planes in either dimension.
+// A wall moves by translation only, under one of three controls: fixed, prescribed velocity with a smooth
+// ramp, or a normal-stress servo (PFC). It records the force and moment the balls exert on it and its
+// displacement.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "contact_models/linear.hpp"  // WallMaterial
+#include "engine/dim.hpp"
+
+namespace mc {
+
+enum class WallControl { Fixed, Velocity, Servo };
+
+template <int D>
+struct Wall {
+  std::string name;
+  Vec<D> origin;                      // centre of the segment/rectangle, a point of an infinite wall [m]
+  Vec<D> normal;                      // unit normal, pointing to the side where the material is
+  std::array<Vec<D>, D - 1> axis;     // in-plane unit axes
+  std::array<double, D - 1> half;     // half-extents along the axes [m]; ∞ for an infinite wall
+  WallMaterial material;
+
+  WallControl control = WallControl::Fixed;
+  Vec<D> target_velocity = Vec<D>::Zero();  // Velocity control [m/s]
+  double ramp_time = 0;                      // [s]: velocity rises as (1 − cos πt/T)/2, no jerk at start
+  double target_stress = 0;                  // Servo: compressive normal stress to hold [Pa]
+  double servo_area = kNaN;                  // [m² in 3D, m in 2D]; NaN: the wall's own area
+  double servo_gain = 0.5;                   // α of the PFC servo, 0 < α ≤ 1
+  double servo_max_speed = kInf;             // [m/s]
+
+  Vec<D> velocity = Vec<D>::Zero();
+  Vec<D> displacement = Vec<D>::Zero();      // since the start of the run [m]
+  Vec<D> force = Vec<D>::Zero();             // exerted by the balls on the wall [N]
+  Rot<D> moment = Rot<D>::Zero();            // about the origin [N m]
+  double contact_kn = 0;                     // Σ normal stiffness of its contacts (servo gain)
+
+  // Closest point of the wall to p; the contact normal runs from it to p.
+  Vec<D> closest(const Vec<D>& p) const {
+    Vec<D> c = origin;
+    for (int k = 0; k < D - 1; ++k) {
+      const double s = (p - origin).dot(axis[k]);
+      c += std::clamp(s, -half[k], half[k]) * axis[k];
+    }
+    return c;
+  }
+
+  double area() const {
+    double a = 1;  // 2D: per unit thickness
+    for (int k = 0; k < D - 1; ++k) a *= 2 * half[k];
+    return a;
+  }
+
+  // Compressive stress the balls exert on the wall [Pa].
+  double normal_stress() const {
+    const double a = std::isnan(servo_area) ? area() : servo_area;
+    return -force.dot(normal) / a;
+  }
+
+  // Velocity for the next step, from the control law. t is the time since the run started.
+  void control_velocity(double t, double dt) {
+    switch (control) {
+      case WallControl::Fixed: velocity.setZero(); break;
+      case WallControl::Velocity: {
+        const double s = ramp_time > 0 ? std::min(t / ramp_time, 1.0) : 1.0;
+        velocity = target_velocity * (0.5 * (1.0 - std::cos(M_PI * s)));
+        break;
+      }
+      case WallControl::Servo: {
+        // PFC servo: G = α A / (Σk_n Δt) makes the stress error shrink by at most α per step, so the wall
+        // cannot overshoot into an instability whatever the current stiffness.
+        const double a = std::isnan(servo_area) ? area() : servo_area;
+        double speed = 0;
+        if (contact_kn > 0) speed = servo_gain * a / (contact_kn * dt) * (target_stress - normal_stress());
+        else speed = servo_max_speed;  // nothing touched yet: approach at full speed
+        speed = std::clamp(speed, -servo_max_speed, servo_max_speed);
+        velocity = speed * normal;
+        break;
+      }
+    }
+  }
+
+  // Segment a→b (2D); the normal is chosen to point towards `inside`.
+  static Wall segment(const Vec<2>& a, const Vec<2>& b, const Vec<2>& inside) requires(D == 2) {
+    Wall w;
+    w.origin = 0.5 * (a + b);
+    w.axis[0] = (b - a).normalized();
+    w.half[0] = 0.5 * (b - a).norm();
+    w.normal = Vec<2>(-w.axis[0][1], w.axis[0][0]);
+    if ((inside - w.origin).dot(w.normal) < 0) w.normal = -w.normal;
+    return w;
+  }
+  // Infinite line (2D) or plane (3D) through `point`, normal towards the material.
+  static Wall plane(const Vec<D>& point, const Vec<D>& normal) {
+    Wall w;
+    w.origin = point;
+    w.normal = normal.normalized();
+    if constexpr (D == 2) {
+      w.axis[0] = Vec<2>(-w.normal[1], w.normal[0]);
+    } else {
+      Vec<3> t = std::abs(w.normal[0]) < 0.9 ? Vec<3>::UnitX() : Vec<3>::UnitY();
+      w.axis[0] = (t - t.dot(w.normal) * w.normal).normalized();
+      w.axis[1] = w.normal.cross(w.axis[0]);
+    }
+    w.half.fill(kInf);
+    return w;
+  }
+  // Rectangle (3D) centred at `centre` with normal `normal`, edge `axis0` of length `size0` and the third
+  // direction of length `size1`.
+  static Wall rectangle(const Vec<3>& centre, const Vec<3>& normal, const Vec<3>& axis0, double size0,
+                        double size1) requires(D == 3) {
+    Wall w = plane(centre, normal);
+    w.axis[0] = (axis0 - axis0.dot(w.normal) * w.normal).normalized();
+    w.axis[1] = w.normal.cross(w.axis[0]);
+    w.half = {0.5 * size0, 0.5 * size1};
+    return w;
+  }
+};
+
+}  // namespace mc

@@ -1,0 +1,350 @@
+#include "engine/world.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "engine/errors.hpp"
+
+namespace mc {
+
+template <int D>
+void World<D>::init() {
+  const int n = particles.size();
+  if (skin <= 0) {
+    double rmin = kInf;
+    for (double r : particles.radius) rmin = std::min(rmin, r);
+    skin = n > 0 ? 0.1 * rmin : 0.0;
+  }
+  moved_ = kInf;  // force a rebuild before the first force computation
+  rebuild();
+  refresh_timestep();
+}
+
+template <int D>
+void World<D>::rebuild() {
+  const auto& p = particles;
+  const int n = p.size();
+  const int nsets = static_cast<int>(sets.size());
+  // Ball–ball candidates, each sent to the set of its phase pair.
+  std::vector<std::vector<Pair>> per_set(nsets);
+  for (const Pair& pr : candidate_pairs<D>(p.x, p.radius, skin)) {
+    const int s = model_of[p.phase[pr[0]]][p.phase[pr[1]]];
+    if (s >= 0) per_set[s].push_back(pr);
+  }
+  // Ball–wall candidates go to the set of the ball's own phase.
+  std::vector<std::vector<Pair>> per_set_wall(nsets);
+  for (int w = 0; w < static_cast<int>(walls.size()); ++w)
+    for (int j = 0; j < n; ++j) {
+      const int s = model_of[p.phase[j]][p.phase[j]];
+      if (s >= 0 && (p.x[j] - walls[w].closest(p.x[j])).norm() < p.radius[j] + skin) per_set_wall[s].push_back({w, j});
+    }
+  offset_.assign(nsets, 0);
+  wall_offset_.assign(nsets, 0);
+  std::size_t total = 0;
+  for (int s = 0; s < nsets; ++s) {
+    sets[s]->set_pairs(per_set[s]);
+    sets[s]->set_wall_pairs(per_set_wall[s]);
+    offset_[s] = total;
+    total += sets[s]->pairs().size();
+    wall_offset_[s] = total;
+    total += sets[s]->wall_pairs().size();
+  }
+  slots_.resize(total);
+  slot_pair_.resize(total);
+  // Gather lists: each particle's slots in increasing slot order, so its sum is the same on any thread count.
+  gather_start_.assign(n + 1, 0);
+  for (int s = 0; s < nsets; ++s) {
+    for (const Pair& pr : sets[s]->pairs()) ++gather_start_[pr[0] + 1], ++gather_start_[pr[1] + 1];
+    for (const Pair& pr : sets[s]->wall_pairs()) ++gather_start_[pr[1] + 1];
+  }
+  for (int i = 0; i < n; ++i) gather_start_[i + 1] += gather_start_[i];
+  gather_items_.resize(gather_start_[n]);
+  std::vector<int> fill(gather_start_.begin(), gather_start_.end() - 1);
+  for (int s = 0; s < nsets; ++s) {
+    std::size_t slot = offset_[s];
+    for (const Pair& pr : sets[s]->pairs()) {
+      slot_pair_[slot] = pr;
+      gather_items_[fill[pr[0]]++] = static_cast<int>(slot * 2);
+      gather_items_[fill[pr[1]]++] = static_cast<int>(slot * 2 + 1);
+      ++slot;
+    }
+    for (const Pair& pr : sets[s]->wall_pairs()) {
+      slot_pair_[slot] = {-1 - pr[0], pr[1]};
+      gather_items_[fill[pr[1]]++] = static_cast<int>(slot * 2 + 1);
+      ++slot;
+    }
+  }
+  for (int i = 0; i < n; ++i) std::sort(gather_items_.begin() + gather_start_[i], gather_items_.begin() + gather_start_[i + 1]);
+  x_at_rebuild_ = p.x;
+  wall_at_rebuild_.resize(walls.size());
+  for (std::size_t w = 0; w < walls.size(); ++w) wall_at_rebuild_[w] = walls[w].displacement;
+  moved_ = 0;
+  ++rebuilds;
+}
+
+template <int D>
+double World<D>::critical_timestep() {
+  const int n = particles.size();
+  SlotStiffness k;
+  k.kt.assign(slots_.f.size(), 0.0);
+  k.kra.assign(slots_.f.size(), 0.0);
+  k.krb.assign(slots_.f.size(), 0.0);
+  for (std::size_t s = 0; s < sets.size(); ++s) sets[s]->stiffness(particles, walls, k, offset_[s], wall_offset_[s]);
+  // The servo gain needs Σk_n of each wall's touching contacts; it is refreshed with the timestep.
+  for (auto& wl : walls) wl.contact_kn = 0;
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    const auto& wp = sets[s]->wall_pairs();
+    for (std::size_t c = 0; c < wp.size(); ++c) {
+      const std::size_t slot = wall_offset_[s] + c;
+      if (slots_.f[slot].squaredNorm() > 0) walls[wp[c][0]].contact_kn += k.kt[slot];
+    }
+  }
+  double tmin = kInf;
+#pragma omp parallel for schedule(static) reduction(min : tmin)
+  for (int i = 0; i < n; ++i) {
+    double kt = 0, kr = 0;
+    for (int c = gather_start_[i]; c < gather_start_[i + 1]; ++c) {
+      const std::size_t slot = static_cast<std::size_t>(gather_items_[c] >> 1);
+      kt += k.kt[slot];
+      kr += (gather_items_[c] & 1) ? k.krb[slot] : k.kra[slot];
+    }
+    if (kt == 0) {  // no neighbour yet: as if it touched an identical particle
+      const int s = model_of[particles.phase[i]][particles.phase[i]];
+      if (s < 0) continue;
+      const ContactStiffness st = sets[s]->nominal_stiffness(particles.radius[i]);
+      kt = st.normal + st.shear;
+      kr = st.shear * particles.radius[i] * particles.radius[i] + st.rotational;
+    }
+    double t = std::sqrt(particles.mass[i] / kt);                  // Tang (3.22)
+    if (kr > 0) t = std::min(t, std::sqrt(particles.inertia[i] / kr));  // Tang (3.23)
+    tmin = std::min(tmin, t);
+  }
+  return tmin;
+}
+
+template <int D>
+void World<D>::refresh_timestep() {
+  dt_critical = critical_timestep();
+  if (timestep.fixed > 0) {
+    if (timestep.fixed > dt_critical) {
+      std::ostringstream m;
+      m << "timestep.fixed = " << timestep.fixed << " s is above the critical timestep " << dt_critical
+        << " s estimated from the current stiffnesses (Tang 3.24) at step " << step_count
+        << "; use a value below it, or leave timestep.fixed unset to let the engine choose";
+      throw InputError(m.str());
+    }
+    dt = timestep.fixed;
+  } else {
+    dt = timestep.safety * dt_critical;
+  }
+  if (!std::isfinite(dt)) dt = 0;
+}
+
+template <int D>
+void World<D>::compute_forces() {
+  double e = 0;
+  for (std::size_t s = 0; s < sets.size(); ++s)
+    e += sets[s]->forces(particles, walls, dt, trace_energy, slots_, offset_[s], wall_offset_[s]);
+  if (trace_energy) energy.dissipated_contacts += e;
+}
+
+// Gather and law of motion for every particle (Tang 3.11–3.20), with PFC local damping: a force
+// −α|F| sign(v) per degree of freedom, which removes energy without a viscous time scale.
+template <int D>
+template <bool Damp, bool Gravity, bool Applied, bool Energy>
+double World<D>::move_particles() {
+  auto& p = particles;
+  const int n = p.size();
+  const double h = dt, alpha = local_damping;
+  const Vec<D> g = Gravity ? *gravity : Vec<D>::Zero();
+  const int blocks = block_count(n);
+  std::vector<double> body(Energy ? blocks : 0, 0.0), local(Energy ? blocks : 0, 0.0), kin(Energy ? blocks : 0, 0.0);
+  double moved2 = 0;
+#pragma omp parallel for schedule(static) reduction(max : moved2)
+  for (int b = 0; b < blocks; ++b) {
+    const int end = std::min(n, (b + 1) * kBlock);
+    for (int i = b * kBlock; i < end; ++i) {
+      Vec<D> f = Vec<D>::Zero();
+      Rot<D> m = Rot<D>::Zero();
+      for (int c = gather_start_[i]; c < gather_start_[i + 1]; ++c) {
+        const int item = gather_items_[c];
+        const std::size_t slot = static_cast<std::size_t>(item >> 1);
+        if (item & 1) f += slots_.f[slot], m += slots_.mb[slot];
+        else f -= slots_.f[slot], m += slots_.ma[slot];
+      }
+      Vec<D> fext = Vec<D>::Zero();
+      Rot<D> mext = Rot<D>::Zero();
+      if constexpr (Gravity) fext += p.mass[i] * g;
+      if constexpr (Applied) fext += p.f_applied[i], mext += p.m_applied[i];
+      f += fext;
+      m += mext;
+      p.f[i] = f;
+      p.m[i] = m;
+      const Vec<D> v0 = p.v[i];
+      const Rot<D> w0 = p.w[i];
+      const FixMask fix = p.fix[i];
+      Vec<D> fd = Vec<D>::Zero();
+      Rot<D> md = Rot<D>::Zero();
+      for (int k = 0; k < D; ++k) {
+        if constexpr (Damp) fd[k] = -alpha * std::abs(f[k]) * (v0[k] > 0 ? 1.0 : (v0[k] < 0 ? -1.0 : 0.0));
+        if (!(fix & (1u << k))) p.v[i][k] += (f[k] + fd[k]) / p.mass[i] * h;  // Tang (3.18)
+      }
+      for (int k = 0; k < Dim<D>::rot; ++k) {
+        if constexpr (Damp) md[k] = -alpha * std::abs(m[k]) * (w0[k] > 0 ? 1.0 : (w0[k] < 0 ? -1.0 : 0.0));
+        if (!(fix & (1u << (D + k)))) p.w[i][k] += (m[k] + md[k]) / p.inertia[i] * h;  // Tang (3.19), spheres
+      }
+      const Vec<D> dx = p.v[i] * h;
+      p.x[i] += dx;  // Tang (3.20)
+      Dim<D>::rotate(p.q[i], p.w[i], h);
+      moved2 = std::max(moved2, (p.x[i] - x_at_rebuild_[i]).squaredNorm());
+      if constexpr (Energy) {
+        const Rot<D> dth = p.w[i] * h;
+        body[b] += fext.dot(dx) + mext.dot(dth);              // Tang (3.74)
+        local[b] -= fd.dot(dx) + md.dot(dth);
+        // ½ m v(t−Δt/2)·v(t+Δt/2) is the kinetic energy at t for which central differences conserve
+        // energy exactly in a linear system.
+        kin[b] += 0.5 * (p.mass[i] * v0.dot(p.v[i]) + p.inertia[i] * w0.dot(p.w[i]));  // Tang (3.79)
+      }
+    }
+  }
+  if constexpr (Energy) {
+    double sb = 0, sl = 0, sk = 0;
+    for (int b = 0; b < blocks; ++b) sb += body[b], sl += local[b], sk += kin[b];
+    energy.body_work += sb;
+    energy.dissipated_local += sl;
+    ke_half_ = sk;
+  }
+  return std::sqrt(moved2);
+}
+
+template <int D>
+void World<D>::move_walls() {
+  double wall_moved = 0;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    Wall<D>& wl = walls[w];
+    wl.force.setZero();
+    wl.moment.setZero();
+  }
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    const auto& wp = sets[s]->wall_pairs();
+    for (std::size_t c = 0; c < wp.size(); ++c) {
+      const std::size_t slot = wall_offset_[s] + c;
+      Wall<D>& wl = walls[wp[c][0]];
+      wl.force -= slots_.f[slot];
+      wl.moment += slots_.ma[slot];
+    }
+  }
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    Wall<D>& wl = walls[w];
+    wl.control_velocity(time, dt);
+    const Vec<D> du = wl.velocity * dt;
+    if (trace_energy) energy.boundary_work -= wl.force.dot(du);  // Tang (3.76): work done on the balls
+    wl.origin += du;
+    wl.displacement += du;
+    wall_moved = std::max(wall_moved, (wl.displacement - wall_at_rebuild_[w]).norm());
+  }
+  moved_ += wall_moved;
+}
+
+template <int D>
+void World<D>::step() {
+  if (moved_ > 0.5 * skin) {
+    rebuild();
+    refresh_timestep();
+  } else if (timestep.every > 0 && step_count % timestep.every == 0) {
+    refresh_timestep();
+  }
+  compute_forces();
+  const bool damp = local_damping > 0, grav = gravity.has_value();
+  double moved = 0;
+  // One instantiation per combination of declared effects: an effect the scene leaves out is not in the loop.
+  const int key = (damp ? 1 : 0) | (grav ? 2 : 0) | (applied_loads ? 4 : 0) | (trace_energy ? 8 : 0);
+  [&]<int... K>(std::integer_sequence<int, K...>) {
+    ((key == K ? (moved = move_particles<bool(K & 1), bool(K & 2), bool(K & 4), bool(K & 8)>(), 0) : 0), ...);
+  }(std::make_integer_sequence<int, 16>{});
+  moved_ = moved;
+  move_walls();
+  time += dt;
+  ++step_count;
+  if (trace_energy) energy.kinetic = ke_half_;
+}
+
+template <int D>
+void World<D>::update_energy() {
+  double e = 0;
+  for (const auto& s : sets) e += s->strain_energy(particles, walls);
+  energy.strain = e;
+  energy.kinetic = ke_half_;
+}
+
+template <int D>
+void World<D>::check_stability() const {
+  const auto& p = particles;
+  const int n = p.size();
+  for (int i = 0; i < n; ++i) {
+    std::ostringstream m;
+    bool finite = p.x[i].allFinite() && p.v[i].allFinite() && p.w[i].allFinite();
+    if (!finite) {
+      m << "unstable at step " << step_count << " (t = " << time << " s): particle " << i
+        << " has a non-finite position or velocity; likely cause: timestep " << dt
+        << " s too large for the contact stiffness (critical estimate " << dt_critical << " s)";
+      throw InstabilityError(m.str());
+    }
+    if (p.v[i].norm() * dt > 0.5 * p.radius[i]) {
+      m << "unstable at step " << step_count << " (t = " << time << " s): particle " << i << " moved "
+        << p.v[i].norm() * dt / p.radius[i] << " of its radius in one step (|v| = " << p.v[i].norm()
+        << " m/s); likely cause: timestep " << dt << " s above the stability limit (critical estimate "
+        << dt_critical << " s), or stiffness too high for it";
+      throw InstabilityError(m.str());
+    }
+    for (int k = 0; k < D; ++k)
+      if (p.x[i][k] < domain_lo[k] || p.x[i][k] > domain_hi[k]) {
+        m << "stopped at step " << step_count << " (t = " << time << " s): particle " << i << " left the domain ("
+          << "coordinate " << k << " = " << p.x[i][k] << " m, domain " << domain_lo[k] << " .. " << domain_hi[k]
+          << " m); likely cause: a gap in the walls, an explosion of the packing, or a domain set too small";
+        throw InstabilityError(m.str());
+      }
+  }
+  for (std::size_t w = 0; w < walls.size(); ++w)
+    if (!walls[w].origin.allFinite() || !walls[w].force.allFinite()) {
+      std::ostringstream m;
+      m << "unstable at step " << step_count << ": wall '" << walls[w].name
+        << "' has a non-finite position or force; likely cause: servo gain or timestep too large";
+      throw InstabilityError(m.str());
+    }
+  if (trace_energy) {
+    // Kinetic energy cannot exceed all the energy ever put in; if it does, the integration is making energy.
+    const double budget = std::abs(energy.initial) + std::abs(energy.body_work) + std::abs(energy.boundary_work);
+    if (energy.kinetic > 2.0 * budget + 1e-12) {
+      std::ostringstream m;
+      m << "unstable at step " << step_count << ": kinetic energy " << energy.kinetic
+        << " J exceeds twice the energy put in (" << budget << " J); likely cause: timestep " << dt
+        << " s above the stability limit (critical estimate " << dt_critical << " s)";
+      throw InstabilityError(m.str());
+    }
+  }
+}
+
+template <int D>
+std::size_t World<D>::contact_count() const {
+  std::size_t n = 0;
+  for (std::size_t s = 0; s < sets.size(); ++s)
+    for (std::size_t c = 0; c < sets[s]->pairs().size(); ++c)
+      if (slots_.f[offset_[s] + c].squaredNorm() > 0) ++n;
+  return n;
+}
+
+template <int D>
+std::size_t World<D>::candidate_count() const {
+  std::size_t n = 0;
+  for (const auto& s : sets) n += s->pairs().size();
+  return n;
+}
+
+template class World<2>;
+template class World<3>;
+
+}  // namespace mc

@@ -1,0 +1,129 @@
+// The explicit engine: the state of one simulation and its cycle in PFC order (Tang 2013, Fig. 3.2):
+// contact detection → force–displacement per contact model → gather per particle → law of motion →
+// walls. What the scene observes (histories, frames, measurements) is driven from outside, by the runner.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/contact_set.hpp"
+#include "engine/particles.hpp"
+#include "engine/wall.hpp"
+
+namespace mc {
+
+// Energy terms, Tang (3.74)–(3.80) plus the work of local damping. Traced only when the scene asks.
+struct EnergyTrace {
+  double body_work = 0;      // gravity and applied loads, (3.74)
+  double boundary_work = 0;  // walls, (3.76)
+  double dissipated_contacts = 0;  // friction slip (3.77) and contact dashpots
+  double dissipated_local = 0;     // PFC local damping
+  double kinetic = 0;        // (3.79), at the current time
+  double strain = 0;         // (3.80) and the models' own, at the current time (updated by World::update_energy)
+  double initial = 0;        // kinetic + strain when tracing started
+  // Work put in minus what is stored and dissipated; zero for an exact integrator.
+  double residual() const {
+    return initial + body_work + boundary_work - kinetic - strain - dissipated_contacts - dissipated_local;
+  }
+};
+
+struct TimestepControl {
+  double safety = 0.8;        // fraction of the critical step, Tang (3.24)
+  double fixed = 0;           // > 0: use this step (refused if above the critical estimate)
+  int every = 10;             // re-estimate every N steps (and at every neighbour-list rebuild)
+};
+
+template <int D>
+class World {
+ public:
+  Particles<D> particles;
+  std::vector<Wall<D>> walls;
+  std::vector<std::unique_ptr<ContactSetBase<D>>> sets;
+  std::vector<std::vector<int>> model_of;   // [phase_a][phase_b] → index in sets; −1: no interaction
+
+  double skin = 0;              // Verlet skin [m]; 0 → 0.1 R_min at init
+  double local_damping = 0;     // PFC local damping coefficient α
+  std::optional<Vec<D>> gravity;
+  bool applied_loads = false;
+  bool trace_energy = false;
+  TimestepControl timestep;
+  Vec<D> domain_lo, domain_hi;  // leaving this box stops the run
+
+  double dt = 0, dt_critical = 0, time = 0;
+  std::int64_t step_count = 0;
+  std::int64_t rebuilds = 0;
+  EnergyTrace energy;
+
+  // Call once the particles, walls and sets are in place (and after loading a checkpoint).
+  void init();
+  void step();
+  // Critical timestep from the current stiffnesses, Tang (3.22)–(3.24), without the safety factor.
+  double critical_timestep();
+  void update_energy();  // kinetic and strain energy at the current time into `energy`
+  // Stability guard: throws InstabilityError naming the step, particle or wall and the likely cause.
+  void check_stability() const;
+
+  std::size_t contact_count() const;       // touching or bonded ball–ball contacts
+  std::size_t candidate_count() const;     // pairs in the neighbour lists
+  Vec<D> slot_force(std::size_t slot) const { return slots_.f[slot]; }
+  // Each contact of particle p: fn(slot, force on p, vector from p's centre to the contact point).
+  template <class F>
+  void for_each_contact_of(int p, F&& fn) const;
+  // The partners of a slot: (i, j) for balls, (−1 − wall, j) for a ball–wall contact.
+  const Pair& slot_pair(std::size_t slot) const { return slot_pair_[slot]; }
+  std::size_t slot_count() const { return slot_pair_.size(); }
+
+  // Per-particle slot lists (for observers), rebuilt with the neighbour lists.
+  const std::vector<int>& gather_start() const { return gather_start_; }
+  const std::vector<int>& gather_items() const { return gather_items_; }
+  std::size_t wall_slot_offset(int set) const { return wall_offset_[set]; }
+  std::size_t slot_offset(int set) const { return offset_[set]; }
+
+ private:
+  void rebuild();
+  void compute_forces();
+  template <bool Damp, bool Gravity, bool Applied, bool Energy>
+  double move_particles();
+  void move_walls();
+  void refresh_timestep();
+
+  Slots<D> slots_;
+  std::vector<std::size_t> offset_, wall_offset_;
+  std::vector<int> gather_start_, gather_items_;  // item = slot·2 + side (0: particle is A, 1: B)
+  std::vector<Pair> slot_pair_;
+  std::vector<Vec<D>> x_at_rebuild_;
+  std::vector<Vec<D>> wall_at_rebuild_;
+  double moved_ = kInf;   // max particle displacement since the last rebuild (+ walls)
+  double ke_half_ = 0;
+};
+
+template <int D>
+template <class F>
+void World<D>::for_each_contact_of(int p, F&& fn) const {
+  for (int k = gather_start_[p]; k < gather_start_[p + 1]; ++k) {
+    const int item = gather_items_[k];
+    const std::size_t slot = static_cast<std::size_t>(item >> 1);
+    const auto [a, b] = slot_pair_[slot];
+    Vec<D> lever;
+    if (a < 0) {
+      const Vec<D> c = walls[-1 - a].closest(particles.x[p]);
+      lever = c - particles.x[p];
+      const double dist = lever.norm();
+      if (dist > 0) lever *= (particles.radius[p] - 0.5 * (particles.radius[p] - dist)) / dist;
+    } else {
+      const int o = a == p ? b : a;
+      const Vec<D> d = particles.x[o] - particles.x[p];
+      const double dist = d.norm();
+      const double overlap = particles.radius[p] + particles.radius[o] - dist;
+      lever = d * ((particles.radius[p] - 0.5 * overlap) / dist);  // Tang (3.4), (3.56)
+    }
+    fn(slot, (item & 1) ? slots_.f[slot] : Vec<D>(-slots_.f[slot]), lever);
+  }
+}
+
+extern template class World<2>;
+extern template class World<3>;
+
+}  // namespace mc

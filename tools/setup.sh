@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs the Debian packages mesocrack needs, and nothing when all are present (idempotent).
+set -euo pipefail
+pkgs=(build-essential cmake libeigen3-dev libnanoflann-dev libhdf5-dev hdf5-tools doctest-dev
+      libtoml11-dev libcli11-dev libomp-dev python3 python3-numpy python3-h5py python3-matplotlib)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "setup: installing ${missing[*]}" >&2
+SUDO=""
+[ "$(id -u)" -ne 0 ] && SUDO="sudo"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
