@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/archive.hpp"
 #include "engine/contact_set.hpp"
 #include "engine/particles.hpp"
 #include "engine/wall.hpp"
@@ -75,6 +76,10 @@ class World {
   const Pair& slot_pair(std::size_t slot) const { return slot_pair_[slot]; }
   std::size_t slot_count() const { return slot_pair_.size(); }
 
+  // The complete dynamic state (checkpoints): restoring it and stepping on gives the same bits as never stopping.
+  void save(Archive& a) const;
+  void restore(const Archive& a);
+
   // Per-particle slot lists (for observers), rebuilt with the neighbour lists.
   const std::vector<int>& gather_start() const { return gather_start_; }
   const std::vector<int>& gather_items() const { return gather_items_; }
@@ -83,6 +88,7 @@ class World {
 
  private:
   void rebuild();
+  void relink();  // slots and gather lists from the sets' current pair lists
   void compute_forces();
   template <bool Damp, bool Gravity, bool Applied, bool Energy>
   double move_particles();

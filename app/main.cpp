@@ -1,0 +1,100 @@
+// The `mesocrack` command: run a scene, summarise a run, draw its report.
+// Exit status: 0 success, 2 bad input, 3 file error, 4 unstable run, 1 anything else.
+#include <omp.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "engine/errors.hpp"
+#include "engine/runner.hpp"
+#include "engine/scene.hpp"
+#include "engine/summary.hpp"
+#include "engine/toml_reader.hpp"
+
+namespace {
+
+// report.py lives beside an installed binary (../share/mesocrack) or in the source tree it was built from.
+std::string report_script(const char* argv0) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path exe = fs::canonical("/proc/self/exe", ec);
+  const fs::path installed = exe.parent_path() / ".." / "share" / "mesocrack" / "report.py";
+  if (!ec && fs::exists(installed)) return installed.string();
+  (void)argv0;
+  return std::string(MESOCRACK_SOURCE_DIR) + "/app/report.py";
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string o = "'";
+  for (char c : s) o += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return o + "'";
+}
+
+int run(const std::string& scene_file, std::string output, const std::vector<std::string>& sets, int threads,
+        const std::string& resume) {
+  if (!resume.empty()) {
+    if (!output.empty() && std::filesystem::path(output) != std::filesystem::path(resume))
+      throw mc::InputError("--resume " + resume + " continues that file; -o " + output + " must name the same file or be left out");
+    output = resume;
+  }
+  if (output.empty()) throw mc::InputError("run: give the output file with -o OUT.h5");
+  if (threads > 0) omp_set_num_threads(threads);
+  // Everything is read and validated before the output file is touched: bad input leaves no half-written file.
+  const mc::Scene scene = mc::read_scene(mc::TomlDoc::load(scene_file, sets), scene_file);
+  mc::RunOptions opt;
+  opt.output = output;
+  opt.resume = !resume.empty();
+  const mc::RunResult r = mc::run_scene(scene, opt);
+  std::fprintf(stderr, "%s after %lld steps, t = %.6g s, %.1f s wall time -> %s\n", r.status.c_str(),
+               static_cast<long long>(r.steps), r.time, r.wall_seconds, output.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"mesocrack: meso-scale discrete element modelling of concrete fracture"};
+  app.require_subcommand(1);
+  std::string scene, output, resume, target;
+  std::vector<std::string> sets;
+  int threads = 0;
+  auto* run_cmd = app.add_subcommand("run", "run a scene");
+  run_cmd->add_option("scene", scene, "scene file (TOML)")->required();
+  run_cmd->add_option("-o,--output", output, "output file (HDF5)");
+  run_cmd->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
+  run_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  run_cmd->add_option("--resume", resume, "continue this output file from its last checkpoint");
+  auto* summary_cmd = app.add_subcommand("summary", "print the key results of a run as JSON");
+  summary_cmd->add_option("output", target, "output file (HDF5)")->required();
+  auto* report_cmd = app.add_subcommand("report", "write PNG plots of a run next to its output file");
+  report_cmd->add_option("output", target, "output file (HDF5)")->required();
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*run_cmd) return run(scene, output, sets, threads, resume);
+    if (*summary_cmd) {
+      std::cout << mc::summary_json(target);
+      return 0;
+    }
+    if (*report_cmd) {
+      const std::string cmd = "/usr/bin/python3 " + shell_quote(report_script(argv[0])) + " " + shell_quote(target);
+      const int rc = std::system(cmd.c_str());
+      return WIFEXITED(rc) ? WEXITSTATUS(rc) : 1;
+    }
+  } catch (const mc::InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 2;
+  } catch (const mc::IoError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 3;
+  } catch (const mc::InstabilityError& e) {
+    std::fprintf(stderr, "\nerror: %s\n", e.what());
+    return 4;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

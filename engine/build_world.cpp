@@ -1,0 +1,212 @@
+#include "engine/build_world.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "engine/errors.hpp"
+#include "engine/h5_file.hpp"
+#include "preprocess/random_box.hpp"
+#include "preprocess/sphere_list.hpp"
+
+namespace mc {
+
+namespace {
+
+template <int D>
+Vec<D> v_of(const std::vector<double>& v) {
+  Vec<D> out;
+  for (int k = 0; k < D; ++k) out[k] = v[k];
+  return out;
+}
+template <int D>
+Rot<D> r_of(const std::vector<double>& v) {
+  Rot<D> out;
+  for (int k = 0; k < Dim<D>::rot; ++k) out[k] = v[k];
+  return out;
+}
+
+template <int D>
+void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags) {
+  const SpecimenSpec& sp = s.specimen;
+  auto density = [&](int phase) { return s.phases[phase].density; };
+  switch (sp.kind) {
+    case SpecimenSpec::Kind::Particles:
+      for (const auto& ip : sp.particles) {
+        const int i = p.add(v_of<D>(ip.x), ip.radius, density(ip.phase), ip.phase);
+        p.v[i] = v_of<D>(ip.v);
+        p.w[i] = r_of<D>(ip.w);
+        tags.push_back(0);
+      }
+      break;
+    case SpecimenSpec::Kind::SphereList: {
+      const SphereList<D> list = read_sphere_list<D>(sp.file);
+      for (int i = 0; i < list.size(); ++i) {
+        const int tag = list.tag[i];
+        int phase = 0;
+        if (!sp.tag_phase.empty()) {
+          if (tag < 0 || tag >= static_cast<int>(sp.tag_phase.size())) {
+            std::ostringstream m;
+            m << sp.file << ": particle id " << list.id[i] << " has tag " << tag << ", but specimen.tag_phases names "
+              << sp.tag_phase.size() << " tags (0.." << sp.tag_phase.size() - 1 << ")";
+            throw InputError(m.str());
+          }
+          phase = sp.tag_phase[tag];
+        }
+        p.add(list.x[i], list.radius[i], density(phase), phase);
+        tags.push_back(tag);
+      }
+      break;
+    }
+    case SpecimenSpec::Kind::Output: {
+      // The last frame of an earlier run (its final state), at rest.
+      const H5File f(sp.file, H5File::Mode::ReadOnly);
+      const auto radius = f.read_doubles("/specimen/radius");
+      const auto phase = f.read_ints("/specimen/phase");
+      std::vector<double> x;
+      if (f.exists("/frames/x") && f.rows("/frames/x") > 0) {
+        std::vector<hsize_t> dims;
+        const auto all = f.read_doubles("/frames/x", &dims);
+        x.assign(all.end() - static_cast<std::ptrdiff_t>(dims[1]), all.end());
+      } else {
+        x = f.read_doubles("/specimen/x");
+      }
+      if (x.size() != radius.size() * D)
+        throw InputError(sp.file + ": the specimen has dimension other than the scene's (" + std::to_string(D) + ")");
+      for (std::size_t i = 0; i < radius.size(); ++i) {
+        const int ph = static_cast<int>(phase[i]);
+        if (ph < 0 || ph >= static_cast<int>(s.phases.size()))
+          throw InputError(sp.file + ": particle " + std::to_string(i) + " has phase " + std::to_string(ph) +
+                           ", but the scene declares " + std::to_string(s.phases.size()) + " phases");
+        p.add(Vec<D>(Eigen::Map<const Vec<D>>(x.data() + D * i)), radius[i], density(ph), ph);
+        tags.push_back(0);
+      }
+      break;
+    }
+    case SpecimenSpec::Kind::RandomBox: {
+      const auto pk = random_box_packing<D>(v_of<D>(sp.box_lo), v_of<D>(sp.box_hi), sp.count, sp.radius_min,
+                                            sp.radius_max, s.seed);
+      for (std::size_t i = 0; i < pk.x.size(); ++i) p.add(pk.x[i], pk.radius[i], density(sp.phase), sp.phase), tags.push_back(0);
+      break;
+    }
+  }
+}
+
+template <int D>
+Wall<D> make_wall(const WallSpec& w) {
+  Wall<D> out;
+  if (w.kind == WallSpec::Kind::Plane) {
+    out = Wall<D>::plane(v_of<D>(w.point), v_of<D>(w.normal));
+  } else if (w.kind == WallSpec::Kind::Segment) {
+    if constexpr (D == 2) out = Wall<2>::segment(v_of<2>(w.a), v_of<2>(w.b), v_of<2>(w.inside));
+  } else {
+    if constexpr (D == 3) out = Wall<3>::rectangle(v_of<3>(w.point), v_of<3>(w.normal), v_of<3>(w.axis), w.size0, w.size1);
+  }
+  out.name = w.name;
+  out.material = w.material;
+  out.control = w.control;
+  if (!w.velocity.empty()) out.target_velocity = v_of<D>(w.velocity);
+  out.ramp_time = w.ramp_time;
+  out.target_stress = w.stress;
+  out.servo_area = w.servo_area;
+  out.servo_gain = w.gain;
+  out.servo_max_speed = w.max_speed;
+  return out;
+}
+
+template <int D>
+bool in_group(const GroupSpec& g, const Particles<D>& p, const std::vector<int>& tags, int i) {
+  if (std::find(g.tags.begin(), g.tags.end(), tags[i]) != g.tags.end()) return true;
+  if (std::find(g.ids.begin(), g.ids.end(), i) != g.ids.end()) return true;
+  if (!g.box_lo.empty()) {
+    for (int k = 0; k < D; ++k)
+      if (p.x[i][k] < g.box_lo[k] || p.x[i][k] > g.box_hi[k]) return false;
+    return true;
+  }
+  return false;
+}
+
+template <int D>
+void apply_groups(const Scene& s, World<D>& w, const std::vector<int>& tags) {
+  auto& p = w.particles;
+  for (const GroupSpec& g : s.groups) {
+    for (std::int64_t id : g.ids)
+      if (id >= p.size())
+        throw InputError(s.file + ": group '" + g.name + "': particle id " + std::to_string(id) +
+                         " does not exist (the specimen has " + std::to_string(p.size()) + " particles)");
+    int members = 0;
+    for (int i = 0; i < p.size(); ++i) {
+      if (!in_group(g, p, tags, i)) continue;
+      ++members;
+      p.fix[i] |= g.fix;
+      if (!g.velocity.empty()) p.v[i] = v_of<D>(g.velocity);
+      if (!g.angular_velocity.empty()) p.w[i] = r_of<D>(g.angular_velocity);
+      if (!g.force.empty() || !g.moment.empty()) {
+        w.applied_loads = true;
+        p.f_applied.resize(p.size(), Vec<D>::Zero());
+        p.m_applied.resize(p.size(), Rot<D>::Zero());
+        if (!g.force.empty()) p.f_applied[i] += v_of<D>(g.force);
+        if (!g.moment.empty()) p.m_applied[i] += r_of<D>(g.moment);
+      }
+    }
+    if (members == 0) throw InputError(s.file + ": group '" + g.name + "' selects no particle");
+  }
+}
+
+template <int D>
+void set_domain(const Scene& s, World<D>& w) {
+  if (!s.domain_lo.empty()) {
+    w.domain_lo = v_of<D>(s.domain_lo);
+    w.domain_hi = v_of<D>(s.domain_hi);
+    return;
+  }
+  // The specimen's bounding box widened by its own size (at least 100 R_max) on every side: room for any
+  // sensible motion, small enough that an exploding run stops early.
+  const auto& p = w.particles;
+  Vec<D> lo = p.x[0], hi = p.x[0];
+  for (const auto& x : p.x) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+  for (const auto& wl : w.walls)
+    if (std::isfinite(wl.half[0])) lo = lo.cwiseMin(wl.origin), hi = hi.cwiseMax(wl.origin);
+  const double margin = std::max((hi - lo).maxCoeff(), 100.0 * p.max_radius());
+  w.domain_lo = lo.array() - margin;
+  w.domain_hi = hi.array() + margin;
+}
+
+}  // namespace
+
+template <int D>
+World<D> build_world(const Scene& s) {
+  World<D> w;
+  std::vector<int> tags;
+  add_specimen<D>(s, w.particles, tags);
+  if (w.particles.size() == 0) throw InputError(s.file + ": the specimen holds no particle");
+  const int np = static_cast<int>(s.phases.size());
+  w.model_of.assign(np, std::vector<int>(np, -1));
+  for (const ContactSpec& c : s.contacts) {
+    if constexpr (D == 2) w.sets.push_back(c.model.make2());
+    else w.sets.push_back(c.model.make3());
+    w.model_of[c.phase_a][c.phase_b] = w.model_of[c.phase_b][c.phase_a] = static_cast<int>(w.sets.size()) - 1;
+  }
+  // Every pair of phases present must have a contact model: a missing one would let particles pass
+  // through each other silently.
+  std::vector<bool> present(np, false);
+  for (int ph : w.particles.phase) present[ph] = true;
+  for (int a = 0; a < np; ++a)
+    for (int b = a; b < np; ++b)
+      if (present[a] && present[b] && w.model_of[a][b] < 0)
+        throw InputError(s.file + ": no [[contacts]] entry for phases '" + s.phases[a].name + "' and '" +
+                         s.phases[b].name + "', both present in the specimen");
+  for (const WallSpec& ws : s.walls) w.walls.push_back(make_wall<D>(ws));
+  apply_groups<D>(s, w, tags);
+  if (s.gravity) w.gravity = v_of<D>(*s.gravity);
+  w.local_damping = s.local_damping;
+  w.trace_energy = s.energy;
+  w.timestep = s.timestep;
+  w.skin = s.skin;
+  set_domain<D>(s, w);
+  return w;
+}
+
+template World<2> build_world<2>(const Scene&);
+template World<3> build_world<3>(const Scene&);
+
+}  // namespace mc

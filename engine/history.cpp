@@ -1,0 +1,121 @@
+#include "engine/history.hpp"
+
+namespace mc {
+
+namespace {
+const char* axis_name(int k) { return k == 0 ? "x" : k == 1 ? "y" : "z"; }
+std::string tensor_name(int i, int j) { return std::string(axis_name(i)) + axis_name(j); }
+}  // namespace
+
+template <int D>
+Observers<D>::Observers(const Scene& s) {
+  for (const auto& r : s.regions) {
+    Region<D> g;
+    for (int k = 0; k < D; ++k) g.centre[k] = r.centre[k];
+    g.radius = r.radius;
+    regions.push_back(g);
+    strain.push_back(StrainIntegrator<D>{g});
+  }
+}
+
+template <int D>
+void Observers<D>::every_step(const World<D>& w, const Scene& s) {
+  for (std::size_t r = 0; r < regions.size(); ++r)
+    if (s.regions[r].strain) strain[r].update(w);
+}
+
+template <int D>
+std::vector<Series> make_series(const Scene& s, const World<D>* w, const Observers<D>* obs) {
+  std::vector<Series> out;
+  auto add = [&](std::string name, std::string unit, std::function<double()> f) {
+    out.push_back({std::move(name), std::move(unit), w ? std::move(f) : nullptr});
+  };
+  add("time", "s", [w] { return w->time; });
+  add("step", "-", [w] { return static_cast<double>(w->step_count); });
+  add("dt", "s", [w] { return w->dt; });
+  add("contacts", "-", [w] { return static_cast<double>(w->contact_count()); });
+  for (std::size_t i = 0; i < s.walls.size(); ++i) {
+    const std::string pre = "wall." + s.walls[i].name + ".";
+    for (int k = 0; k < D; ++k) add(pre + "force_" + axis_name(k), "N", [w, i, k] { return w->walls[i].force[k]; });
+    add(pre + "stress", "Pa", [w, i] { return w->walls[i].normal_stress(); });
+    for (int k = 0; k < D; ++k) add(pre + "disp_" + axis_name(k), "m", [w, i, k] { return w->walls[i].displacement[k]; });
+  }
+  if (s.energy) {
+    const EnergyTrace* e = w ? &w->energy : nullptr;
+    add("energy.kinetic", "J", [e] { return e->kinetic; });
+    add("energy.strain", "J", [e] { return e->strain; });
+    add("energy.body_work", "J", [e] { return e->body_work; });
+    add("energy.boundary_work", "J", [e] { return e->boundary_work; });
+    add("energy.dissipated_contacts", "J", [e] { return e->dissipated_contacts; });
+    add("energy.dissipated_local", "J", [e] { return e->dissipated_local; });
+    add("energy.residual", "J", [e] { return e->residual(); });
+  }
+  for (std::size_t r = 0; r < s.regions.size(); ++r) {
+    const RegionSpec& rs = s.regions[r];
+    const std::string pre = "measure." + rs.name + ".";
+    const Region<D>* g = obs ? &obs->regions[r] : nullptr;
+    if (rs.stress) {
+      // One stress evaluation per row: the first component computes it, the others read the cache.
+      auto cache = std::make_shared<Tensor<D>>();
+      for (int i = 0; i < D; ++i)
+        for (int j = i; j < D; ++j)
+          add(pre + "stress_" + tensor_name(i, j), "Pa", [w, g, cache, i, j] {
+            if (i == 0 && j == 0) *cache = symmetric_part<D>(average_stress(*w, *g));
+            return (*cache)(i, j);
+          });
+    }
+    if (rs.strain)
+      for (int i = 0; i < D; ++i)
+        for (int j = i; j < D; ++j) add(pre + "strain_" + tensor_name(i, j), "-", [obs, r, i, j] { return obs->strain[r].strain(i, j); });
+    if (rs.porosity) add(pre + "porosity", "-", [w, g] { return porosity(*w, *g); });
+    if (rs.coordination) add(pre + "coordination", "-", [w, g] { return coordination_number(*w, *g); });
+  }
+  for (const ProbeSpec& p : s.probes) {
+    const int a = static_cast<int>(p.particles[0]);
+    const int b = p.particles.size() > 1 ? static_cast<int>(p.particles[1]) : -1;
+    const int c = p.component;
+    using K = ProbeSpec::Kind;
+    switch (p.kind) {
+      case K::Overlap:
+      case K::Gap: {
+        const double sign = p.kind == K::Overlap ? 1.0 : -1.0;
+        add(p.name, "m", [w, a, b, sign] {
+          const auto& q = w->particles;
+          return sign * (q.radius[a] + q.radius[b] - (q.x[b] - q.x[a]).norm());
+        });
+        break;
+      }
+      case K::RelativeSpeed:
+        // Along the line of centres (positive when separating), or one component of v_b − v_a.
+        add(p.name, "m/s", [w, a, b, c] {
+          const auto& q = w->particles;
+          const Vec<D> dv = q.v[b] - q.v[a];
+          return c >= 0 ? dv[c] : dv.dot((q.x[b] - q.x[a]).normalized());
+        });
+        break;
+      case K::Position: add(p.name, "m", [w, a, c] { return c >= 0 ? w->particles.x[a][c] : w->particles.x[a].norm(); }); break;
+      case K::Velocity: add(p.name, "m/s", [w, a, c] { return c >= 0 ? w->particles.v[a][c] : w->particles.v[a].norm(); }); break;
+      case K::AngularVelocity:
+        add(p.name, "rad/s", [w, a, c] {
+          const auto& om = w->particles.w[a];
+          return D == 2 ? om[0] : (c >= 0 ? om[c] : om.norm());
+        });
+        break;
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> history_names(const Scene& s) {
+  std::vector<Series> series = s.dimension == 2 ? make_series<2>(s, nullptr, nullptr) : make_series<3>(s, nullptr, nullptr);
+  std::vector<std::string> names;
+  for (const auto& x : series) names.push_back(x.name);
+  return names;
+}
+
+template struct Observers<2>;
+template struct Observers<3>;
+template std::vector<Series> make_series<2>(const Scene&, const World<2>*, const Observers<2>*);
+template std::vector<Series> make_series<3>(const Scene&, const World<3>*, const Observers<3>*);
+
+}  // namespace mc

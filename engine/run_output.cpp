@@ -1,0 +1,200 @@
+#include "engine/run_output.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "engine/errors.hpp"
+
+namespace mc {
+
+namespace {
+std::string stem_path(const std::string& path, const std::string& suffix) {
+  std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + suffix)).string();
+}
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ",") + x;
+  return s;
+}
+}  // namespace
+
+RunOutput::RunOutput(const std::string& path, const std::string& scene_text, const std::string& scene_file,
+                     const SpecimenData& s)
+    : file_(path, H5File::Mode::Create) {
+  file_.set_attr("/", "format", std::string("mesocrack-1"));
+  file_.set_attr("/", "dimension", static_cast<std::int64_t>(s.dimension));
+  file_.set_attr("/", "scene_file", scene_file);
+  file_.write_string("/scene", scene_text);
+  const hsize_t n = s.radius.size();
+  file_.write("/specimen/x", s.x, {n, static_cast<hsize_t>(s.dimension)});
+  file_.write("/specimen/radius", s.radius, {n});
+  file_.write("/specimen/phase", s.phase, {n});
+  file_.set_attr("/specimen", "phase_names", join(s.phase_names));
+  file_.create_table("/frames/time", 0);
+  file_.create_table("/frames/step", 0, true);
+  for (const char* f : {"/frames/x", "/frames/v", "/frames/force"}) file_.create_table(f, n * s.dimension);
+  set_status("running");
+  flush();
+}
+
+RunOutput::RunOutput(const std::string& path) : file_(path, H5File::Mode::ReadWrite) {
+  if (!file_.has_attr("/", "format") || file_.attr_string("/", "format") != "mesocrack-1")
+    throw IoError(path + ": not a mesocrack output file (no format attribute 'mesocrack-1')");
+  if (file_.exists("/history")) names_ = file_.list("/history");
+}
+
+void RunOutput::create_histories(const std::vector<std::string>& names, const std::vector<std::string>& units) {
+  names_ = names;
+  std::string order;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string ds = "/history/" + names[i];
+    if (!file_.exists(ds)) file_.create_table(ds, 0);
+    file_.set_attr(ds, "unit", units[i]);
+    order += (i ? ";" : "") + names[i];
+  }
+  file_.set_attr("/history", "order", order);  // the scene's order (HDF5 lists names sorted)
+}
+
+void RunOutput::append_history(const std::vector<std::vector<double>>& columns) {
+  for (std::size_t i = 0; i < names_.size(); ++i)
+    if (!columns[i].empty()) file_.append_rows("/history/" + names_[i], columns[i].data(), columns[i].size());
+}
+
+std::int64_t RunOutput::history_rows() const {
+  return names_.empty() ? 0 : static_cast<std::int64_t>(file_.rows("/history/time"));
+}
+
+void RunOutput::append_frame(double time, std::int64_t step, const std::vector<double>& x,
+                             const std::vector<double>& v, const std::vector<double>& force) {
+  file_.append_rows("/frames/time", &time, 1);
+  file_.append_rows("/frames/step", &step, 1);
+  file_.append_rows("/frames/x", x.data(), 1);
+  file_.append_rows("/frames/v", v.data(), 1);
+  file_.append_rows("/frames/force", force.data(), 1);
+  write_xdmf();
+}
+
+std::int64_t RunOutput::frame_rows() const { return static_cast<std::int64_t>(file_.rows("/frames/time")); }
+
+void RunOutput::write_checkpoint(const Archive& a, std::int64_t step) {
+  // Write into the older slot; the newer stays valid until this one is complete.
+  std::string slot = "/checkpoint/a";
+  auto valid = [&](const std::string& s) {
+    return file_.exists(s) && file_.has_attr(s, "complete") && file_.attr_int(s, "complete") == 1;
+  };
+  if (valid("/checkpoint/a")) {
+    const bool b_newer = valid("/checkpoint/b") && file_.attr_int("/checkpoint/b", "step") > file_.attr_int("/checkpoint/a", "step");
+    slot = b_newer ? "/checkpoint/a" : "/checkpoint/b";
+  }
+  // Mark the slot incomplete before touching it, so a kill during the write cannot leave it looking valid.
+  if (file_.exists(slot)) file_.set_attr(slot, "complete", static_cast<std::int64_t>(0));
+  flush();
+  for (const auto& [k, v] : a.reals) file_.write(slot + "/reals/" + k, v, {v.size()});
+  for (const auto& [k, v] : a.bytes) file_.write(slot + "/bytes/" + k, v, {v.size()});
+  file_.set_attr(slot, "step", step);
+  flush();
+  file_.set_attr(slot, "complete", static_cast<std::int64_t>(1));
+  flush();
+}
+
+Archive RunOutput::read_checkpoint() const {
+  std::string best;
+  std::int64_t best_step = -1;
+  for (const char* s : {"/checkpoint/a", "/checkpoint/b"})
+    if (file_.exists(s) && file_.has_attr(s, "complete") && file_.attr_int(s, "complete") == 1 &&
+        file_.attr_int(s, "step") > best_step)
+      best = s, best_step = file_.attr_int(s, "step");
+  if (best.empty()) throw IoError(file_.path() + ": no complete checkpoint to resume from (set output.checkpoint_every or output.checkpoint_seconds)");
+  Archive a;
+  if (file_.exists(best + "/reals"))
+    for (const auto& k : file_.list(best + "/reals")) a.reals[k] = file_.read_doubles(best + "/reals/" + k);
+  if (file_.exists(best + "/bytes"))
+    for (const auto& k : file_.list(best + "/bytes")) a.bytes[k] = file_.read_bytes(best + "/bytes/" + k);
+  return a;
+}
+
+void RunOutput::truncate(std::int64_t history_rows, std::int64_t frame_rows) {
+  for (const auto& n : names_) file_.truncate_rows("/history/" + n, history_rows);
+  for (const char* f : {"/frames/time", "/frames/step", "/frames/x", "/frames/v", "/frames/force"})
+    file_.truncate_rows(f, frame_rows);
+  write_xdmf();
+  flush();
+}
+
+void RunOutput::set_status(const std::string& status, const std::string& message) {
+  file_.set_attr("/", "status", status);
+  file_.set_attr("/", "status_message", message);
+}
+
+void RunOutput::set_xy_plots(const std::string& pairs) { file_.set_attr("/history", "xy_plots", pairs); }
+
+void RunOutput::flush() { file_.flush(); }
+
+void RunOutput::write_csv() const {
+  const std::string path = stem_path(file_.path(), "_history.csv");
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    if (!out) throw IoError("cannot write '" + tmp + "'");
+    std::vector<std::vector<double>> cols;
+    for (std::size_t i = 0; i < names_.size(); ++i) {
+      out << (i ? "," : "") << names_[i] << " [" << file_.attr_string("/history/" + names_[i], "unit") << "]";
+      cols.push_back(file_.read_doubles("/history/" + names_[i]));
+    }
+    out << "\n" << std::setprecision(17);
+    const std::size_t rows = cols.empty() ? 0 : cols[0].size();
+    for (std::size_t r = 0; r < rows; ++r) {
+      for (std::size_t i = 0; i < cols.size(); ++i) out << (i ? "," : "") << cols[i][r];
+      out << "\n";
+    }
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+void RunOutput::write_xdmf() const {
+  const int d = static_cast<int>(file_.attr_int("/", "dimension"));
+  const auto n = file_.rows("/specimen/radius");
+  const auto frames = file_.rows("/frames/time");
+  const auto times = file_.read_doubles("/frames/time");
+  const std::string h5 = std::filesystem::path(file_.path()).filename().string();
+  std::ostringstream x;
+  x << std::setprecision(17);
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
+    << "  <Grid Name=\"frames\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  auto slab = [&](const std::string& ds, hsize_t f, int width) {
+    std::ostringstream s;
+    s << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << n << " " << width << "\">"
+      << "<DataItem Dimensions=\"3 2\" Format=\"XML\">" << f << " 0 1 1 1 " << n * width << "</DataItem>"
+      << "<DataItem Dimensions=\"" << frames << " " << n * width << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+      << h5 << ":" << ds << "</DataItem></DataItem>";
+    return s.str();
+  };
+  for (hsize_t f = 0; f < frames; ++f) {
+    x << "   <Grid Name=\"frame" << f << "\" GridType=\"Uniform\">\n    <Time Value=\"" << times[f] << "\"/>\n"
+      << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\"/>\n"
+      << "    <Geometry GeometryType=\"" << (d == 2 ? "XY" : "XYZ") << "\">" << slab("/frames/x", f, d) << "</Geometry>\n"
+      << "    <Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem Dimensions=\"" << n
+      << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":/specimen/radius</DataItem></Attribute>\n"
+      << "    <Attribute Name=\"phase\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem Dimensions=\"" << n
+      << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5 << ":/specimen/phase</DataItem></Attribute>\n";
+    if (d == 3) {  // ParaView vectors have three components; 2D vectors are shown as two scalars
+      x << "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">" << slab("/frames/v", f, 3) << "</Attribute>\n"
+        << "    <Attribute Name=\"force\" AttributeType=\"Vector\" Center=\"Node\">" << slab("/frames/force", f, 3) << "</Attribute>\n";
+    }
+    x << "   </Grid>\n";
+  }
+  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  const std::string path = stem_path(file_.path(), ".xdmf");
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    if (!out) throw IoError("cannot write '" + tmp + "'");
+    out << x.str();
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace mc

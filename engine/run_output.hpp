@@ -1,0 +1,54 @@
+// The output file of a run (layout in README.md, "Output"): scene text, initial specimen, histories, frames,
+// checkpoints, status; an XDMF sidecar so ParaView opens the frames; histories as CSV when the run ends.
+// Everything written is flushed at once (`flush`), so a run killed at any moment leaves a readable file.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "engine/archive.hpp"
+#include "engine/h5_file.hpp"
+
+namespace mc {
+
+struct SpecimenData {
+  int dimension;
+  std::vector<double> x, radius;  // x: N·D
+  std::vector<std::int32_t> phase;
+  std::vector<std::string> phase_names;
+};
+
+class RunOutput {
+ public:
+  // A new file (an existing one is replaced).
+  RunOutput(const std::string& path, const std::string& scene_text, const std::string& scene_file, const SpecimenData& s);
+  // An existing file, to resume it.
+  explicit RunOutput(const std::string& path);
+
+  void create_histories(const std::vector<std::string>& names, const std::vector<std::string>& units);
+  void append_history(const std::vector<std::vector<double>>& columns);  // one column per series, equal lengths
+  std::int64_t history_rows() const;
+  void append_frame(double time, std::int64_t step, const std::vector<double>& x, const std::vector<double>& v,
+                    const std::vector<double>& force);
+  std::int64_t frame_rows() const;
+
+  // Checkpoints alternate between two slots; a slot counts only once its `complete` attribute is written, so a
+  // kill while writing one leaves the other intact.
+  void write_checkpoint(const Archive& a, std::int64_t step);
+  Archive read_checkpoint() const;  // the newest complete one; IoError if there is none
+  // Drops history rows and frames written after the checkpoint being resumed.
+  void truncate(std::int64_t history_rows, std::int64_t frame_rows);
+
+  void set_status(const std::string& status, const std::string& message = "");
+  void set_xy_plots(const std::string& pairs);
+  void flush();
+  void write_csv() const;   // <stem>_history.csv
+  const std::string& path() const { return file_.path(); }
+  H5File& file() { return file_; }
+
+ private:
+  void write_xdmf() const;  // <stem>.xdmf, rewritten atomically after each frame
+  H5File file_;
+  std::vector<std::string> names_;
+};
+
+}  // namespace mc

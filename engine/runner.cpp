@@ -1,0 +1,233 @@
+#include "engine/runner.hpp"
+
+#include <omp.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "engine/build_world.hpp"
+#include "engine/errors.hpp"
+#include "engine/history.hpp"
+#include "engine/run_output.hpp"
+
+namespace mc {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A stop condition and what it remembers (the peak, for post-peak conditions).
+struct StopState {
+  StopSpec spec;
+  int column;
+  double peak = -kInf;
+};
+
+template <int D>
+class Run {
+ public:
+  Run(const Scene& s, const RunOptions& o) : scene_(s), opt_(o), world_(build_world<D>(s)), obs_(s) {
+    check_probes();
+    series_ = make_series<D>(s, &world_, &obs_);
+    for (const auto& st : s.stops) stops_.push_back({st, column_of(st.quantity)});
+    buffer_.resize(series_.size());
+  }
+
+  RunResult run() {
+    start_or_resume();
+    const auto t0 = Clock::now();
+    auto last_flush = t0, last_checkpoint = t0, last_progress = t0;
+    RunResult r;
+    try {
+      while (true) {
+        if (const std::string why = finished(); !why.empty()) {
+          r.status = why;
+          break;
+        }
+        world_.step();
+        if (!scene_.regions.empty()) obs_.every_step(world_, scene_);
+        const std::int64_t s = world_.step_count;
+        if (s % scene_.guard_every == 0) world_.check_stability();
+        if (s % scene_.history_every == 0) record();
+        if (scene_.frame_every > 0 && s % scene_.frame_every == 0) frame();
+        if ((s & 63) == 0) {
+          const auto now = Clock::now();
+          const bool due = scene_.checkpoint_every > 0 ? s % scene_.checkpoint_every == 0
+                                                       : now - last_checkpoint > std::chrono::seconds(60);
+          if (due) checkpoint(), last_checkpoint = now, last_flush = now;
+          if (now - last_flush > std::chrono::seconds(2)) flush_history(), out_->flush(), last_flush = now;
+          if (now - last_progress > std::chrono::milliseconds(500)) progress(t0, now), last_progress = now;
+        } else if (scene_.checkpoint_every > 0 && s % scene_.checkpoint_every == 0) {
+          checkpoint(), last_checkpoint = last_flush = Clock::now();
+        }
+      }
+    } catch (const InstabilityError& e) {
+      flush_history();
+      out_->set_status("unstable", e.what());
+      out_->flush();
+      out_->write_csv();
+      if (progress_shown_) std::fputc('\n', stderr);
+      throw;
+    }
+    if (world_.step_count % scene_.history_every != 0) record();  // the final state is always in the histories
+    frame();
+    checkpoint();
+    out_->set_status(r.status == "finished" ? "finished" : "stopped", r.status);
+    out_->flush();
+    out_->write_csv();
+    if (progress_shown_) std::fputc('\n', stderr);
+    r.steps = world_.step_count;
+    r.time = world_.time;
+    r.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    return r;
+  }
+
+ private:
+  void check_probes() const {
+    for (const auto& p : scene_.probes)
+      for (std::int64_t id : p.particles)
+        if (id >= world_.particles.size())
+          throw InputError(scene_.file + ": probe '" + p.name + "': particle " + std::to_string(id) +
+                           " does not exist (the specimen has " + std::to_string(world_.particles.size()) + " particles)");
+  }
+
+  int column_of(const std::string& name) const {
+    for (std::size_t i = 0; i < series_.size(); ++i)
+      if (series_[i].name == name) return static_cast<int>(i);
+    return -1;  // unreachable: read_scene checked the names
+  }
+
+  SpecimenData specimen() const {
+    SpecimenData d{D, {}, world_.particles.radius, {}, {}};
+    for (const auto& x : world_.particles.x) d.x.insert(d.x.end(), x.data(), x.data() + D);
+    d.phase.assign(world_.particles.phase.begin(), world_.particles.phase.end());
+    for (const auto& p : scene_.phases) d.phase_names.push_back(p.name);
+    return d;
+  }
+
+  void start_or_resume() {
+    std::vector<std::string> names, units;
+    for (const auto& s : series_) names.push_back(s.name), units.push_back(s.unit);
+    if (opt_.resume) {
+      out_ = std::make_unique<RunOutput>(opt_.output);
+      const Archive a = out_->read_checkpoint();
+      if (a.reals.at("x").size() != static_cast<std::size_t>(world_.particles.size() * D))
+        throw InputError(opt_.output + ": its checkpoint holds a different specimen than the scene builds; resume with the scene that wrote it");
+      world_.restore(a);
+      const auto& rs = a.reals.at("runner");
+      std::size_t k = 0;
+      const auto hrows = static_cast<std::int64_t>(rs[k++]), frows = static_cast<std::int64_t>(rs[k++]);
+      for (auto& st : stops_) st.peak = rs[k++];
+      for (auto& si : obs_.strain)
+        for (int i = 0; i < D * D; ++i) si.strain.data()[i] = rs[k++];
+      out_->create_histories(names, units);
+      out_->truncate(hrows, frows);
+      first_step_ = world_.step_count;
+      out_->set_status("running");
+      out_->flush();
+      return;
+    }
+    out_ = std::make_unique<RunOutput>(opt_.output, scene_.text, scene_.file, specimen());
+    out_->create_histories(names, units);
+    if (!scene_.xy_plots.empty()) out_->set_xy_plots(scene_.xy_plots);
+    world_.init();
+    if (scene_.energy) {
+      world_.update_energy();
+      world_.energy.initial = world_.energy.kinetic + world_.energy.strain;
+    }
+    record();
+    frame();
+    out_->flush();
+  }
+
+  // "" while the run goes on; else why it ends.
+  std::string finished() const {
+    if (scene_.steps > 0 && world_.step_count >= scene_.steps) return "finished";
+    if (scene_.duration > 0 && world_.time >= scene_.duration) return "finished";
+    return stop_reason_;
+  }
+
+  void record() {
+    if (scene_.energy) world_.update_energy();
+    std::vector<double> row(series_.size());
+    for (std::size_t i = 0; i < series_.size(); ++i) row[i] = series_[i].sample(), buffer_[i].push_back(row[i]);
+    for (auto& st : stops_) {
+      const double v = row[st.column];
+      if (world_.time < st.spec.after_time) continue;
+      st.peak = std::max(st.peak, v);
+      std::ostringstream m;
+      m << "stopped: " << st.spec.quantity;
+      if (st.spec.kind == StopSpec::Kind::Below && v < st.spec.value) m << " = " << v << " < " << st.spec.value;
+      else if (st.spec.kind == StopSpec::Kind::Above && v > st.spec.value) m << " = " << v << " > " << st.spec.value;
+      else if (st.spec.kind == StopSpec::Kind::PostPeak && st.peak > 0 && v < st.spec.value * st.peak)
+        m << " fell to " << v / st.peak << " of its peak " << st.peak;
+      else continue;
+      if (stop_reason_.empty()) stop_reason_ = m.str();
+    }
+  }
+
+  void flush_history() {
+    if (buffer_.empty() || buffer_[0].empty()) return;
+    out_->append_history(buffer_);
+    for (auto& b : buffer_) b.clear();
+  }
+
+  void frame() {
+    flush_history();
+    const auto& p = world_.particles;
+    std::vector<double> x, v, f;
+    const int width = D == 2 ? 2 : 3;
+    for (int i = 0; i < p.size(); ++i)
+      for (int k = 0; k < width; ++k) x.push_back(p.x[i][k]), v.push_back(p.v[i][k]), f.push_back(p.f[i][k]);
+    out_->append_frame(world_.time, world_.step_count, x, v, f);
+    out_->flush();
+  }
+
+  void checkpoint() {
+    flush_history();
+    Archive a;
+    world_.save(a);
+    std::vector<double> rs = {static_cast<double>(out_->history_rows()), static_cast<double>(out_->frame_rows())};
+    for (const auto& st : stops_) rs.push_back(st.peak);
+    for (const auto& si : obs_.strain) rs.insert(rs.end(), si.strain.data(), si.strain.data() + D * D);
+    a.reals["runner"] = rs;
+    out_->write_checkpoint(a, world_.step_count);
+  }
+
+  void progress(Clock::time_point t0, Clock::time_point now) {
+    if (!opt_.progress || !isatty(STDERR_FILENO)) return;
+    const double el = std::chrono::duration<double>(now - t0).count();
+    const double rate = (world_.step_count - first_step_) / std::max(el, 1e-9);
+    double left = -1;
+    if (scene_.steps > 0) left = (scene_.steps - world_.step_count) / std::max(rate, 1e-9);
+    else if (scene_.duration > 0 && world_.dt > 0) left = (scene_.duration - world_.time) / world_.dt / std::max(rate, 1e-9);
+    std::fprintf(stderr, "\rstep %lld  t = %.4g s  %.0f steps/s", static_cast<long long>(world_.step_count), world_.time, rate);
+    if (left >= 0) std::fprintf(stderr, "  left %d:%02d:%02d", int(left / 3600), int(left / 60) % 60, int(left) % 60);
+    std::fprintf(stderr, "   ");
+    progress_shown_ = true;
+  }
+
+  const Scene& scene_;
+  RunOptions opt_;
+  World<D> world_;
+  Observers<D> obs_;
+  std::vector<Series> series_;
+  std::vector<std::vector<double>> buffer_;
+  std::vector<StopState> stops_;
+  std::string stop_reason_;
+  std::unique_ptr<RunOutput> out_;
+  std::int64_t first_step_ = 0;
+  bool progress_shown_ = false;
+};
+
+}  // namespace
+
+RunResult run_scene(const Scene& scene, const RunOptions& options) {
+  if (scene.dimension == 2) return Run<2>(scene, options).run();
+  return Run<3>(scene, options).run();
+}
+
+}  // namespace mc

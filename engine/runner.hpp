@@ -1,0 +1,25 @@
+// Runs a scene: builds the world, steps it, records what the scene declares, writes the output file,
+// checkpoints, and stops on the scene's conditions or on an instability.
+#pragma once
+#include <string>
+
+#include "engine/scene.hpp"
+
+namespace mc {
+
+struct RunOptions {
+  std::string output;      // OUT.h5
+  bool resume = false;     // continue `output` from its last checkpoint
+  bool progress = true;    // progress line on stderr (only when it is a terminal)
+};
+
+struct RunResult {
+  std::string status;      // "finished", "stopped: <condition>", "unstable: <message>"
+  std::int64_t steps = 0;
+  double time = 0, wall_seconds = 0;
+};
+
+// Throws InputError / IoError before anything runs; InstabilityError after recording it in the file.
+RunResult run_scene(const Scene& scene, const RunOptions& options);
+
+}  // namespace mc

@@ -1,0 +1,141 @@
+// A scene, parsed and validated: everything a run needs, in SI units, before anything runs.
+// Vectors are stored with `dimension` components. What a scene does not declare is absent (empty or nullopt)
+// and is not computed.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contact_models/linear.hpp"  // WallMaterial
+#include "engine/world.hpp"
+
+namespace mc {
+
+class TomlDoc;
+
+// A contact model with validated parameters, able to make its contact set in either dimension.
+struct ModelSpec {
+  std::string name;
+  std::function<std::unique_ptr<ContactSetBase<2>>()> make2;
+  std::function<std::unique_ptr<ContactSetBase<3>>()> make3;
+};
+
+struct PhaseSpec {
+  std::string name;
+  double density;  // kg/m³
+};
+
+struct ContactSpec {
+  int phase_a, phase_b;
+  ModelSpec model;
+};
+
+struct InlineParticle {
+  std::vector<double> x, v, w;
+  double radius;
+  int phase;
+};
+
+struct SpecimenSpec {
+  enum class Kind { Particles, SphereList, Output, RandomBox } kind;
+  std::vector<InlineParticle> particles;  // Particles
+  std::string file;                       // SphereList, Output
+  std::vector<int> tag_phase;             // SphereList: phase of each tag (index = tag)
+  std::vector<double> box_lo, box_hi;     // RandomBox: region filled
+  std::int64_t count = 0;                 // RandomBox
+  double radius_min = 0, radius_max = 0;  // RandomBox, uniform in [min, max]
+  int phase = 0;                          // RandomBox
+};
+
+struct WallSpec {
+  std::string name;
+  enum class Kind { Plane, Segment, Rectangle } kind;
+  std::vector<double> point, normal, a, b, axis;  // plane: point+normal; segment: a,b (+inside); rectangle: point(centre)+normal+axis
+  std::vector<double> inside;                     // segment: a point on the material side
+  double size0 = 0, size1 = 0;                    // rectangle edge lengths
+  WallMaterial material;
+  WallControl control = WallControl::Fixed;
+  std::vector<double> velocity;  // Velocity
+  double ramp_time = 0;
+  double stress = 0, servo_area = kNaN, gain = 0.5, max_speed = kInf;  // Servo
+};
+
+// Boundary conditions on a group of particles chosen by tag (sphere lists), by index or by a box.
+struct GroupSpec {
+  std::string name;
+  std::vector<std::int64_t> tags, ids;
+  std::vector<double> box_lo, box_hi;
+  FixMask fix = 0;
+  std::vector<double> velocity, angular_velocity;  // set at the start (held if the DOF is fixed)
+  std::vector<double> force, moment;               // applied loads
+};
+
+struct RegionSpec {
+  std::string name;
+  std::vector<double> centre;
+  double radius;
+  bool stress = false, strain = false, porosity = false, coordination = false;
+};
+
+struct ProbeSpec {
+  std::string name;
+  enum class Kind { Overlap, Gap, RelativeSpeed, Position, Velocity, AngularVelocity } kind;
+  std::vector<std::int64_t> particles;  // one or two
+  int component = -1;                   // −1: magnitude (vectors) / normal component (relative speed)
+};
+
+struct StopSpec {
+  std::string quantity;  // a history name
+  enum class Kind { Below, Above, PostPeak } kind;
+  double value;          // threshold, or the fraction of the peak
+  double after_time = 0; // not before this time [s]
+};
+
+struct SummarySpec {
+  std::string name, of;
+  enum class Reduce { Max, Min, Final, Initial, TimeOfMax, DurationPositive, FinalOverInitial, MeanFinal10 } reduce;
+};
+
+struct Scene {
+  std::string file;  // for messages
+  std::string text;  // the scene as run (stored in the output)
+  int dimension = 3;
+  std::uint64_t seed = 1;
+  std::string title;
+
+  SpecimenSpec specimen;
+  std::vector<PhaseSpec> phases;
+  std::vector<ContactSpec> contacts;
+  std::vector<WallSpec> walls;
+  std::vector<GroupSpec> groups;
+
+  std::optional<std::vector<double>> gravity;
+  double local_damping = 0;
+  double skin = 0;  // 0: 0.1 R_min
+  TimestepControl timestep;
+  bool energy = false;
+  std::vector<RegionSpec> regions;
+  std::vector<ProbeSpec> probes;
+  std::vector<double> domain_lo, domain_hi;  // empty: derived from the specimen and walls
+
+  std::int64_t steps = 0;  // stop after this many steps (0: no limit)
+  double duration = 0;     // stop at this simulated time (0: no limit)
+  std::vector<StopSpec> stops;
+  std::vector<SummarySpec> summaries;
+  std::string xy_plots;    // "x:y;x2:y2" drawn by report
+
+  std::int64_t history_every = 100, frame_every = 0, checkpoint_every = 0, guard_every = 100;
+};
+
+// Reads and validates a scene; throws InputError naming the file, key, value and what is allowed.
+Scene read_scene(const TomlDoc& doc, const std::string& file);
+
+// The contact models a scene may name: each reads and validates its own parameters (contact_models/*.cpp).
+ModelSpec read_contact_model(const class Table& t, const std::string& name);
+const std::vector<std::string>& contact_model_names();
+
+}  // namespace mc

@@ -1,0 +1,182 @@
+#!/usr/bin/python3
+"""Check of app/report.py on small synthetic mesocrack-1 files (2D/3D, with and without frames,
+with an xy_plots attribute) plus the error cases. Run: /usr/bin/python3 tests/report_plots.py
+Set REPORT_PLOTS_KEEP=DIR to keep the files and PNGs in DIR for a look."""
+import hashlib
+import os
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+REPORT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "app", "report.py")
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+results = []
+
+
+def check(name, ok, detail=""):
+    results.append((name, bool(ok), detail))
+
+
+def fixed(s):
+    """Fixed-length string, as the engine writes attributes (h5py would write variable-length)."""
+    return np.bytes_(s.encode("utf-8"))
+
+
+def series(g, name, data, unit, label=None):
+    d = g.create_dataset(name, data=np.asarray(data, dtype=float))
+    d.attrs.create("unit", fixed(unit))
+    if label:
+        d.attrs["label"] = label  # variable-length: both kinds must be read
+
+
+def make_run(path, dim, n, frames=3, history=True, xy=None, seed=1):
+    rng = np.random.default_rng(seed)
+    with h5py.File(path, "w") as f:
+        f.attrs.create("format", fixed("mesocrack-1"))
+        f.attrs["dimension"] = np.int64(dim)
+        f.attrs.create("scene_file", fixed(f"scenes/synthetic_{dim}d.toml"))
+        f.create_dataset("scene", data=fixed("[scene]\nname = 'synthetic'\n"))
+        # Particles on a jittered grid inside a 20 mm box.
+        side = int(np.ceil(n ** (1 / dim)))
+        grid = np.stack(np.meshgrid(*[np.arange(side)] * dim, indexing="ij"), -1).reshape(-1, dim)[:n]
+        x = (grid + 0.5 + 0.05 * rng.standard_normal((n, dim))) * (0.02 / side)
+        r = (0.02 / side) * rng.uniform(0.35, 0.5, n)
+        phase = np.where(grid[:, 0] == 0, 2, rng.uniform(size=n) < 0.3)  # 0 mortar, 1 aggregate, 2 platen
+        sp = f.create_group("specimen")
+        sp["x"], sp["radius"], sp["phase"] = x, r, phase.astype(np.int32)
+        sp.attrs.create("phase_names", fixed("mortar,aggregate,platen"))
+        if history:
+            h = f.create_group("history")
+            S = 300
+            t = np.linspace(0, 2.5e-3, S)
+            s = t / t[-1]
+            series(h, "time", t, "s")
+            series(h, "step", np.arange(S) * 10, "-")
+            work = 0.8 * s ** 2
+            series(h, "energy.boundary_work", work, "J")
+            series(h, "energy.kinetic", 0.05 * np.sin(8 * s) ** 2, "J")
+            series(h, "energy.strain", 0.6 * s ** 2 - 0.05 * np.sin(8 * s) ** 2, "J")
+            series(h, "energy.dissipated_contacts", 0.15 * s ** 2, "J")
+            series(h, "energy.dissipated_local", 0.05 * s ** 2, "J")
+            series(h, "energy.body_work", 0 * s, "J")
+            series(h, "energy.residual", 1e-4 * rng.standard_normal(S).cumsum() / S ** 0.5, "J")
+            for c in "xyz"[:dim]:
+                series(h, f"wall.top.force_{c}", (2e4 if c == "y" else 50) * s * (1 + 0.01 * rng.standard_normal(S)), "N")
+            series(h, "wall.top.stress", 30e6 * s, "Pa")
+            series(h, "wall.top.disp_y", -2e-5 * s, "m")
+            series(h, "measure.box.stress_xx", 5e6 * s, "Pa")
+            series(h, "measure.box.stress_yy", 30e6 * s, "Pa", label="σ_yy")
+            series(h, "measure.box.stress_xy", 1e5 * np.sin(5 * s), "Pa")
+            series(h, "measure.box.strain_xx", 3e-4 * s, "-")
+            series(h, "measure.box.strain_yy", -1e-3 * s, "-")
+            series(h, "measure.box.porosity", 0.18 + 0.01 * s, "-")
+            series(h, "measure.box.coordination", 4.1 - 0.3 * s, "-")
+            series(h, "contacts", np.round(2 * n * (1 - 0.1 * s)), "-")
+            series(h, "dt", np.full(S, 2e-8), "s")
+            series(h, "axial_strain", 1e-3 * s, "-", label="axial strain")
+            series(h, "axial_stress", 30e6 * np.sin(np.pi * s * 0.8), "Pa", label="axial stress")
+            if xy:
+                h.attrs.create("xy_plots", fixed(xy))
+        if frames:
+            fr = f.create_group("frames")
+            fr["time"] = np.linspace(0, 2.5e-3, frames)
+            fr["step"] = np.arange(frames, dtype=np.int64) * 100
+            xs = np.stack([x + 1e-5 * k * rng.standard_normal(x.shape) for k in range(frames)]).reshape(frames, -1)
+            fr["x"] = xs
+            fr["v"] = np.zeros_like(xs)
+            fr["force"] = (rng.lognormal(2, 0.8, (frames, n, 1)) * rng.standard_normal((frames, n, dim))).reshape(frames, -1)
+        f.create_group("checkpoint")
+
+
+def run_report(path, *extra):
+    return subprocess.run([sys.executable, REPORT, path, *extra], capture_output=True, text=True, timeout=300)
+
+
+def digest(path):
+    return hashlib.sha256(open(path, "rb").read()).hexdigest()
+
+
+def check_pngs(case, p, expected):
+    """report ran fine, printed exactly the expected paths, and each is a real, non-trivial PNG."""
+    check(f"{case}: exit 0", p.returncode == 0, p.stderr.strip())
+    printed = p.stdout.split()
+    check(f"{case}: printed paths", sorted(map(os.path.basename, printed)) == sorted(expected),
+          f"got {printed}, expected {expected}")
+    for path in printed:
+        ok = os.path.isfile(path) and os.path.getsize(path) > 5000 and open(path, "rb").read(8) == PNG_MAGIC
+        check(f"{case}: {os.path.basename(path)} is a PNG > 5 kB", ok,
+              f"size {os.path.getsize(path) if os.path.exists(path) else 'missing'}")
+
+
+def check_error(case, p, path, words):
+    lines = p.stderr.strip().splitlines()
+    check(f"{case}: exit 2", p.returncode == 2, f"exit {p.returncode}")
+    check(f"{case}: one-line message naming the file",
+          len(lines) == 1 and path in lines[0] and all(w in lines[0] for w in words) and "Traceback" not in p.stderr,
+          repr(p.stderr))
+
+
+def main():
+    keep = os.environ.get("REPORT_PLOTS_KEEP")
+    with tempfile.TemporaryDirectory() as tmp:
+        d = keep or tmp
+        os.makedirs(d, exist_ok=True)
+
+        f2 = os.path.join(d, "disc2d.h5")
+        make_run(f2, 2, 3000, xy="axial_strain:axial_stress;measure.box.strain_yy:measure.box.stress_yy")
+        before = (digest(f2), os.stat(f2).st_mtime_ns)
+        check_pngs("2D with frames", run_report(f2),
+                   ["disc2d_history.png", "disc2d_xy.png", "disc2d_energy.png", "disc2d_specimen.png"])
+        check("2D: HDF5 file unchanged", (digest(f2), os.stat(f2).st_mtime_ns) == before)
+
+        f2n = os.path.join(d, "disc2d_noframes.h5")
+        make_run(f2n, 2, 500, frames=0)
+        out = os.path.join(d, "plots")
+        p = run_report(f2n, "--out-dir", out)
+        check_pngs("2D no frames, --out-dir", p,
+                   ["disc2d_noframes_history.png", "disc2d_noframes_energy.png", "disc2d_noframes_specimen.png"])
+        check("2D no frames: PNGs in --out-dir", all(os.path.dirname(q) == out for q in p.stdout.split()))
+
+        f3 = os.path.join(d, "sphere3d.h5")
+        make_run(f3, 3, 4000, xy="axial_strain:axial_stress")
+        check_pngs("3D with frames", run_report(f3),
+                   ["sphere3d_history.png", "sphere3d_xy.png", "sphere3d_energy.png", "sphere3d_slice.png"])
+
+        f3n = os.path.join(d, "sphere3d_bare.h5")
+        make_run(f3n, 3, 1000, frames=0, history=False)
+        check_pngs("3D no frames, no history", run_report(f3n), ["sphere3d_bare_slice.png"])
+
+        # A run still writing holds the file open (and locked) for writing: report must still read it.
+        fw = os.path.join(d, "writing.h5")
+        make_run(fw, 2, 300)
+        with h5py.File(fw, "r+") as w:
+            w["history/time"].attrs.create("unit", fixed("s"))
+            w.flush()
+            check_pngs("2D file open for writing", run_report(fw),
+                       ["writing_history.png", "writing_energy.png", "writing_specimen.png"])
+
+        missing = os.path.join(d, "no_such_run.h5")
+        check_error("missing file", run_report(missing), missing, ["no such file"])
+
+        other = os.path.join(d, "other.h5")
+        with h5py.File(other, "w") as f:
+            f["data"] = np.arange(10.0)
+        check_error("HDF5 file not from mesocrack", run_report(other), other, ["not a mesocrack file"])
+
+        text = os.path.join(d, "text.h5")
+        with open(text, "w") as f:
+            f.write("not hdf5\n")
+        check_error("not an HDF5 file", run_report(text), text, ["HDF5"])
+
+    failed = [r for r in results if not r[1]]
+    for name, _, detail in failed:
+        print(f"FAIL {name}: {detail}")
+    print(f"report_plots: {len(results) - len(failed)} passed, {len(failed)} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
