@@ -69,7 +69,7 @@ struct HertzMindlin {
       Vec<D> fd = -2.0 * c.zeta * std::sqrt(g.m_eff * kn_tangent) * vn * g.n;
       if (!slipping) fd -= 2.0 * c.zeta * std::sqrt(g.m_eff * ks) * vs;
       out.force += fd;
-      if constexpr (Energy) out.dissipated -= fd.dot(g.v_rel) * g.dt;
+      if constexpr (Energy) out.dashpot = fd;
     }
     return out;
   }

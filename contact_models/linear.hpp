@@ -77,7 +77,7 @@ struct Linear {
       Vec<D> fd = -cn * vn * g.n;
       if (!slipping) fd -= 2.0 * c.zeta * std::sqrt(g.m_eff * c.ks) * vs;
       out.force += fd;
-      if constexpr (Energy) out.dissipated -= fd.dot(g.v_rel) * g.dt;
+      if constexpr (Energy) out.dashpot = fd;
     }
     return out;
   }

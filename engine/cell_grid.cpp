@@ -1,5 +1,7 @@
 #include "engine/cell_grid.hpp"
 
+#include "engine/parallel.hpp"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -76,7 +78,7 @@ std::vector<Pair> candidate_pairs(const std::vector<Vec<D>>& x, const std::vecto
   // Each thread takes a contiguous block of i (static schedule) and keeps its pairs in i order;
   // the blocks are joined in thread order, so the result is the same for any thread count.
   std::vector<std::vector<Pair>> parts(omp_get_max_threads());
-#pragma omp parallel
+#pragma omp parallel if (n > kParallelMin)
   {
     auto& out = parts[omp_get_thread_num()];
     std::vector<int> near;

@@ -24,7 +24,10 @@ template <int D>
 struct ContactForce {
   Vec<D> force = Vec<D>::Zero();
   Rot<D> moment = Rot<D>::Zero();
-  double dissipated = 0;  // friction and dashpot work this step [J], filled only when energy is traced
+  double dissipated = 0;  // friction work this step [J], filled only when energy is traced
+  // The dashpot part of `force` (filled only when energy is traced). Its work is booked by the engine one
+  // step later, against the velocity with which the particles actually moved under it.
+  Vec<D> dashpot = Vec<D>::Zero();
 };
 
 // Stiffness seen by the timestep estimate, Tang (3.22)–(3.24).

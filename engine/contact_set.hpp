@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/cell_grid.hpp"
+#include "engine/parallel.hpp"
 #include "engine/contact_geometry.hpp"
 #include "engine/particles.hpp"
 #include "engine/wall.hpp"
@@ -34,10 +35,6 @@ struct SlotStiffness {
   std::vector<double> kt, kra, krb;
 };
 
-// Sums of floating-point numbers must not depend on the thread count: contacts are summed in fixed blocks,
-// and the block sums are added in order.
-inline constexpr int kBlock = 1024;
-inline int block_count(std::size_t n) { return static_cast<int>((n + kBlock - 1) / kBlock); }
 
 template <int D>
 class ContactSetBase {
@@ -119,8 +116,8 @@ class ContactSet final : public ContactSetBase<D> {
   const std::vector<State>& states() const { return states_; }
   const std::vector<State>& wall_states() const { return wall_states_; }
 
-  void set_pairs(const std::vector<Pair>& c) override { merge(pairs_, states_, c); }
-  void set_wall_pairs(const std::vector<Pair>& c) override { merge(wall_pairs_, wall_states_, c); }
+  void set_pairs(const std::vector<Pair>& c) override { merge(pairs_, states_, dashpot_, c); }
+  void set_wall_pairs(const std::vector<Pair>& c) override { merge(wall_pairs_, wall_states_, wall_dashpot_, c); }
 
   double forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy, Slots<D>& s,
                 std::size_t off, std::size_t woff) override {
@@ -130,7 +127,7 @@ class ContactSet final : public ContactSetBase<D> {
   void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness& k, std::size_t off,
                  std::size_t woff) const override {
     const int n = static_cast<int>(pairs_.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
     for (int c = 0; c < n; ++c) {
       const auto [i, j] = pairs_[c];
       Vec<D> ca, cb;
@@ -162,7 +159,7 @@ class ContactSet final : public ContactSetBase<D> {
 
   double strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const override {
     std::vector<double> part(block_count(pairs_.size()), 0.0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (pairs_.size() > std::size_t(kParallelMin))
     for (int b = 0; b < static_cast<int>(part.size()); ++b) {
       const std::size_t end = std::min(pairs_.size(), std::size_t(b + 1) * kBlock);
       for (std::size_t c = std::size_t(b) * kBlock; c < end; ++c) {
@@ -189,6 +186,8 @@ class ContactSet final : public ContactSetBase<D> {
     put(out, states_);
     put(out, wall_pairs_);
     put(out, wall_states_);
+    put(out, dashpot_);
+    put(out, wall_dashpot_);
     return out;
   }
   void load(const std::vector<std::uint8_t>& in) override {
@@ -197,6 +196,8 @@ class ContactSet final : public ContactSetBase<D> {
     get(in, at, states_);
     get(in, at, wall_pairs_);
     get(in, at, wall_states_);
+    get(in, at, dashpot_);
+    get(in, at, wall_dashpot_);
   }
 
  private:
@@ -205,7 +206,9 @@ class ContactSet final : public ContactSetBase<D> {
                      std::size_t off, std::size_t woff) {
     const std::size_t n = pairs_.size();
     std::vector<double> part(Energy ? block_count(n) : 0, 0.0);
-#pragma omp parallel for schedule(static)
+    if (Energy && dashpot_.size() != n) dashpot_.assign(n, Vec<D>::Zero());
+    if (Energy && wall_dashpot_.size() != wall_pairs_.size()) wall_dashpot_.assign(wall_pairs_.size(), Vec<D>::Zero());
+#pragma omp parallel for schedule(static) if (n > std::size_t(kParallelMin))
     for (int b = 0; b < block_count(n); ++b) {
       const std::size_t end = std::min(n, std::size_t(b + 1) * kBlock);
       double dissipated = 0;
@@ -216,6 +219,13 @@ class ContactSet final : public ContactSetBase<D> {
         const Vec<D> d = p.x[j] - p.x[i];
         const double reach = p.radius[i] + p.radius[j];
         if (d.squaredNorm() >= reach * reach && !Model::template persistent<D>(st)) {
+          if constexpr (Energy) {
+            if (dashpot_[c].squaredNorm() > 0) {  // the last step's dashpot force acted as the pair parted
+              Vec<D> ca, cb;
+              dissipated -= 0.5 * dashpot_[c].dot(ball_geometry(p, i, j, dt, ca, cb).v_rel) * dt;
+              dashpot_[c].setZero();
+            }
+          }
           st = State{};  // apart and unbonded: no force, no history
           s.f[slot].setZero();
           s.ma[slot].setZero();
@@ -228,7 +238,12 @@ class ContactSet final : public ContactSetBase<D> {
         s.f[slot] = r.force;
         s.ma[slot] = Dim<D>::cross(ca, Vec<D>(-r.force)) - r.moment;
         s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
-        if constexpr (Energy) dissipated += r.dissipated;
+        if constexpr (Energy) {
+          // Central differences balance ½ m v(t−½)·v(t+½) against ½ F(t)·(v(t−½) + v(t+½)) Δt: half of a
+          // dashpot force's work is booked now, half at the next step with the velocity it produced.
+          dissipated += r.dissipated - 0.5 * (dashpot_[c] + r.dashpot).dot(g.v_rel) * dt;
+          dashpot_[c] = r.dashpot;
+        }
       }
       if constexpr (Energy) part[b] = dissipated;
     }
@@ -245,32 +260,45 @@ class ContactSet final : public ContactSetBase<D> {
       s.f[slot] = r.force;
       s.ma[slot] = Dim<D>::cross(cw, Vec<D>(-r.force)) - r.moment;  // on the wall, about its origin
       s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
-      if constexpr (Energy) e += r.dissipated;
+      if constexpr (Energy) {
+        e += r.dissipated - 0.5 * (wall_dashpot_[c] + r.dashpot).dot(g.v_rel) * dt;
+        wall_dashpot_[c] = r.dashpot;
+      }
     }
     return e;
   }
 
   // Sorted merge of the old (pair, state) list with the new candidates.
-  void merge(std::vector<Pair>& pairs, std::vector<State>& states, const std::vector<Pair>& cand) {
+  // The dashpot forces of the last step (energy tracing only) travel with their pairs.
+  void merge(std::vector<Pair>& pairs, std::vector<State>& states, std::vector<Vec<D>>& dashpot,
+             const std::vector<Pair>& cand) {
+    const bool traced = !dashpot.empty();
     std::vector<Pair> np;
     std::vector<State> ns;
+    std::vector<Vec<D>> nd;
     np.reserve(cand.size());
     ns.reserve(cand.size());
+    auto keep = [&](std::size_t a) {
+      np.push_back(pairs[a]), ns.push_back(states[a]);
+      if (traced) nd.push_back(dashpot[a]);
+    };
     std::size_t a = 0, b = 0;
     while (a < pairs.size() || b < cand.size()) {
       if (b == cand.size() || (a < pairs.size() && pairs[a] < cand[b])) {
-        if (Model::template persistent<D>(states[a])) np.push_back(pairs[a]), ns.push_back(states[a]);
+        if (Model::template persistent<D>(states[a])) keep(a);
         ++a;
       } else if (a < pairs.size() && pairs[a] == cand[b]) {
-        np.push_back(pairs[a]), ns.push_back(states[a]);
+        keep(a);
         ++a, ++b;
       } else {
         np.push_back(cand[b]), ns.push_back(State{});
+        if (traced) nd.push_back(Vec<D>::Zero());
         ++b;
       }
     }
     pairs.swap(np);
     states.swap(ns);
+    dashpot.swap(nd);
   }
 
   template <class T>
@@ -294,6 +322,7 @@ class ContactSet final : public ContactSetBase<D> {
   typename Model::Params params_;
   std::vector<Pair> pairs_, wall_pairs_;
   std::vector<State> states_, wall_states_;
+  std::vector<Vec<D>> dashpot_, wall_dashpot_;  // last step's dashpot forces, only while energy is traced
 };
 
 }  // namespace mc

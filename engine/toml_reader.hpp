@@ -1,0 +1,115 @@
+// The validated reader for scene files (TOML). Every value reaches the engine through a Table accessor that
+// checks type, unit and range, so a bad scene fails with one line naming the file, the key (full dotted path,
+// e.g. `walls[2].velocity`), the value and what is allowed. Nothing is clamped, and unknown keys are errors:
+// a misspelt optional key would otherwise be silently replaced by its default.
+// All errors are mc::InputError.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mc {
+
+// The physical kind of a number. A plain TOML number is taken as SI; a string such as "30 GPa" or "5 mm/s" is
+// converted to SI, and its unit must belong to the key's kind.
+enum class Unit {
+  None,  // dimensionless: plain numbers, or a percentage "50 %"
+  Length, Time, Mass, Force,
+  Moment,  // N m
+  Pressure, Density, Velocity, Acceleration,
+  Stiffness,  // N/m
+  Energy,
+  Angle,      // rad
+  Rate,       // 1/s
+  Frequency,  // Hz
+};
+
+// The allowed interval of a number, in SI. Bounds are inclusive unless marked open.
+struct Range {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  bool lo_open = false;
+  bool hi_open = false;
+
+  static Range any() { return {}; }
+  static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }  // 0 < v
+  static Range non_negative() { return at_least(0.0); }                                           // 0 <= v
+  static Range at_least(double lo) { return {lo, std::numeric_limits<double>::infinity(), false, false}; }
+  static Range closed(double lo, double hi) { return {lo, hi, false, false}; }  // lo <= v <= hi
+  static Range fraction() { return closed(0.0, 1.0); }                          // 0 <= v <= 1
+  static Range open_fraction() { return {0.0, 1.0, false, true}; }             // 0 <= v < 1
+
+  bool contains(double v) const;
+  std::string describe(const std::string& unit = "") const;  // e.g. "0 <= value < 1", "value > 0 Pa"
+};
+
+namespace detail {
+struct TomlState;
+struct Field;
+}
+
+// A view of one TOML table at a key path. Reading a key (or asking has()) marks it as known; finish() then
+// rejects the keys nobody asked for. Views are cheap to copy and share the document's bookkeeping.
+class Table {
+ public:
+  const std::string& path() const;  // "" for the root, "material", "walls[1]"
+  bool has(const std::string& key) const;
+  std::vector<std::string> keys() const;  // keys present, in file order
+
+  double number(const std::string& key, Unit u, Range r) const;
+  double number(const std::string& key, Unit u, Range r, double fallback) const;
+  // An array of numbers (each may be a unit string); n = 0 accepts any length.
+  std::vector<double> numbers(const std::string& key, Unit u, Range r, std::size_t n) const;
+  std::int64_t integer(const std::string& key, Range r) const;
+  std::int64_t integer(const std::string& key, Range r, std::int64_t fallback) const;
+  bool boolean(const std::string& key) const;
+  bool boolean(const std::string& key, bool fallback) const;
+  std::string choice(const std::string& key, const std::vector<std::string>& allowed) const;
+  std::string choice(const std::string& key, const std::vector<std::string>& allowed,
+                     const std::string& fallback) const;
+  std::string string(const std::string& key) const;  // free text, e.g. a file path
+  std::string string(const std::string& key, const std::string& fallback) const;
+
+  Table table(const std::string& key) const;
+  std::optional<Table> optional_table(const std::string& key) const;
+  std::vector<Table> tables(const std::string& key) const;  // [[key]] array of tables; empty if absent
+
+  // For checks across keys: throws "file: key 'path.key' = <value>: <what>".
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+  // Throws for the first key of this table (not recursing) that was never read or asked for.
+  void finish() const;
+
+ private:
+  friend class TomlDoc;
+  Table(std::shared_ptr<detail::TomlState> state, std::size_t visit);
+  detail::Field field(const std::string& key) const;  // looks the key up and marks it as known
+  Table child(const detail::Field& f) const;          // the view of a sub-table, registered for finish_all
+  std::shared_ptr<detail::TomlState> state_;
+  std::size_t visit_;  // index of this table's entry in the state's list of visited tables
+};
+
+// A parsed scene file with the command line's --set overrides applied.
+class TomlDoc {
+ public:
+  // overrides: "a.b.c=value" or "walls[1].velocity=5 mm/s"; the value is TOML if it parses, else a bare string.
+  static TomlDoc load(const std::string& file, const std::vector<std::string>& overrides = {});
+  static TomlDoc parse_text(const std::string& text, const std::string& name,
+                            const std::vector<std::string>& overrides = {});
+
+  Table root() const;
+  // The exact input: the file text itself, or, with overrides, the document re-serialised (with a comment
+  // listing the overrides). Stored in the output file; it re-parses to the same values.
+  const std::string& text() const;
+  // finish() for every table visited; a sub-table never visited is an unknown key of its parent.
+  void finish_all() const;
+
+ private:
+  explicit TomlDoc(std::shared_ptr<detail::TomlState> state);
+  std::shared_ptr<detail::TomlState> state_;
+};
+
+}  // namespace mc
