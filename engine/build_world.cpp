@@ -39,7 +39,12 @@ void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags) {
       }
       break;
     case SpecimenSpec::Kind::SphereList: {
-      const SphereList<D> list = read_sphere_list<D>(sp.file);
+      SphereList<D> list;
+      try {
+        list = read_sphere_list<D>(sp.file);
+      } catch (const IoError& e) {  // name the scene and its key, not only the resolved path
+        throw IoError(s.file + ": key 'specimen.file': " + e.what());
+      }
       for (int i = 0; i < list.size(); ++i) {
         const int tag = list.tag[i];
         int phase = 0;
@@ -59,16 +64,21 @@ void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags) {
     }
     case SpecimenSpec::Kind::Output: {
       // The last frame of an earlier run (its final state), at rest.
-      const H5File f(sp.file, H5File::Mode::ReadOnly);
-      const auto radius = f.read_doubles("/specimen/radius");
-      const auto phase = f.read_ints("/specimen/phase");
-      std::vector<double> x;
-      if (f.exists("/frames/x") && f.rows("/frames/x") > 0) {
-        std::vector<hsize_t> dims;
-        const auto all = f.read_doubles("/frames/x", &dims);
-        x.assign(all.end() - static_cast<std::ptrdiff_t>(dims[1]), all.end());
-      } else {
-        x = f.read_doubles("/specimen/x");
+      std::vector<double> radius, x;
+      std::vector<std::int64_t> phase;
+      try {
+        const H5File f(sp.file, H5File::Mode::ReadOnly);
+        radius = f.read_doubles("/specimen/radius");
+        phase = f.read_ints("/specimen/phase");
+        if (f.exists("/frames/x") && f.rows("/frames/x") > 0) {
+          std::vector<hsize_t> dims;
+          const auto all = f.read_doubles("/frames/x", &dims);
+          x.assign(all.end() - static_cast<std::ptrdiff_t>(dims[1]), all.end());
+        } else {
+          x = f.read_doubles("/specimen/x");
+        }
+      } catch (const IoError& e) {  // name the scene and its key, not only the resolved path
+        throw IoError(s.file + ": key 'specimen.file': " + e.what());
       }
       if (x.size() != radius.size() * D)
         throw InputError(sp.file + ": the specimen has dimension other than the scene's (" + std::to_string(D) + ")");
@@ -83,8 +93,12 @@ void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags) {
       break;
     }
     case SpecimenSpec::Kind::RandomBox: {
-      const auto pk = random_box_packing<D>(v_of<D>(sp.box_lo), v_of<D>(sp.box_hi), sp.count, sp.radius_min,
-                                            sp.radius_max, s.seed);
+      Packing<D> pk;
+      try {
+        pk = random_box_packing<D>(v_of<D>(sp.box_lo), v_of<D>(sp.box_hi), sp.count, sp.radius_min, sp.radius_max, s.seed);
+      } catch (const InputError& e) {
+        throw InputError(s.file + ": key 'specimen.count' = " + std::to_string(sp.count) + ": " + e.what());
+      }
       for (std::size_t i = 0; i < pk.x.size(); ++i) p.add(pk.x[i], pk.radius[i], density(sp.phase), sp.phase), tags.push_back(0);
       break;
     }
@@ -196,6 +210,14 @@ World<D> build_world(const Scene& s) {
         throw InputError(s.file + ": no [[contacts]] entry for phases '" + s.phases[a].name + "' and '" +
                          s.phases[b].name + "', both present in the specimen");
   for (const WallSpec& ws : s.walls) w.walls.push_back(make_wall<D>(ws));
+  auto wall_index = [&](const std::string& name) {
+    for (std::size_t k = 0; k < s.walls.size(); ++k)
+      if (s.walls[k].name == name) return static_cast<int>(k);
+    return -1;  // unreachable: read_scene checked the names
+  };
+  for (std::size_t k = 0; k < s.walls.size(); ++k)
+    for (std::size_t j = 0; j + 1 < s.walls[k].area_between.size(); j += 2)
+      w.walls[k].area_between.push_back({wall_index(s.walls[k].area_between[j]), wall_index(s.walls[k].area_between[j + 1])});
   apply_groups<D>(s, w, tags);
   if (s.gravity) w.gravity = v_of<D>(*s.gravity);
   w.local_damping = s.local_damping;

@@ -62,6 +62,7 @@ struct WallSpec {
   std::vector<double> velocity;  // Velocity
   double ramp_time = 0;
   double stress = 0, servo_area = kNaN, gain = 0.5, max_speed = kInf;  // Servo
+  std::vector<std::string> area_between;  // Servo: names of opposite walls, in pairs
 };
 
 // Boundary conditions on a group of particles chosen by tag (sphere lists), by index or by a box.

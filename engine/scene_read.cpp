@@ -1,6 +1,7 @@
 // Scene file → Scene. Every key is read through the validated Table accessors (engine/toml_reader.hpp), so
 // each error names the file, the key, the value and what is allowed; unknown keys are errors.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -129,6 +130,16 @@ WallControl read_motion(const Table& t, WallSpec& w, int d) {
   if (m == "servo") {
     w.stress = t.number("stress", Unit::Pressure, Range::any());
     w.servo_area = t.number("area", d == 2 ? Unit::Length : Unit::None, Range::positive(), kNaN);
+    if (t.has("area_between")) {
+      // area_between = "left right" (2D) or "x_lo x_hi y_lo y_hi" (3D): walls whose distances span the area.
+      std::stringstream ss(t.string("area_between"));
+      std::string name;
+      while (ss >> name) w.area_between.push_back(name);
+      if (static_cast<int>(w.area_between.size()) != 2 * (d - 1))
+        t.fail("area_between", "give " + std::to_string(2 * (d - 1)) + " wall names (" + std::to_string(d - 1) +
+                                   " pair(s) of opposite walls), separated by spaces");
+      if (!std::isnan(w.servo_area)) t.fail("area", "give either 'area' or 'area_between', not both");
+    }
     w.gain = t.number("gain", Unit::None, Range{0.0, 1.0, true, false}, 0.5);
     w.max_speed = t.number("max_speed", Unit::Velocity, Range::positive());
     return WallControl::Servo;
@@ -175,6 +186,13 @@ void read_walls(const Table& root, Scene& s) {
     s.walls.push_back(w);
     t.finish();
   }
+  const auto tabs = root.tables("walls");
+  for (std::size_t i = 0; i < s.walls.size(); ++i)
+    for (const auto& n : s.walls[i].area_between) {
+      bool found = false;
+      for (const auto& o : s.walls) found |= o.name == n;
+      if (!found) tabs[i].fail("area_between", "'" + n + "' is not the name of a wall");
+    }
 }
 
 FixMask parse_fix(const Table& t, int d) {

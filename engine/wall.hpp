@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "contact_models/linear.hpp"  // WallMaterial
 #include "engine/dim.hpp"
@@ -29,6 +30,9 @@ struct Wall {
   double ramp_time = 0;                      // [s]: velocity rises as (1 − cos πt/T)/2, no jerk at start
   double target_stress = 0;                  // Servo: compressive normal stress to hold [Pa]
   double servo_area = kNaN;                  // [m² in 3D, m in 2D]; NaN: the wall's own area
+  // Pairs of opposite walls (indices) whose current distances span the loaded area (one pair in 2D, two in
+  // 3D): the stress follows the specimen as it shrinks, as PFC computes it. Empty: servo_area or own area.
+  std::vector<std::array<int, 2>> area_between;
   double servo_gain = 0.5;                   // α of the PFC servo, 0 < α ≤ 1
   double servo_max_speed = kInf;             // [m/s]
 

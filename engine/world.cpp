@@ -247,6 +247,13 @@ void World<D>::move_walls() {
       wl.moment += slots_.ma[slot];
     }
   }
+  for (auto& wl : walls) {
+    if (wl.area_between.empty()) continue;
+    double a = 1;
+    for (const auto& [lo, hi] : wl.area_between)
+      a *= std::abs((walls[hi].origin - walls[lo].origin).dot(walls[lo].normal));
+    wl.servo_area = a;
+  }
   for (std::size_t w = 0; w < walls.size(); ++w) {
     Wall<D>& wl = walls[w];
     wl.control_velocity(time, dt);

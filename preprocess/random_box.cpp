@@ -30,7 +30,7 @@ Packing<D> random_box_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t c
     return c;
   };
   for (int k = 0; k < D; ++k)
-    if (hi[k] - lo[k] <= 2 * r_max) throw InputError("specimen: the box is narrower than a particle (2 radius_max)");
+    if (hi[k] - lo[k] <= 2 * r_max) throw InputError("the box is narrower than a particle (2 radius_max)");
   const int attempts = 2000;  // per particle, before giving up
   double volume = 0;
   for (std::int64_t n = 0; n < count; ++n) {
@@ -62,7 +62,7 @@ Packing<D> random_box_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t c
       double box = 1;
       for (int k = 0; k < D; ++k) box *= hi[k] - lo[k];
       std::ostringstream m;
-      m << "specimen: could not place particle " << n + 1 << " of " << count << " without overlap after " << attempts
+      m << "could not place particle " << n + 1 << " of " << count << " without overlap after " << attempts
         << " attempts (packing fraction reached " << volume / box
         << "); random placement fills at most about 0.5 (2D) / 0.35 (3D): lower 'count' or enlarge the box";
       throw InputError(m.str());
