@@ -91,6 +91,11 @@ struct HertzMindlin {
     return 0.4 * fn * g.overlap + 0.5 * s.fs.squaredNorm() / ks;  // ∫ cn u^{3/2} du = ⅖ F^n U^n
   }
 
+  // At opening |F^s| ≤ μF^n and k^s ∝ (F^n)^{1/3}, so the shear energy left, ≤ μ²(F^n)^{5/3}/c_s, vanishes with
+  // the normal force: nothing to book.
+  template <int D>
+  static double released_energy(const Coeffs&, const State<D>&) { return 0.0; }
+
   template <int D>
   static bool persistent(const State<D>&) { return false; }
 };

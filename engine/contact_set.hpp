@@ -220,6 +220,7 @@ class ContactSet final : public ContactSetBase<D> {
         const double reach = p.radius[i] + p.radius[j];
         if (d.squaredNorm() >= reach * reach && !Model::template persistent<D>(st)) {
           if constexpr (Energy) {
+            dissipated += Model::template released_energy<D>(Model::template pair<D>(params_, p.radius[i], p.radius[j]), st);
             if (dashpot_[c].squaredNorm() > 0) {  // the last step's dashpot force acted as the pair parted
               Vec<D> ca, cb;
               dissipated -= 0.5 * dashpot_[c].dot(ball_geometry(p, i, j, dt, ca, cb).v_rel) * dt;
