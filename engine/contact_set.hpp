@@ -54,6 +54,7 @@ class ContactSetBase {
   virtual void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness& k,
                          std::size_t offset, std::size_t wall_offset) const = 0;
   virtual ContactStiffness nominal_stiffness(double r) const = 0;  // one contact with an identical particle
+  virtual double damping_ratio() const = 0;                       // of the model's dashpots (0: none)
   virtual double strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const = 0;
   // The whole history as bytes (checkpoints): pairs, wall pairs and states.
   virtual std::vector<std::uint8_t> save() const = 0;
@@ -155,6 +156,11 @@ class ContactSet final : public ContactSetBase<D> {
     g.r_a = g.r_b = r;
     g.overlap = 0;
     return Model::template stiffness<D>(Model::template pair<D>(params_, r, r), g, State{});
+  }
+
+  double damping_ratio() const override {
+    if constexpr (requires { params_.damping_ratio; }) return params_.damping_ratio;
+    else return 0.0;
   }
 
   double strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const override {

@@ -21,6 +21,10 @@ void World<D>::init() {
   moved_ = kInf;  // force a rebuild before the first force computation
   rebuild();
   refresh_timestep();
+  // Until the first step, the kinetic energy is that of the initial velocities.
+  ke_half_ = 0;
+  for (int i = 0; i < n; ++i)
+    ke_half_ += 0.5 * (particles.mass[i] * particles.v[i].squaredNorm() + particles.inertia[i] * particles.w[i].squaredNorm());
 }
 
 template <int D>
@@ -131,7 +135,10 @@ double World<D>::critical_timestep() {
     if (kr > 0) t = std::min(t, std::sqrt(particles.inertia[i] / kr));  // Tang (3.23)
     tmin = std::min(tmin, t);
   }
-  return tmin;
+  // Dashpots lower the limit of central differences from 2/ω to (2/ω)(√(1 + ζ²) − ζ) (Belytschko et al.).
+  double zeta = 0;
+  for (const auto& s : sets) zeta = std::max(zeta, s->damping_ratio());
+  return tmin * (std::sqrt(1.0 + zeta * zeta) - zeta);
 }
 
 template <int D>
