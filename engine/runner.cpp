@@ -72,8 +72,10 @@ class Run {
       if (progress_shown_) std::fputc('\n', stderr);
       throw;
     }
-    if (world_.step_count % scene_.history_every != 0) record();  // the final state is always in the histories
-    frame();
+    // The final state is always in the histories and the frames, once: the loop may have written it already,
+    // and a resumed run that had already ended writes nothing new.
+    if (last_record_step_ != world_.step_count) record();
+    if (last_frame_step_ != world_.step_count) frame();
     checkpoint();
     out_->set_status(r.status == "finished" ? "finished" : "stopped", r.status);
     out_->flush();
@@ -125,6 +127,8 @@ class Run {
         for (int i = 0; i < D * D; ++i) si.strain.data()[i] = rs[k++];
       out_->create_histories(names, units);
       out_->truncate(hrows, frows);
+      if (hrows > 0) last_record_step_ = static_cast<std::int64_t>(out_->file().read_doubles("/history/step").back());
+      if (frows > 0) last_frame_step_ = out_->file().read_ints("/frames/step").back();
       first_step_ = world_.step_count;
       out_->set_status("running");
       out_->flush();
@@ -151,6 +155,7 @@ class Run {
   }
 
   void record() {
+    last_record_step_ = world_.step_count;
     if (scene_.energy) world_.update_energy();
     std::vector<double> row(series_.size());
     for (std::size_t i = 0; i < series_.size(); ++i) row[i] = series_[i].sample(), buffer_[i].push_back(row[i]);
@@ -176,6 +181,7 @@ class Run {
   }
 
   void frame() {
+    last_frame_step_ = world_.step_count;
     flush_history();
     const auto& p = world_.particles;
     std::vector<double> x, v, f;
@@ -220,6 +226,7 @@ class Run {
   std::string stop_reason_;
   std::unique_ptr<RunOutput> out_;
   std::int64_t first_step_ = 0;
+  std::int64_t last_record_step_ = -1, last_frame_step_ = -1;  // step of the newest history row and frame
   bool progress_shown_ = false;
 };
 

@@ -437,6 +437,8 @@ void World<D>::save(Archive& a) const {
   }
   a.reals["walls"] = wl;
   for (std::size_t s = 0; s < sets.size(); ++s) a.bytes["set" + std::to_string(s)] = sets[s]->save();
+  // The last step's contact forces: the servo gain and the timestep refresh read them before the next force pass.
+  a.put("slot_f", slots_.f);
   a.reals["scalars"] = {dt, dt_critical, time, static_cast<double>(step_count), static_cast<double>(rebuilds), moved_,
                         ke_half_, skin};
   const EnergyTrace& e = energy;
@@ -465,6 +467,13 @@ void World<D>::restore(const Archive& a) {
   a.get("x_at_rebuild", x_at_rebuild_);
   a.get("wall_at_rebuild", wall_at_rebuild_);
   const auto& wl = a.reals.at("walls");
+  const std::size_t per_wall = 4 * D + Dim<D>::rot + 1;
+  std::size_t nsets = 0;
+  while (a.bytes.count("set" + std::to_string(nsets))) ++nsets;
+  if (wl.size() != walls.size() * per_wall || nsets != sets.size())
+    throw InputError("the checkpoint holds " + std::to_string(wl.size() / per_wall) + " walls and " +
+                     std::to_string(nsets) + " contact models, the scene builds " + std::to_string(walls.size()) +
+                     " and " + std::to_string(sets.size()) + ": resume with the scene that wrote it");
   std::size_t k = 0;
   for (auto& w : walls) {
     for (Vec<D>* v : {&w.origin, &w.velocity, &w.displacement, &w.force})
@@ -483,6 +492,7 @@ void World<D>::restore(const Archive& a) {
   // Slots, offsets and gather lists follow from the restored pair lists; no contact is re-detected, so the
   // next step sees exactly the lists it would have seen.
   relink();
+  a.get("slot_f", slots_.f);
 }
 
 template void World<2>::save(Archive&) const;
