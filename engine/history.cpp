@@ -39,6 +39,20 @@ std::vector<Series> make_series(const Scene& s, const World<D>* w, const Observe
     for (int k = 0; k < D; ++k) add(pre + "force_" + axis_name(k), "N", [w, i, k] { return w->walls[i].force[k]; });
     add(pre + "stress", "Pa", [w, i] { return w->walls[i].normal_stress(); });
     for (int k = 0; k < D; ++k) add(pre + "disp_" + axis_name(k), "m", [w, i, k] { return w->walls[i].displacement[k]; });
+    // Moment about the wall's origin (2D: the z component only).
+    for (int k = 0; k < Dim<D>::rot; ++k)
+      add(pre + "moment_" + axis_name(D == 2 ? 2 : k), "N m", [w, i, k] { return w->walls[i].moment[k]; });
+  }
+  for (const WallStrainSpec& g : s.wall_strains) {
+    // Engineering strain between two walls along the first one's normal, tension positive.
+    const int a = g.walls[0], b = g.walls[1];
+    add("strain." + g.name, "-", [w, a, b] {
+      const auto& wa = w->walls[a];
+      const auto& wb = w->walls[b];
+      const double gap = (wb.origin - wa.origin).dot(wa.normal);
+      const double gap0 = (wb.origin - wb.displacement - (wa.origin - wa.displacement)).dot(wa.normal);
+      return (gap - gap0) / gap0;
+    });
   }
   if (s.energy) {
     const EnergyTrace* e = w ? &w->energy : nullptr;

@@ -134,10 +134,15 @@ class Run {
       out_->flush();
       return;
     }
+    // init() may refuse the scene (a fixed timestep above the estimate): before the output file exists.
+    try {
+      world_.init();
+    } catch (const InputError& e) {
+      throw InputError(scene_.file + ": " + e.what());
+    }
     out_ = std::make_unique<RunOutput>(opt_.output, scene_.text, scene_.file, specimen());
     out_->create_histories(names, units);
     if (!scene_.xy_plots.empty()) out_->set_xy_plots(scene_.xy_plots);
-    world_.init();
     if (scene_.energy) {
       world_.update_energy();
       world_.energy.initial = world_.energy.kinetic + world_.energy.strain;

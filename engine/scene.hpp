@@ -82,6 +82,12 @@ struct RegionSpec {
   bool stress = false, strain = false, porosity = false, coordination = false;
 };
 
+// Strain measured by two opposite walls: (L − L0)/L0, L their distance along the first wall's normal.
+struct WallStrainSpec {
+  std::string name;
+  std::array<int, 2> walls;  // indices into Scene::walls
+};
+
 struct ProbeSpec {
   std::string name;
   enum class Kind { Overlap, Gap, RelativeSpeed, Position, Velocity, AngularVelocity } kind;
@@ -121,6 +127,7 @@ struct Scene {
   bool energy = false;
   std::vector<RegionSpec> regions;
   std::vector<ProbeSpec> probes;
+  std::vector<WallStrainSpec> wall_strains;
   std::vector<double> domain_lo, domain_hi;  // empty: derived from the specimen and walls
 
   std::int64_t steps = 0;  // stop after this many steps (0: no limit)

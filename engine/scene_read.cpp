@@ -275,6 +275,24 @@ void read_observers(const Table& root, Scene& s) {
     s.regions.push_back(r);
     t.finish();
   }
+  for (const Table& t : root.tables("wall_strains")) {
+    WallStrainSpec g;
+    g.name = t.string("name");
+    // walls = "bottom top": two opposite walls.
+    std::stringstream ss(t.string("walls"));
+    std::vector<std::string> names;
+    std::string n;
+    while (ss >> n) names.push_back(n);
+    if (names.size() != 2) t.fail("walls", "give the names of two opposite walls, separated by a space");
+    for (int k = 0; k < 2; ++k) {
+      g.walls[k] = -1;
+      for (std::size_t i = 0; i < s.walls.size(); ++i)
+        if (s.walls[i].name == names[k]) g.walls[k] = static_cast<int>(i);
+      if (g.walls[k] < 0) t.fail("walls", "'" + names[k] + "' is not the name of a wall");
+    }
+    s.wall_strains.push_back(g);
+    t.finish();
+  }
   for (const Table& t : root.tables("probes")) {
     ProbeSpec p;
     p.name = t.string("name");
