@@ -40,7 +40,7 @@ struct Wall {
   Vec<D> displacement = Vec<D>::Zero();      // since the start of the run [m]
   Vec<D> force = Vec<D>::Zero();             // exerted by the balls on the wall [N]
   Rot<D> moment = Rot<D>::Zero();            // about the origin [N m]
-  double contact_kn = 0;                     // Σ normal stiffness of its contacts (servo gain)
+  double contact_kn = 0;                     // Σ(k_n + k_s) of its touching contacts (servo gain; ≥ Σk_n, so conservative)
 
   // Closest point of the wall to p; the contact normal runs from it to p.
   Vec<D> closest(const Vec<D>& p) const {
@@ -75,7 +75,8 @@ struct Wall {
       }
       case WallControl::Servo: {
         // PFC servo: G = α A / (Σk_n Δt) makes the stress error shrink by at most α per step, so the wall
-        // cannot overshoot into an instability whatever the current stiffness.
+        // cannot overshoot into an instability whatever the current stiffness (Σ(k_n + k_s) here: a smaller,
+        // safer gain).
         const double a = std::isnan(servo_area) ? area() : servo_area;
         double speed = 0;
         if (contact_kn > 0) speed = servo_gain * a / (contact_kn * dt) * (target_stress - normal_stress());
