@@ -12,17 +12,7 @@ using namespace mc;
 
 namespace {
 
-// Deterministic uniform numbers in [0, 1) (splitmix64), the same on every platform and standard library.
-struct Rng {
-  std::uint64_t s;
-  double operator()() {
-    std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-};
+using test::Rng;
 
 // Simple cubic lattice of n³ spheres of radius r at spacing 2 r (1 − c), in a box of six fixed planes. Each
 // contact between spheres starts with the overlap 2 r c; with walls as stiff as a sphere (series stiffness

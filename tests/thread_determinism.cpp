@@ -16,17 +16,7 @@ using namespace mc;
 
 namespace {
 
-// Deterministic uniform numbers in [0, 1) (splitmix64).
-struct Rng {
-  std::uint64_t s;
-  double operator()() {
-    std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-};
+using test::Rng;
 
 // 4356 spheres of radii 0.95–1.05 r on a face-centred cubic lattice of 11 × 11 × 9 cells compressed by 0.5 %
 // (most neighbours overlap, some do not touch), in a box of six planes; the top and one side wall move in.
