@@ -43,7 +43,7 @@ struct HertzMindlin {
   }
 
   template <int D, bool Energy>
-  static ContactForce<D> force(const Coeffs& c, const ContactGeometry<D>& g, State<D>& s) {
+  [[gnu::always_inline]] static ContactForce<D> force(const Coeffs& c, const ContactGeometry<D>& g, State<D>& s) {
     ContactForce<D> out;
     if (g.overlap <= 0) {
       s.fs.setZero();

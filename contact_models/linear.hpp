@@ -52,7 +52,7 @@ struct Linear {
   }
 
   template <int D, bool Energy>
-  static ContactForce<D> force(const Coeffs& c, const ContactGeometry<D>& g, State<D>& s) {
+  [[gnu::always_inline]] static ContactForce<D> force(const Coeffs& c, const ContactGeometry<D>& g, State<D>& s) {
     ContactForce<D> out;
     if (g.overlap <= 0) {  // separated: no force, and the shear history starts again at the next touch
       if constexpr (Energy) out.dissipated += released_energy<D>(c, s);

@@ -38,10 +38,14 @@ struct Dim<3> {
   static double volume(double r) { return 4.0 / 3.0 * M_PI * r * r * r; }
   static Vec<3> cross(const Rot& w, const Vec<3>& r) { return w.cross(r); }
   static Orientation identity() { return Eigen::Quaterniond::Identity(); }
-  // Exact rotation by the increment ω·dt, so the quaternion stays a unit quaternion to round-off.
+  // Rotation by the increment ω·Δt: the unit quaternion (cos a/2, sin(a/2) ω/|ω|) with the cosine and sine
+  // from their series, exact to O(a⁵) for the a ≲ 1e-3 rad of a stable step, then renormalised. No trig per particle.
   static void rotate(Orientation& q, const Rot& w, double dt) {
-    const double a = w.norm() * dt;
-    if (a > 0) q = (Eigen::Quaterniond(Eigen::AngleAxisd(a, w / w.norm())) * q).normalized();
+    const Rot h = 0.5 * dt * w;  // (a/2)·axis
+    const double h2 = h.squaredNorm();
+    if (h2 == 0) return;
+    const double c = 1.0 - 0.5 * h2 + h2 * h2 / 24.0, s = 1.0 - h2 / 6.0 + h2 * h2 / 120.0;
+    q = (Eigen::Quaterniond(c, s * h[0], s * h[1], s * h[2]) * q).normalized();
   }
 };
 

@@ -72,30 +72,35 @@ void World<D>::relink() {
   }
   slots_.resize(total);
   slot_pair_.resize(total);
-  // Gather lists: each particle's slots in increasing slot order, so its sum is the same on any thread count.
-  gather_start_.assign(n + 1, 0);
+  // Gather lists: each particle's slots where it is A, then those where it is B (split at gather_split_), each
+  // in increasing slot order, so its sum is the same on any thread count and the gather needs no branch.
+  std::vector<int> count_a(n, 0), count_b(n, 0);
   for (int s = 0; s < nsets; ++s) {
-    for (const Pair& pr : sets[s]->pairs()) ++gather_start_[pr[0] + 1], ++gather_start_[pr[1] + 1];
-    for (const Pair& pr : sets[s]->wall_pairs()) ++gather_start_[pr[1] + 1];
+    for (const Pair& pr : sets[s]->pairs()) ++count_a[pr[0]], ++count_b[pr[1]];
+    for (const Pair& pr : sets[s]->wall_pairs()) ++count_b[pr[1]];
   }
-  for (int i = 0; i < n; ++i) gather_start_[i + 1] += gather_start_[i];
+  gather_start_.assign(n + 1, 0);
+  gather_split_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    gather_split_[i] = gather_start_[i] + count_a[i];
+    gather_start_[i + 1] = gather_split_[i] + count_b[i];
+  }
   gather_items_.resize(gather_start_[n]);
-  std::vector<int> fill(gather_start_.begin(), gather_start_.end() - 1);
+  std::vector<int> fill_a(gather_start_.begin(), gather_start_.end() - 1), fill_b(gather_split_);
   for (int s = 0; s < nsets; ++s) {
     std::size_t slot = offset_[s];
     for (const Pair& pr : sets[s]->pairs()) {
       slot_pair_[slot] = pr;
-      gather_items_[fill[pr[0]]++] = static_cast<int>(slot * 2);
-      gather_items_[fill[pr[1]]++] = static_cast<int>(slot * 2 + 1);
+      gather_items_[fill_a[pr[0]]++] = static_cast<int>(slot);
+      gather_items_[fill_b[pr[1]]++] = static_cast<int>(slot);
       ++slot;
     }
     for (const Pair& pr : sets[s]->wall_pairs()) {
       slot_pair_[slot] = {-1 - pr[0], pr[1]};
-      gather_items_[fill[pr[1]]++] = static_cast<int>(slot * 2 + 1);
+      gather_items_[fill_b[pr[1]]++] = static_cast<int>(slot);
       ++slot;
     }
   }
-  for (int i = 0; i < n; ++i) std::sort(gather_items_.begin() + gather_start_[i], gather_items_.begin() + gather_start_[i + 1]);
 }
 
 template <int D>
@@ -120,9 +125,9 @@ double World<D>::critical_timestep() {
   for (int i = 0; i < n; ++i) {
     double kt = 0, kr = 0;
     for (int c = gather_start_[i]; c < gather_start_[i + 1]; ++c) {
-      const std::size_t slot = static_cast<std::size_t>(gather_items_[c] >> 1);
+      const std::size_t slot = static_cast<std::size_t>(gather_items_[c]);
       kt += k.kt[slot];
-      kr += (gather_items_[c] & 1) ? k.krb[slot] : k.kra[slot];
+      kr += c >= gather_split_[i] ? k.krb[slot] : k.kra[slot];
     }
     if (kt == 0) {  // no neighbour yet: as if it touched an identical particle
       const int s = model_of[particles.phase[i]][particles.phase[i]];
@@ -185,11 +190,15 @@ double World<D>::move_particles() {
     for (int i = b * kBlock; i < end; ++i) {
       Vec<D> f = Vec<D>::Zero();
       Rot<D> m = Rot<D>::Zero();
-      for (int c = gather_start_[i]; c < gather_start_[i + 1]; ++c) {
-        const int item = gather_items_[c];
-        const std::size_t slot = static_cast<std::size_t>(item >> 1);
-        if (item & 1) f += slots_.f[slot], m += slots_.mb[slot];
-        else f -= slots_.f[slot], m += slots_.ma[slot];
+      for (int c = gather_start_[i]; c < gather_split_[i]; ++c) {  // as A: −F
+        const std::size_t slot = static_cast<std::size_t>(gather_items_[c]);
+        f -= slots_.f[slot];
+        m += slots_.ma[slot];
+      }
+      for (int c = gather_split_[i]; c < gather_start_[i + 1]; ++c) {  // as B: +F
+        const std::size_t slot = static_cast<std::size_t>(gather_items_[c]);
+        f += slots_.f[slot];
+        m += slots_.mb[slot];
       }
       Vec<D> fext = Vec<D>::Zero();
       Rot<D> mext = Rot<D>::Zero();

@@ -75,14 +75,14 @@ class World {
   // The partners of a slot: (i, j) for balls, (−1 − wall, j) for a ball–wall contact.
   const Pair& slot_pair(std::size_t slot) const { return slot_pair_[slot]; }
   std::size_t slot_count() const { return slot_pair_.size(); }
+  std::size_t gather_bytes() const {
+    return (gather_start_.capacity() + gather_split_.capacity() + gather_items_.capacity()) * sizeof(int);
+  }
 
   // The complete dynamic state (checkpoints): restoring it and stepping on gives the same bits as never stopping.
   void save(Archive& a) const;
   void restore(const Archive& a);
 
-  // Per-particle slot lists (for observers), rebuilt with the neighbour lists.
-  const std::vector<int>& gather_start() const { return gather_start_; }
-  const std::vector<int>& gather_items() const { return gather_items_; }
   std::size_t wall_slot_offset(int set) const { return wall_offset_[set]; }
   std::size_t slot_offset(int set) const { return offset_[set]; }
 
@@ -97,7 +97,7 @@ class World {
 
   Slots<D> slots_;
   std::vector<std::size_t> offset_, wall_offset_;
-  std::vector<int> gather_start_, gather_items_;  // item = slot·2 + side (0: particle is A, 1: B)
+  std::vector<int> gather_start_, gather_split_, gather_items_;  // items: slots, A side first, then B side
   std::vector<Pair> slot_pair_;
   std::vector<Vec<D>> x_at_rebuild_;
   std::vector<Vec<D>> wall_at_rebuild_;
@@ -109,8 +109,8 @@ template <int D>
 template <class F>
 void World<D>::for_each_contact_of(int p, F&& fn) const {
   for (int k = gather_start_[p]; k < gather_start_[p + 1]; ++k) {
-    const int item = gather_items_[k];
-    const std::size_t slot = static_cast<std::size_t>(item >> 1);
+    const std::size_t slot = static_cast<std::size_t>(gather_items_[k]);
+    const bool as_b = k >= gather_split_[p];
     const auto [a, b] = slot_pair_[slot];
     Vec<D> lever;
     if (a < 0) {
@@ -125,7 +125,7 @@ void World<D>::for_each_contact_of(int p, F&& fn) const {
       const double overlap = particles.radius[p] + particles.radius[o] - dist;
       lever = d * ((particles.radius[p] - 0.5 * overlap) / dist);  // Tang (3.4), (3.56)
     }
-    fn(slot, (item & 1) ? slots_.f[slot] : Vec<D>(-slots_.f[slot]), lever);
+    fn(slot, as_b ? slots_.f[slot] : Vec<D>(-slots_.f[slot]), lever);
   }
 }
 

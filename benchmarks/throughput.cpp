@@ -1,0 +1,919 @@
+// Throughput benchmark of the engine's stepping loop (World::step), printed as markdown tables.
+//
+//  a) shared: the specimen of ../shared/benchmark (README there), on which Yade, ESyS-Particle and LAMMPS were
+//     timed; our figures beside theirs. Our model there is unbonded linear contacts (bonds come later).
+//  b) scaling: dense random 2D and 3D assemblies from 1e3 to 1e6 particles; the cost per particle-step must
+//     stay flat (O(N)).
+//  c) effects: the cost of each optional effect (gravity, local damping, contact dashpots, energy tracing)
+//     as a ratio to the same run without it.
+//
+// Only the stepping loop is timed (std::chrono::steady_clock); each timing is repeated (default 3) on a fresh
+// world and the best is kept. Ratios are always taken within one run: the machine is shared and noisy.
+//
+//   throughput [--quick] [--only shared|scaling|effects] [--specimen-dir DIR] [--reps N]
+#include <omp.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "contact_models/linear.hpp"
+#include "engine/errors.hpp"
+#include "engine/parallel.hpp"
+#include "engine/world.hpp"
+#include "preprocess/sphere_list.hpp"
+
+#ifndef MESOCRACK_SOURCE_DIR
+#define MESOCRACK_SOURCE_DIR "."
+#endif
+
+namespace {
+
+using namespace mc;
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  bool quick = false;
+  bool shared = true, scaling = true, effects = true;
+  std::string specimen_dir = MESOCRACK_SOURCE_DIR "/../shared/benchmark";
+  int reps = 3;
+  bool reps_given = false;
+};
+
+const int kThreads[] = {1, 2};
+
+void progress(const char* fmt, auto... args) {
+  std::fprintf(stderr, fmt, args...);
+  std::fflush(stderr);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Memory: peak resident set from the kernel, and the engine's own containers.
+
+long status_kib(const char* key) {
+  std::ifstream f("/proc/self/status");
+  std::string line;
+  const std::string k = std::string(key) + ":";
+  while (std::getline(f, line))
+    if (line.rfind(k, 0) == 0) return std::strtol(line.c_str() + k.size(), nullptr, 10);
+  return -1;
+}
+
+// Writing 5 to clear_refs resets VmHWM to the current resident set (Linux >= 4.0).
+bool reset_peak_rss() {
+  std::ofstream f("/proc/self/clear_refs");
+  f << "5";
+  f.flush();
+  return f.good();
+}
+
+template <class T>
+std::size_t bytes(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+
+struct Footprint {
+  std::size_t particles = 0, contacts = 0, slots = 0, gather = 0;
+  std::size_t total() const { return particles + contacts + slots + gather; }
+};
+
+// From the container sizes: particle arrays (+ the positions kept at the last rebuild), the contact set's pairs
+// and histories, the slots (force and two moments + the pair of each slot), the gather lists.
+template <int D>
+Footprint footprint(const World<D>& w) {
+  Footprint fp;
+  const auto& p = w.particles;
+  fp.particles = bytes(p.x) + bytes(p.v) + bytes(p.f) + bytes(p.w) + bytes(p.m) + bytes(p.q) + bytes(p.radius) +
+                 bytes(p.mass) + bytes(p.inertia) + bytes(p.phase) + bytes(p.fix) + bytes(p.f_applied) +
+                 bytes(p.m_applied) + p.x.size() * sizeof(Vec<D>);
+  for (const auto& s : w.sets) {
+    fp.contacts += bytes(s->pairs()) + bytes(s->wall_pairs());
+    if (const auto* lin = dynamic_cast<const ContactSet<Linear, D>*>(s.get()))
+      fp.contacts += bytes(lin->states()) + bytes(lin->wall_states());
+  }
+  fp.slots = w.slot_count() * (sizeof(Vec<D>) + 2 * sizeof(Rot<D>) + sizeof(Pair));
+  fp.gather = w.gather_bytes();
+  return fp;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Worlds
+
+struct Material {
+  double modulus = 30e9;   // contact modulus E_c [Pa]
+  double density = 2600;   // [kg/m³]
+  double kn_ks = 1.0;
+  double friction = 0.5;
+  double damping = 0.0;    // ζ of the contact dashpots
+};
+
+template <int D>
+World<D> make_world(const std::vector<Vec<D>>& x, const std::vector<double>& r, const Material& mat) {
+  World<D> w;
+  LinearParams lp;
+  lp.modulus = mat.modulus;
+  lp.kn_ks_ratio = mat.kn_ks;
+  lp.friction = mat.friction;
+  lp.damping_ratio = mat.damping;
+  w.sets.push_back(std::make_unique<ContactSet<Linear, D>>(lp));
+  w.model_of = {{0}};
+  const int n = static_cast<int>(x.size());
+  auto& p = w.particles;
+  for (auto* v : {&p.x, &p.v, &p.f}) v->reserve(n);
+  p.w.reserve(n), p.m.reserve(n), p.q.reserve(n), p.radius.reserve(n), p.mass.reserve(n), p.inertia.reserve(n);
+  p.phase.reserve(n), p.fix.reserve(n);
+  Vec<D> lo = Vec<D>::Constant(kInf), hi = Vec<D>::Constant(-kInf);
+  for (int i = 0; i < n; ++i) {
+    p.add(x[i], r[i], mat.density, 0);
+    lo = lo.cwiseMin(x[i]);
+    hi = hi.cwiseMax(x[i]);
+  }
+  const Vec<D> margin = Vec<D>::Constant((hi - lo).maxCoeff() + 1.0);
+  w.domain_lo = lo - margin;
+  w.domain_hi = hi + margin;
+  return w;
+}
+
+double cpu_now() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+std::string loadavg() {
+  std::ifstream f("/proc/loadavg");
+  double a = 0, b = 0, c = 0;
+  f >> a >> b >> c;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.2f / %.2f / %.2f", a, b, c);
+  return buf;
+}
+
+struct Timing {
+  double seconds = kInf;        // stepping loop only
+  double cpu_seconds = 0;       // CPU time of the process in that loop (all threads)
+  int n = 0, steps = 0;
+  double contacts = 0;          // touching ball–ball pairs, mean of the window's start and end
+  double candidates = 0;        // pairs in the neighbour lists at the end
+  double wall_candidates = 0;   // ball–wall pairs in the lists at the end
+  std::int64_t rebuilds = 0;    // neighbour-list rebuilds inside the timed window
+  double dt = 0, dt_critical = 0;
+  Footprint fp;
+
+  double particle_steps() const { return double(n) * steps / seconds; }
+  double contact_steps() const { return contacts * steps / seconds; }
+  double ns_per_particle_step() const { return seconds / (double(n) * steps) * 1e9; }
+  double cpu_share() const { return cpu_seconds / seconds; }  // ≈ threads when nothing else competes
+  // CPU/wall for a table cell, flagged when the process got less than 80 % of the cores it asked for.
+  std::string share(int threads) const {
+    char b[48];
+    std::snprintf(b, sizeof b, "%.2f%s", cpu_share(), cpu_share() < 0.8 * threads ? " (contended)" : "");
+    return b;
+  }
+  void keep_best(const Timing& t) {
+    if (t.seconds < seconds) *this = t;
+  }
+};
+
+template <int D>
+Timing time_steps(World<D>& w, int warmup, int steps) {
+  for (int s = 0; s < warmup; ++s) w.step();
+  Timing t;
+  t.n = w.particles.size();
+  t.steps = steps;
+  const double c0 = static_cast<double>(w.contact_count());
+  const std::int64_t rb0 = w.rebuilds;
+  const double c0cpu = cpu_now();
+  const auto t0 = Clock::now();
+  for (int s = 0; s < steps; ++s) w.step();
+  const auto t1 = Clock::now();
+  t.cpu_seconds = cpu_now() - c0cpu;
+  t.seconds = std::chrono::duration<double>(t1 - t0).count();
+  t.contacts = 0.5 * (c0 + static_cast<double>(w.contact_count()));
+  t.candidates = static_cast<double>(w.candidate_count());
+  for (const auto& set : w.sets) t.wall_candidates += static_cast<double>(set->wall_pairs().size());
+  t.rebuilds = w.rebuilds - rb0;
+  t.dt = w.dt;
+  t.dt_critical = w.dt_critical;
+  t.fp = footprint(w);
+  return t;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Formatting
+
+std::string sci(double v, int digits = 3) {
+  if (!std::isfinite(v)) return "–";
+  char b[64];
+  std::snprintf(b, sizeof b, "%.*g", digits, v);
+  return b;
+}
+std::string fix(double v, int decimals) {
+  if (!std::isfinite(v)) return "–";
+  char b[64];
+  std::snprintf(b, sizeof b, "%.*f", decimals, v);
+  return b;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// a) The shared specimen
+
+struct Peer {
+  const char* name;
+  double pss[4];  // n10k 1 core, n10k 2 cores, n50k 1 core, n50k 2 cores (particle-steps/s)
+};
+// ../shared/benchmark/README.md, "What the peers did on it".
+const Peer kPeers[] = {
+    {"ESyS-Particle, RotBond (6-DOF bond)", {1.17e6, 1.40e6, 8.3e5, 1.15e6}},
+    {"Yade, CohFrict (6-DOF bond)", {6.0e5, 1.02e6, 4.8e5, 8.1e5}},
+    {"Yade, CPM", {6.4e5, 1.24e6, 5.3e5, 9.4e5}},
+    {"LAMMPS, central harmonic bonds + granular pair (no moments)", {9.3e6, 1.9e7, 6.6e6, 1.14e7}},
+};
+
+struct SharedRun {
+  std::string name;
+  int n = 0;
+  double radius = 0, height = 0;
+  double dt_readme = 0;
+  std::string refusal;           // the engine's message if it refused dt_readme
+  Timing t[2];                   // 1 and 2 threads
+  double strain = kNaN;          // z strain of the moved layer after the run (2 threads, last repetition)
+  long rss_before_kib = -1, hwm_kib = -1;
+  bool hwm_reset = false;
+  double read_seconds = 0;
+};
+
+const int kSharedWarmup = 10;
+
+// One repetition on a fresh world. Throws InputError if the engine refuses the fixed step.
+Timing shared_once(const SphereList<3>& s, const Material& mat, double dt_fixed, double height, int steps,
+                   double* strain) {
+  World<3> w = make_world<3>(s.x, s.radius, mat);
+  const FixMask all = static_cast<FixMask>((1u << (3 + Dim<3>::rot)) - 1);  // every translation and rotation
+  w.timestep.fixed = dt_fixed;
+  w.init();
+  // Loading (README): tag 1 held, tag 2 moved down at constant velocity so that the strain along z is 1e-4
+  // after 2010 steps. The velocity follows from the step actually used.
+  const double v = 1e-4 * height / (2010.0 * w.dt);
+  std::vector<int> top;
+  for (int i = 0; i < s.size(); ++i) {
+    if (s.tag[i] == 1) w.particles.fix[i] = all;
+    if (s.tag[i] == 2) {
+      w.particles.v[i] = Vec<3>(0, 0, -v);
+      w.particles.fix[i] = all;
+      top.push_back(i);
+    }
+  }
+  Timing t = time_steps(w, kSharedWarmup, steps);
+  double dz = 0;
+  for (int i : top) dz += s.x[i][2] - w.particles.x[i][2];
+  if (strain && !top.empty()) *strain = dz / static_cast<double>(top.size()) / height;
+  return t;
+}
+
+SharedRun run_shared(const std::string& path, const std::string& name, const Material& mat, int steps,
+                     const Options& opt) {
+  SharedRun run;
+  run.name = name;
+  const auto r0 = Clock::now();
+  const SphereList<3> s = read_sphere_list<3>(path);
+  run.read_seconds = std::chrono::duration<double>(Clock::now() - r0).count();
+  run.n = s.size();
+  double zlo = kInf, zhi = -kInf;
+  for (int i = 0; i < s.size(); ++i) {
+    run.radius = std::max(run.radius, s.radius[i]);
+    zlo = std::min(zlo, s.x[i][2] - s.radius[i]);
+    zhi = std::max(zhi, s.x[i][2] + s.radius[i]);
+  }
+  run.height = zhi - zlo;
+  run.dt_readme = 0.3 * run.radius * std::sqrt(mat.density / mat.modulus);  // README: dt = 0.3 r sqrt(ρ/E)
+  run.rss_before_kib = status_kib("VmRSS");
+  run.hwm_reset = reset_peak_rss();
+  for (int ti = 0; ti < 2; ++ti) {
+    omp_set_num_threads(kThreads[ti]);
+    for (int rep = 0; rep < opt.reps; ++rep) {
+      progress("  shared %s, %d thread(s), repetition %d/%d ...", name.c_str(), kThreads[ti], rep + 1, opt.reps);
+      double strain = kNaN;
+      Timing t;
+      try {
+        t = shared_once(s, mat, run.refusal.empty() ? run.dt_readme : 0.0, run.height, steps, &strain);
+      } catch (const InputError& e) {
+        // The engine's critical estimate refuses the README step: say so and use the engine's own step.
+        run.refusal = e.what();
+        progress(" README step refused, engine's own step used ...");
+        t = shared_once(s, mat, 0.0, run.height, steps, &strain);
+      }
+      progress(" %.2f s\n", t.seconds);
+      run.t[ti].keep_best(t);
+      run.strain = strain;
+    }
+  }
+  run.hwm_kib = status_kib("VmHWM");
+  return run;
+}
+
+void section_shared(const Options& opt) {
+  Material mat;  // E_c = 30 GPa, ρ = 2600, kn/ks = 1, μ = 0.5, no dashpots
+  const int steps = opt.quick ? 200 : 2000;
+  std::vector<SharedRun> runs;
+  const std::vector<std::string> names = opt.quick ? std::vector<std::string>{"n10k"}
+                                                   : std::vector<std::string>{"n10k", "n50k"};
+  for (const auto& name : names) {
+    const std::string path = opt.specimen_dir + "/" + name + ".spheres";
+    progress("shared specimen %s\n", path.c_str());
+    runs.push_back(run_shared(path, name, mat, steps, opt));
+  }
+
+  std::printf("## a) The shared specimen (../shared/benchmark)\n\n");
+  std::printf("Model: **unbonded** linear contacts (`ContactSet<Linear,3>`), contact modulus E_c = %.3g Pa "
+              "(ball k_n = 4 R E_c, pair k_n = 2 R E_c in series), k_n/k_s = %.3g, friction μ = %.3g, no dashpots, "
+              "density %.4g kg/m³; no gravity, no local damping, no energy tracing. The peers ran *bonded* "
+              "specimens (bonds come later in mesocrack), so the ratios below compare our unbonded contact loop "
+              "with their bond loops. Tag 1 fixed (all 6 DOFs), tag 2 moved down at constant velocity (all 6 "
+              "DOFs fixed, prescribed v_z) for a z strain of 1e-4 after 2010 steps; %d warm-up steps, then %d "
+              "timed steps%s; best of %d fresh runs.\n\n",
+              mat.modulus, mat.kn_ks, mat.friction, mat.density, kSharedWarmup, steps,
+              opt.quick ? " (--quick: 200 instead of 2000)" : "", opt.reps);
+
+  for (const auto& r : runs) {
+    std::printf("- %s: %d spheres, r = %.4g m, height %.4g m, read in %.3f s; README dt = 0.3 r sqrt(ρ/E) = %.4g s",
+                r.name.c_str(), r.n, r.radius, r.height, r.read_seconds, r.dt_readme);
+    if (r.refusal.empty())
+      std::printf(", accepted (engine's critical estimate %.4g s).", r.t[0].dt_critical);
+    else
+      std::printf(", **refused by the engine**: \"%s\". Engine's own step used instead: dt = %.4g s (0.8 × "
+                  "critical %.4g s).",
+                  r.refusal.c_str(), r.t[0].dt, r.t[0].dt_critical);
+    std::printf(" z strain of the moved layer after %d steps: %.3g.\n", kSharedWarmup + steps, r.strain);
+  }
+  std::printf("\n");
+
+  std::printf("| specimen | threads | particles | candidate pairs / particle | touching pairs / particle | "
+              "coordination | rebuilds in window | particle-steps/s | contact-steps/s | ns / particle-step | CPU/wall | "
+              "2-thread speedup |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const auto& r : runs)
+    for (int ti = 0; ti < 2; ++ti) {
+      const Timing& t = r.t[ti];
+      std::printf("| %s | %d | %d | %s | %s | %s | %lld | %s | %s | %s | %s | %s |\n", r.name.c_str(), kThreads[ti],
+                  t.n, fix(t.candidates / t.n, 2).c_str(), fix(t.contacts / t.n, 2).c_str(),
+                  fix(2.0 * t.contacts / t.n, 2).c_str(), static_cast<long long>(t.rebuilds),
+                  sci(t.particle_steps()).c_str(), sci(t.contact_steps()).c_str(),
+                  fix(t.ns_per_particle_step(), 1).c_str(), t.share(kThreads[ti]).c_str(),
+                  ti == 1 ? fix(r.t[0].seconds / r.t[1].seconds, 2).c_str() : "");
+    }
+  std::printf("\n(candidate pairs = pairs in the neighbour lists, within R_i + R_j + skin, skin = 0.1 R_min; for this "
+              "specimen they are exactly the README's bond pairs, d ≤ 1.05 (R_i + R_j). Touching pairs: overlap > 0; "
+              "contact-steps/s counts those. Coordination = 2 × touching pairs / N. CPU/wall = process CPU time / "
+              "wall time in the timed loop, ≈ the thread count on a quiet machine; \"contended\": below 80 %% of the "
+              "cores asked for, other processes took them and the figure measures the machine more than the engine.)"
+              "\n\n");
+
+  // Our figures beside the peers', in the README's columns.
+  auto ours = [&](int col) -> double {
+    const int spec = col / 2, ti = col % 2;
+    return spec < static_cast<int>(runs.size()) ? runs[spec].t[ti].particle_steps() : kNaN;
+  };
+  std::printf("Particle-steps per second, stepping loop only (peers: README table):\n\n");
+  std::printf("| engine, model | n10k, 1 core | n10k, 2 cores | n50k, 1 core | n50k, 2 cores |\n");
+  std::printf("|---|---|---|---|---|\n");
+  for (const auto& p : kPeers)
+    std::printf("| %s | %s | %s | %s | %s |\n", p.name, sci(p.pss[0], 3).c_str(), sci(p.pss[1], 3).c_str(),
+                sci(p.pss[2], 3).c_str(), sci(p.pss[3], 3).c_str());
+  std::printf("| **mesocrack, unbonded linear contacts (this run)** | **%s** | **%s** | **%s** | **%s** |\n\n",
+              sci(ours(0)).c_str(), sci(ours(1)).c_str(), sci(ours(2)).c_str(), sci(ours(3)).c_str());
+  std::printf("Ratio ours / peer (> 1: mesocrack faster; remember ours has no bonds yet):\n\n");
+  std::printf("| ours / peer | n10k, 1 core | n10k, 2 cores | n50k, 1 core | n50k, 2 cores |\n");
+  std::printf("|---|---|---|---|---|\n");
+  for (const auto& p : kPeers)
+    std::printf("| %s | %s | %s | %s | %s |\n", p.name, fix(ours(0) / p.pss[0], 2).c_str(),
+                fix(ours(1) / p.pss[1], 2).c_str(), fix(ours(2) / p.pss[2], 2).c_str(),
+                fix(ours(3) / p.pss[3], 2).c_str());
+  std::printf("\n");
+
+  std::printf("Memory (peers, README: ESyS 44 MiB, Yade ~340 MiB with Python, for n10k):\n\n");
+  std::printf("| specimen | VmRSS before the worlds | peak resident (VmHWM) | engine containers (estimate) | "
+              "bytes / particle: particles | contacts (pairs + histories) | slots | gather lists | total |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|\n");
+  for (const auto& r : runs) {
+    const Footprint& fp = r.t[1].fp;
+    const double n = r.n;
+    std::printf("| %s | %.1f MiB | %.1f MiB%s | %.1f MiB | %.0f | %.0f | %.0f | %.0f | %.0f |\n", r.name.c_str(),
+                r.rss_before_kib / 1024.0, r.hwm_kib / 1024.0, r.hwm_reset ? "" : " (peak of the whole process)",
+                fp.total() / 1048576.0, fp.particles / n, fp.contacts / n, fp.slots / n, fp.gather / n,
+                fp.total() / n);
+  }
+  std::printf("\n(VmHWM is reset before each specimen, so it is the peak while that specimen's worlds existed, "
+              "including the process itself and the particle list read from the file.)\n\n");
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Dense random assemblies: a periodic cell of polydisperse particles (radii uniform in [0.8, 1.2] r0) is
+// brought just past jamming by minimising the overlap energy (FIRE) at a packing fraction found by a secant
+// search so that the mean overlap is slight (0.5 % of r0). Just past jamming the cell is in equilibrium with a
+// coordination close to isostatic (≈ 4 in 2D, ≈ 6 in 3D, a little more). It is then tiled (the tiles match, the
+// cell being periodic) and clipped to the size wanted, and the particles are numbered along a Morton curve, as a
+// preprocessor would.
+
+template <int D>
+struct Cell {
+  std::vector<Vec<D>> x;   // in [0, L)^D, units of r0
+  std::vector<double> r;
+  double L = 0, phi = 0;
+  double z = 0;            // mean coordination, rattlers included
+  double mean_overlap = 0, max_overlap = 0;  // relative to r0
+  int iterations = 0;      // FIRE iterations in all
+};
+
+template <int D>
+class CellRelax {
+ public:
+  CellRelax(int n, std::uint64_t seed) : rng_(seed) {
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    c_.r.resize(n);
+    vol_ = 0;
+    for (int i = 0; i < n; ++i) {
+      c_.r[i] = 0.8 + 0.4 * u(rng_);
+      vol_ += Dim<D>::volume(c_.r[i]);
+    }
+    c_.x.resize(n);
+    c_.L = 1;
+    for (auto& p : c_.x)
+      for (int k = 0; k < D; ++k) p[k] = u(rng_);  // scaled by L at the first set_phi
+  }
+
+  // Affine rescaling of the cell to packing fraction phi, then energy minimisation.
+  void relax_at(double phi) {
+    const double L = std::pow(vol_ / phi, 1.0 / D);
+    for (auto& p : c_.x) p *= L / c_.L;
+    c_.L = L;
+    c_.phi = phi;
+    minimise();
+    stats();
+  }
+  const Cell<D>& cell() const { return c_; }
+
+ private:
+  Vec<D> image(Vec<D> d) const {
+    for (int k = 0; k < D; ++k) d[k] -= c_.L * std::round(d[k] / c_.L);
+    return d;
+  }
+  void rebuild() {
+    // O(n²) is fine for a cell of 1000.
+    const int n = static_cast<int>(c_.x.size());
+    list_.clear();
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j) {
+        const double reach = c_.r[i] + c_.r[j] + kSkin;
+        if (image(c_.x[j] - c_.x[i]).squaredNorm() < reach * reach) list_.push_back({i, j});
+      }
+    at_list_ = c_.x;
+  }
+  double forces(std::vector<Vec<D>>& f) const {
+    for (auto& fi : f) fi.setZero();
+    for (const auto& [i, j] : list_) {
+      const Vec<D> d = image(c_.x[j] - c_.x[i]);
+      const double dist = d.norm(), ov = c_.r[i] + c_.r[j] - dist;
+      if (ov > 0) {
+        const Vec<D> fij = stiffness(i, j) * ov * d / dist;  // unit masses
+        f[i] -= fij;
+        f[j] += fij;
+      }
+    }
+    double fmax = 0;
+    for (const auto& fi : f) fmax = std::max(fmax, fi.norm());
+    return fmax;
+  }
+  // The engine's pair stiffness up to a constant: in 3D k_n = 4 E R_i R_j / (R_i + R_j) (balls in series), in 2D
+  // it does not depend on the radii. The minimum found is then an equilibrium of the engine's contacts too.
+  double stiffness(int i, int j) const {
+    return D == 3 ? 2.0 * c_.r[i] * c_.r[j] / (c_.r[i] + c_.r[j]) : 1.0;
+  }
+  // FIRE (Bitzek et al. 2006).
+  void minimise() {
+    const int n = static_cast<int>(c_.x.size());
+    std::vector<Vec<D>> f(n), v(n, Vec<D>::Zero());
+    rebuild();
+    double dt = 0.02, alpha = 0.1;
+    int positive = 0;
+    double fmax = forces(f);
+    for (int it = 0; it < 200000 && fmax > 1e-9; ++it, ++c_.iterations) {
+      double P = 0, vn = 0, fn = 0;
+      for (int i = 0; i < n; ++i) P += f[i].dot(v[i]), vn += v[i].squaredNorm(), fn += f[i].squaredNorm();
+      if (P > 0) {
+        vn = std::sqrt(vn), fn = std::sqrt(fn);
+        for (int i = 0; i < n; ++i) v[i] = (1 - alpha) * v[i] + alpha * vn / fn * f[i];
+        if (++positive > 5) dt = std::min(dt * 1.1, 0.2), alpha *= 0.99;
+      } else {
+        for (auto& vi : v) vi.setZero();
+        dt *= 0.5, alpha = 0.1, positive = 0;
+      }
+      double moved = 0;
+      for (int i = 0; i < n; ++i) {
+        v[i] += f[i] * dt;
+        c_.x[i] += v[i] * dt;
+        moved = std::max(moved, (c_.x[i] - at_list_[i]).squaredNorm());
+      }
+      if (std::sqrt(moved) > 0.5 * kSkin) rebuild();
+      fmax = forces(f);
+    }
+    for (auto& p : c_.x)
+      for (int k = 0; k < D; ++k) p[k] -= c_.L * std::floor(p[k] / c_.L);
+  }
+  void stats() {
+    rebuild();
+    std::size_t contacts = 0;
+    double sum = 0;
+    c_.max_overlap = 0;
+    for (const auto& [i, j] : list_) {
+      const double ov = c_.r[i] + c_.r[j] - image(c_.x[j] - c_.x[i]).norm();
+      if (ov > 0) ++contacts, sum += ov, c_.max_overlap = std::max(c_.max_overlap, ov);
+    }
+    c_.z = 2.0 * static_cast<double>(contacts) / static_cast<double>(c_.x.size());
+    c_.mean_overlap = contacts ? sum / static_cast<double>(contacts) : 0;
+  }
+
+  static constexpr double kSkin = 0.3;
+  std::mt19937_64 rng_;
+  Cell<D> c_;
+  double vol_ = 0;
+  std::vector<std::array<int, 2>> list_;
+  std::vector<Vec<D>> at_list_;
+};
+
+// The mean overlap grows about linearly with φ − φ_J above jamming: a secant search on φ for the target.
+template <int D>
+Cell<D> jammed_cell(int n, double target_overlap, std::uint64_t seed) {
+  CellRelax<D> relax(n, seed);
+  double phi0 = D == 2 ? 0.87 : 0.68, phi1 = D == 2 ? 0.86 : 0.67;
+  relax.relax_at(phi0);
+  double m0 = relax.cell().mean_overlap;
+  relax.relax_at(phi1);
+  double m1 = relax.cell().mean_overlap;
+  for (int k = 0; k < 8 && std::abs(m1 - target_overlap) > 0.1 * target_overlap; ++k) {
+    double phi2 = m1 != m0 ? phi1 + (target_overlap - m1) * (phi1 - phi0) / (m1 - m0) : phi1 - 0.005;
+    phi2 = std::clamp(phi2, phi1 - 0.02, phi1 + 0.02);
+    relax.relax_at(phi2);
+    phi0 = phi1, m0 = m1;
+    phi1 = phi2, m1 = relax.cell().mean_overlap;
+  }
+  return relax.cell();
+}
+
+std::uint64_t morton(std::array<std::uint32_t, 3> c, int D) {
+  std::uint64_t key = 0;
+  for (int b = 0; b < 21; ++b)
+    for (int k = 0; k < D; ++k) key |= std::uint64_t((c[k] >> b) & 1u) << (b * D + k);
+  return key;
+}
+
+template <int D>
+struct Assembly {
+  std::vector<Vec<D>> x;
+  std::vector<double> r;
+  std::vector<char> edge;  // within R + 1.2 r0 of a face: some of its periodic partners may have been clipped away
+  double side = 0;        // the assembly fills [0, side]^D
+};
+
+// Tiles the cell (scaled to r0) over the cube [0, side]^D with side chosen for about n particles. inside:
+// keep the particles wholly inside the cube (for walls on its faces); else keep every centre inside it.
+template <int D>
+Assembly<D> tile(const Cell<D>& c, double r0, int n, bool inside) {
+  Assembly<D> a;
+  const double L = c.L * r0;
+  a.side = L * std::pow(static_cast<double>(n) / static_cast<double>(c.x.size()), 1.0 / D);
+  const int m = static_cast<int>(std::ceil(a.side / L));
+  std::array<int, D> t{};
+  while (true) {
+    for (std::size_t i = 0; i < c.x.size(); ++i) {
+      Vec<D> p = c.x[i] * r0;
+      for (int k = 0; k < D; ++k) p[k] += t[k] * L;
+      const double r = c.r[i] * r0;
+      const double reach = r + 1.2 * r0;  // the farthest partner centre
+      bool keep = true, edge = false;
+      for (int k = 0; k < D; ++k) {
+        keep = keep && (inside ? (p[k] - r >= 0 && p[k] + r <= a.side) : (p[k] >= 0 && p[k] < a.side));
+        edge = edge || p[k] < reach || p[k] > a.side - reach;
+      }
+      if (keep) a.x.push_back(p), a.r.push_back(r), a.edge.push_back(edge);
+    }
+    int k = 0;
+    while (k < D && ++t[k] == m) t[k] = 0, ++k;
+    if (k == D) break;
+  }
+  // Morton numbering, cells of 2 r0.
+  std::vector<std::pair<std::uint64_t, int>> key(a.x.size());
+  for (std::size_t i = 0; i < a.x.size(); ++i) {
+    std::array<std::uint32_t, 3> cc{};
+    for (int k = 0; k < D; ++k) cc[k] = static_cast<std::uint32_t>(std::max(0.0, a.x[i][k]) / (2 * r0));
+    key[i] = {morton(cc, D), static_cast<int>(i)};
+  }
+  std::sort(key.begin(), key.end());
+  Assembly<D> s;
+  s.side = a.side;
+  for (const auto& [k, i] : key) s.x.push_back(a.x[i]), s.r.push_back(a.r[i]), s.edge.push_back(a.edge[i]);
+  return s;
+}
+
+const double kTargetOverlap = 0.005;  // mean overlap of the generated assemblies, relative to r0
+
+template <int D>
+const Cell<D>& cell_for_dim(bool quick) {
+  static std::optional<Cell<D>> cell;
+  if (!cell) {
+    const auto t0 = Clock::now();
+    cell = jammed_cell<D>(quick ? 500 : 1000, kTargetOverlap, 20240601 + D);
+    progress("  %dD cell: %zu particles, phi = %.4f, z = %.2f, overlap mean %.4f r0, max %.4f r0, %d FIRE "
+             "iterations, %.1f s\n",
+             D, cell->x.size(), cell->phi, cell->z, cell->mean_overlap, cell->max_overlap, cell->iterations,
+             std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  return *cell;
+}
+
+const double kR0 = 1e-3;  // mean radius of the generated assemblies [m]
+
+// ---------------------------------------------------------------------------------------------------------
+// b) Scaling
+
+struct ScalingRow {
+  int dim = 0, target = 0;
+  double held = 0;  // fraction of particles held (near the cube's faces)
+  Timing t[2];
+};
+
+template <int D>
+ScalingRow scaling_row(int target, bool quick, const Options& opt) {
+  const Cell<D>& cell = cell_for_dim<D>(quick);
+  const Assembly<D> a = tile(cell, kR0, target, false);
+  const int n = static_cast<int>(a.x.size());
+  const int steps = std::max(50, static_cast<int>((quick ? 2e6 : 2e7) / n));
+  ScalingRow row;
+  row.dim = D;
+  row.target = target;
+  row.held = static_cast<double>(std::count(a.edge.begin(), a.edge.end(), 1)) / n;
+  Material mat;
+  const FixMask all = static_cast<FixMask>((1u << (D + Dim<D>::rot)) - 1);
+  for (int ti = 0; ti < 2; ++ti) {
+    omp_set_num_threads(kThreads[ti]);
+    for (int rep = 0; rep < opt.reps; ++rep) {
+      progress("  %dD N = %d, %d steps, %d thread(s), repetition %d/%d ...", D, n, steps, kThreads[ti], rep + 1,
+               opt.reps);
+      World<D> w = make_world<D>(a.x, a.r, mat);
+      // The particles near the faces may have lost periodic partners: held in place, they keep the rest of the
+      // assembly in its (periodic) equilibrium, in place of walls.
+      for (int i = 0; i < n; ++i)
+        if (a.edge[i]) w.particles.fix[i] = all;
+      w.init();
+      const Timing t = time_steps(w, 10, steps);
+      progress(" %.2f s\n", t.seconds);
+      row.t[ti].keep_best(t);
+    }
+  }
+  return row;
+}
+
+void section_scaling(const Options& opt) {
+  std::vector<int> sizes = opt.quick ? std::vector<int>{1000, 10000} : std::vector<int>{1000, 10000, 100000, 1000000};
+  std::vector<ScalingRow> rows;
+  progress("scaling\n");
+  for (int n : sizes) rows.push_back(scaling_row<2>(n, opt.quick, opt));
+  for (int n : sizes) rows.push_back(scaling_row<3>(n, opt.quick, opt));
+
+  const Cell<2>& c2 = cell_for_dim<2>(opt.quick);
+  const Cell<3>& c3 = cell_for_dim<3>(opt.quick);
+  std::printf("## b) Scaling with the number of particles\n\n");
+  std::printf("Dense random assemblies, radii uniform in [0.8, 1.2]·r0 (r0 = %.3g m): a periodic cell of %zu (2D) / "
+              "%zu (3D) particles brought just past jamming (overlap-energy minimisation at φ = %.4f / %.4f; cell "
+              "coordination %.2f / %.2f, mean overlap %.2f %% / %.2f %% of r0, max %.1f %% / %.1f %%), tiled and "
+              "clipped to a square / cube, numbered along a Morton curve. The particles within R + 1.2 r0 of a face (they may "
+              "have lost periodic partners) are held (all DOFs fixed) in place of walls, so the rest stays in "
+              "equilibrium, dense; "
+              "no walls, no gravity, no damping. Unbonded linear contacts as in a); the engine's own step (0.8 × "
+              "critical). Steps = max(50, %s/N) after 10 warm-up steps; best of %d fresh runs. Coordination = 2 × "
+              "touching pairs / N. CPU/wall = process CPU time / wall time in the loop (≈ thread count on a quiet "
+              "machine; \"contended\": below 80 %% of the cores asked for). The engine runs loops of fewer than %d "
+              "items on one thread, so the 2-thread runs of the smallest sizes are partly serial.\n\n",
+              kR0, c2.x.size(), c3.x.size(), c2.phi, c3.phi, c2.z, c3.z, 100 * c2.mean_overlap,
+              100 * c3.mean_overlap, 100 * c2.max_overlap, 100 * c3.max_overlap, opt.quick ? "2e6" : "2e7",
+              opt.reps, kParallelMin);
+  std::printf("| dim | N | held | steps | candidate pairs / particle | coordination | rebuilds | bytes / particle | "
+              "1 thread: particle-steps/s | ns / particle-step | contact-steps/s | CPU/wall | "
+              "2 threads: particle-steps/s | ns / particle-step | contact-steps/s | CPU/wall | speedup |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const auto& r : rows) {
+    const Timing &a = r.t[0], &b = r.t[1];
+    std::printf("| %dD | %d | %.1f %% | %d | %s | %s | %lld | %.0f | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
+                r.dim, a.n, 100 * r.held, a.steps, fix(a.candidates / a.n, 2).c_str(),
+                fix(2.0 * a.contacts / a.n, 2).c_str(), static_cast<long long>(a.rebuilds),
+                static_cast<double>(a.fp.total()) / a.n, sci(a.particle_steps()).c_str(),
+                fix(a.ns_per_particle_step(), 1).c_str(), sci(a.contact_steps()).c_str(), a.share(1).c_str(),
+                sci(b.particle_steps()).c_str(), fix(b.ns_per_particle_step(), 1).c_str(),
+                sci(b.contact_steps()).c_str(), b.share(2).c_str(), fix(a.seconds / b.seconds, 2).c_str());
+  }
+  std::printf("\nCost per particle-step relative to the smallest size of the same dimension (flat = O(N)):\n\n");
+  std::printf("| dim | N | 1 thread | 2 threads |\n|---|---|---|---|\n");
+  for (const auto& r : rows) {
+    const ScalingRow* base = nullptr;
+    for (const auto& q : rows)
+      if (q.dim == r.dim) {
+        base = &q;
+        break;
+      }
+    std::printf("| %dD | %d | %s | %s |\n", r.dim, r.t[0].n,
+                fix(r.t[0].ns_per_particle_step() / base->t[0].ns_per_particle_step(), 2).c_str(),
+                fix(r.t[1].ns_per_particle_step() / base->t[1].ns_per_particle_step(), 2).c_str());
+  }
+  std::printf("\n");
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// c) Effects
+
+struct Effect {
+  const char* name;
+  bool gravity = false, local_damping = false, dashpots = false, energy = false;
+};
+
+void section_effects(const Options& opt) {
+  const int target = opt.quick ? 10000 : 100000;
+  const Cell<3>& cell = cell_for_dim<3>(opt.quick);
+  const Assembly<3> a = tile(cell, kR0, target, false);
+  const int n = static_cast<int>(a.x.size());
+  const int steps = std::max(50, static_cast<int>((opt.quick ? 1e6 : 1e7) / n));
+  const FixMask all = static_cast<FixMask>((1u << 6) - 1);
+  // The walls touch the outermost particles by 0.5 % of r0.
+  Vec<3> lo = Vec<3>::Constant(kInf), hi = Vec<3>::Constant(-kInf);
+  for (int i = 0; i < n; ++i) {
+    lo = lo.cwiseMin(a.x[i] - Vec<3>::Constant(a.r[i]));
+    hi = hi.cwiseMax(a.x[i] + Vec<3>::Constant(a.r[i]));
+  }
+  lo.array() += kTargetOverlap * kR0;
+  hi.array() -= kTargetOverlap * kR0;
+  const std::vector<Effect> effects = {
+      {"nothing declared (reference)"},
+      {"gravity (0, 0, −9.81) m/s²", true},
+      {"local damping α = 0.7", false, true},
+      {"contact dashpots ζ = 0.1", false, false, true},
+      {"energy tracing", false, false, false, true},
+      {"nothing declared, again (noise floor)"},
+      {"all four", true, true, true, true},
+  };
+  progress("effects: %d particles in six walls, %d steps\n", n, steps);
+  // seconds[threads][effect]: the repetitions are interleaved, so slow phases of the machine hit every effect.
+  std::vector<std::vector<Timing>> best(2, std::vector<Timing>(effects.size()));
+  for (int ti = 0; ti < 2; ++ti) {
+    omp_set_num_threads(kThreads[ti]);
+    for (int rep = 0; rep < opt.reps; ++rep)
+      for (std::size_t e = 0; e < effects.size(); ++e) {
+        const Effect& ef = effects[e];
+        progress("  %d thread(s), repetition %d/%d, %s ...", kThreads[ti], rep + 1, opt.reps, ef.name);
+        Material mat;
+        if (ef.dashpots) mat.damping = 0.1;
+        World<3> w = make_world<3>(a.x, a.r, mat);
+        for (int i = 0; i < n; ++i)
+          if (a.edge[i]) w.particles.fix[i] = all;  // as in b)
+        WallMaterial wm;
+        wm.kn = 4 * kR0 * mat.modulus;  // as stiff as a ball of radius r0
+        wm.ks = wm.kn / mat.kn_ks;
+        wm.friction = mat.friction;
+        for (int k = 0; k < 3; ++k)
+          for (int side = 0; side < 2; ++side) {
+            Vec<3> pt = 0.5 * (lo + hi), nrm = Vec<3>::Zero();
+            pt[k] = side ? hi[k] : lo[k];
+            nrm[k] = side ? -1.0 : 1.0;
+            Wall<3> wl = Wall<3>::plane(pt, nrm);
+            wl.name = std::string(side ? "+" : "-") + "xyz"[k];
+            wl.material = wm;
+            w.walls.push_back(wl);
+          }
+        if (ef.gravity) w.gravity = Vec<3>(0, 0, -9.81);
+        if (ef.local_damping) w.local_damping = 0.7;
+        w.trace_energy = ef.energy;
+        w.init();
+        if (ef.energy) {
+          w.update_energy();
+          w.energy.initial = w.energy.kinetic + w.energy.strain;
+        }
+        const Timing t = time_steps(w, 10, steps);
+        progress(" %.2f s\n", t.seconds);
+        best[ti][e].keep_best(t);
+      }
+  }
+  std::printf("## c) Cost of the optional effects\n\n");
+  std::printf("3D assembly of %d particles as in b) (cube of side %.4g m, the %.1f %% near the faces held), inside six "
+              "fixed planar walls touching the outermost particles; unbonded linear contacts; %d steps after 10 "
+              "warm-up; each effect on a fresh world, repetitions interleaved, best of %d. Ratio = step time with the "
+              "effect / step time with nothing declared; the second \"nothing declared\" row is the noise floor.\n\n",
+              n, a.side, 100.0 * static_cast<double>(std::count(a.edge.begin(), a.edge.end(), 1)) / n, steps, opt.reps);
+  std::printf("| declared | 1 thread: ns / particle-step | ratio | CPU/wall | 2 threads: ns / particle-step | ratio | "
+              "CPU/wall |\n|---|---|---|---|---|---|---|\n");
+  for (std::size_t e = 0; e < effects.size(); ++e)
+    std::printf("| %s | %s | %s | %s | %s | %s | %s |\n", effects[e].name,
+                fix(best[0][e].ns_per_particle_step(), 1).c_str(), fix(best[0][e].seconds / best[0][0].seconds, 3).c_str(),
+                best[0][e].share(1).c_str(), fix(best[1][e].ns_per_particle_step(), 1).c_str(),
+                fix(best[1][e].seconds / best[1][0].seconds, 3).c_str(), best[1][e].share(2).c_str());
+  std::printf("\n(reference run: coordination %.2f, candidate pairs / particle %.2f, ball–wall pairs %.0f, "
+              "rebuilds in the window %lld.)\n\n",
+              2.0 * best[1][0].contacts / n, best[1][0].candidates / n, best[1][0].wall_candidates,
+              static_cast<long long>(best[1][0].rebuilds));
+}
+
+// ---------------------------------------------------------------------------------------------------------
+
+[[noreturn]] void usage(const std::string& why) {
+  std::fprintf(stderr,
+               "%s\nusage: throughput [--quick] [--only shared|scaling|effects] [--specimen-dir DIR] [--reps N]\n",
+               why.c_str());
+  std::exit(2);
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usage("option " + a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--quick") {
+      o.quick = true;
+    } else if (a == "--only") {
+      const std::string v = value();
+      if (v != "shared" && v != "scaling" && v != "effects")
+        usage("--only '" + v + "': allowed shared, scaling, effects");
+      o.shared = v == "shared", o.scaling = v == "scaling", o.effects = v == "effects";
+    } else if (a == "--specimen-dir") {
+      o.specimen_dir = value();
+    } else if (a == "--reps") {
+      const std::string v = value();
+      char* end = nullptr;
+      const long r = std::strtol(v.c_str(), &end, 10);
+      if (*end || r < 1 || r > 100) usage("--reps '" + v + "': allowed an integer from 1 to 100");
+      o.reps = static_cast<int>(r);
+      o.reps_given = true;
+    } else if (a == "--help" || a == "-h") {
+      usage("Throughput of the stepping loop, as markdown tables.");
+    } else {
+      usage("unknown option '" + a + "'");
+    }
+  }
+  if (o.quick && !o.reps_given) o.reps = 1;
+  return o;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // On a shared machine, threads that spin at the end of each parallel region (libgomp's default) lose whole time
+  // slices whenever another process holds a core, and 2-thread runs become several times slower than 1-thread
+  // runs. Unless the caller chose a policy, run with passive waiting: libgomp reads it at start-up, so re-execute.
+  bool policy_set_here = false;
+  if (!std::getenv("OMP_WAIT_POLICY")) {
+    setenv("OMP_WAIT_POLICY", "passive", 1);
+    setenv("MESOCRACK_BENCH_POLICY_SET", "1", 1);
+    execv("/proc/self/exe", argv);  // returns only on failure: go on with the default policy
+    unsetenv("OMP_WAIT_POLICY");
+  }
+  policy_set_here = std::getenv("MESOCRACK_BENCH_POLICY_SET") != nullptr;
+  const char* policy = std::getenv("OMP_WAIT_POLICY");
+  const Options opt = parse(argc, argv);
+  const auto t0 = Clock::now();
+  std::printf("# mesocrack throughput%s\n\n", opt.quick ? " (--quick: small sizes)" : "");
+  std::printf("%d hardware threads visible (omp_get_num_procs); timings with omp_set_num_threads(1) and (2). "
+              "OpenMP wait policy: %s%s.\n\n",
+              omp_get_num_procs(), policy ? policy : "libgomp default (spin, then sleep)",
+              policy_set_here ? " (set by this benchmark; run with OMP_WAIT_POLICY=active to measure spinning threads)"
+                              : "");
+  std::printf("Load average (1 / 5 / 15 min) at the start: %s. The machine may be shared: the CPU/wall columns and "
+              "the load after each section tell how quiet it was.\n\n",
+              loadavg().c_str());
+  auto section = [](auto&& fn) {
+    fn();
+    std::printf("(load average after this section: %s)\n\n", loadavg().c_str());
+    std::fflush(stdout);
+  };
+  try {
+    if (opt.shared) section([&] { section_shared(opt); });
+    if (opt.scaling) section([&] { section_scaling(opt); });
+    if (opt.effects) section([&] { section_effects(opt); });
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "throughput: %s\n", e.what());
+    return 1;
+  }
+  std::printf("Total run time %.0f s.\n", std::chrono::duration<double>(Clock::now() - t0).count());
+  return 0;
+}
