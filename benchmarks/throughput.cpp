@@ -34,6 +34,7 @@
 #include "engine/errors.hpp"
 #include "engine/parallel.hpp"
 #include "engine/world.hpp"
+#include "preprocess/spatial_order.hpp"
 #include "preprocess/sphere_list.hpp"
 
 #ifndef MESOCRACK_SOURCE_DIR
@@ -289,7 +290,14 @@ SharedRun run_shared(const std::string& path, const std::string& name, const Mat
   SharedRun run;
   run.name = name;
   const auto r0 = Clock::now();
-  const SphereList<3> s = read_sphere_list<3>(path);
+  SphereList<3> s = read_sphere_list<3>(path);
+  {
+    // Numbered along a Morton curve, as `mesocrack run` loads a sphere list (engine/build_world.cpp).
+    const std::vector<int> order = morton_order<3>(s.x);
+    const SphereList<3> f = s;
+    for (std::size_t k = 0; k < order.size(); ++k)
+      s.x[k] = f.x[order[k]], s.radius[k] = f.radius[order[k]], s.tag[k] = f.tag[order[k]], s.id[k] = f.id[order[k]];
+  }
   run.read_seconds = std::chrono::duration<double>(Clock::now() - r0).count();
   run.n = s.size();
   double zlo = kInf, zhi = -kInf;

@@ -6,6 +6,7 @@
 #include "engine/errors.hpp"
 #include "engine/h5_file.hpp"
 #include "preprocess/random_box.hpp"
+#include "preprocess/spatial_order.hpp"
 #include "preprocess/sphere_list.hpp"
 
 namespace mc {
@@ -26,7 +27,7 @@ Rot<D> r_of(const std::vector<double>& v) {
 }
 
 template <int D>
-void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags) {
+void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags, std::vector<std::int64_t>& ids) {
   const SpecimenSpec& sp = s.specimen;
   auto density = [&](int phase) { return s.phases[phase].density; };
   switch (sp.kind) {
@@ -59,6 +60,7 @@ void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags) {
         }
         p.add(list.x[i], list.radius[i], density(phase), phase);
         tags.push_back(tag);
+        ids.push_back(list.id[i]);
       }
       break;
     }
@@ -127,10 +129,25 @@ Wall<D> make_wall(const WallSpec& w) {
   return out;
 }
 
+// Renumbers the particles of a sphere list or a generated packing along a Morton curve (cache locality);
+// tags and ids travel with them. Inline particles keep the order the scene gives them.
 template <int D>
-bool in_group(const GroupSpec& g, const Particles<D>& p, const std::vector<int>& tags, int i) {
+void spatial_sort(Particles<D>& p, std::vector<int>& tags, std::vector<std::int64_t>& ids) {
+  const std::vector<int> order = morton_order<D>(p.x);
+  auto permute = [&](auto& v) {
+    auto old = v;
+    for (std::size_t k = 0; k < order.size(); ++k) v[k] = old[order[k]];
+  };
+  permute(p.x), permute(p.v), permute(p.f), permute(p.w), permute(p.m), permute(p.q);
+  permute(p.radius), permute(p.mass), permute(p.inertia), permute(p.phase), permute(p.fix);
+  permute(tags), permute(ids);
+}
+
+template <int D>
+bool in_group(const GroupSpec& g, const Particles<D>& p, const std::vector<int>& tags,
+              const std::vector<std::int64_t>& ids, int i) {
   if (std::find(g.tags.begin(), g.tags.end(), tags[i]) != g.tags.end()) return true;
-  if (std::find(g.ids.begin(), g.ids.end(), i) != g.ids.end()) return true;
+  if (std::find(g.ids.begin(), g.ids.end(), ids[i]) != g.ids.end()) return true;
   if (!g.box_lo.empty()) {
     for (int k = 0; k < D; ++k)
       if (p.x[i][k] < g.box_lo[k] || p.x[i][k] > g.box_hi[k]) return false;
@@ -144,12 +161,12 @@ void apply_groups(const Scene& s, World<D>& w, const std::vector<int>& tags) {
   auto& p = w.particles;
   for (const GroupSpec& g : s.groups) {
     for (std::int64_t id : g.ids)
-      if (id >= p.size())
+      if (std::find(w.ids.begin(), w.ids.end(), id) == w.ids.end())
         throw InputError(s.file + ": group '" + g.name + "': particle id " + std::to_string(id) +
                          " does not exist (the specimen has " + std::to_string(p.size()) + " particles)");
     int members = 0;
     for (int i = 0; i < p.size(); ++i) {
-      if (!in_group(g, p, tags, i)) continue;
+      if (!in_group(g, p, tags, w.ids, i)) continue;
       ++members;
       p.fix[i] |= g.fix;
       if (!g.velocity.empty()) p.v[i] = v_of<D>(g.velocity);
@@ -191,8 +208,14 @@ template <int D>
 World<D> build_world(const Scene& s) {
   World<D> w;
   std::vector<int> tags;
-  add_specimen<D>(s, w.particles, tags);
+  add_specimen<D>(s, w.particles, tags, w.ids);
   if (w.particles.size() == 0) throw InputError(s.file + ": the specimen holds no particle");
+  if (w.ids.empty()) {
+    w.ids.resize(w.particles.size());
+    for (int i = 0; i < w.particles.size(); ++i) w.ids[i] = i;
+  }
+  if (s.specimen.kind == SpecimenSpec::Kind::SphereList || s.specimen.kind == SpecimenSpec::Kind::RandomBox)
+    spatial_sort<D>(w.particles, tags, w.ids);
   const int np = static_cast<int>(s.phases.size());
   w.model_of.assign(np, std::vector<int>(np, -1));
   for (const ContactSpec& c : s.contacts) {

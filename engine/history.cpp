@@ -1,5 +1,7 @@
 #include "engine/history.hpp"
 
+#include <algorithm>
+
 namespace mc {
 
 namespace {
@@ -84,9 +86,14 @@ std::vector<Series> make_series(const Scene& s, const World<D>* w, const Observe
     if (rs.porosity) add(pre + "porosity", "-", [w, g] { return porosity(*w, *g); });
     if (rs.coordination) add(pre + "coordination", "-", [w, g] { return coordination_number(*w, *g); });
   }
+  // Probes name particles by the specimen's ids; samplers use their indices.
+  auto index_of = [w](std::int64_t id) {
+    if (!w) return -1;
+    return static_cast<int>(std::find(w->ids.begin(), w->ids.end(), id) - w->ids.begin());
+  };
   for (const ProbeSpec& p : s.probes) {
-    const int a = static_cast<int>(p.particles[0]);
-    const int b = p.particles.size() > 1 ? static_cast<int>(p.particles[1]) : -1;
+    const int a = index_of(p.particles[0]);
+    const int b = p.particles.size() > 1 ? index_of(p.particles[1]) : -1;
     const int c = p.component;
     using K = ProbeSpec::Kind;
     switch (p.kind) {

@@ -32,6 +32,7 @@ RunOutput::RunOutput(const std::string& path, const std::string& scene_text, con
   file_.write("/specimen/x", s.x, {n, static_cast<hsize_t>(s.dimension)});
   file_.write("/specimen/radius", s.radius, {n});
   file_.write("/specimen/phase", s.phase, {n});
+  file_.write("/specimen/id", s.id, {n});
   file_.set_attr("/specimen", "phase_names", join(s.phase_names));
   file_.create_table("/frames/time", 0);
   file_.create_table("/frames/step", 0, true);

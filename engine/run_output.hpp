@@ -15,6 +15,7 @@ struct SpecimenData {
   std::vector<double> x, radius;  // x: N·D
   std::vector<std::int32_t> phase;
   std::vector<std::string> phase_names;
+  std::vector<std::int64_t> id;   // the specimen's own ids (particles may be renumbered for locality)
 };
 
 class RunOutput {

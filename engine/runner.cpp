@@ -3,6 +3,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -91,9 +92,10 @@ class Run {
   void check_probes() const {
     for (const auto& p : scene_.probes)
       for (std::int64_t id : p.particles)
-        if (id >= world_.particles.size())
+        if (std::find(world_.ids.begin(), world_.ids.end(), id) == world_.ids.end())
           throw InputError(scene_.file + ": probe '" + p.name + "': particle " + std::to_string(id) +
-                           " does not exist (the specimen has " + std::to_string(world_.particles.size()) + " particles)");
+                           " does not exist (the specimen has " + std::to_string(world_.particles.size()) +
+                           " particles; probes name them by their specimen ids)");
   }
 
   int column_of(const std::string& name) const {
@@ -103,7 +105,7 @@ class Run {
   }
 
   SpecimenData specimen() const {
-    SpecimenData d{D, {}, world_.particles.radius, {}, {}};
+    SpecimenData d{D, {}, world_.particles.radius, {}, {}, world_.ids};
     for (const auto& x : world_.particles.x) d.x.insert(d.x.end(), x.data(), x.data() + D);
     d.phase.assign(world_.particles.phase.begin(), world_.particles.phase.end());
     for (const auto& p : scene_.phases) d.phase_names.push_back(p.name);
