@@ -29,13 +29,7 @@ World<3> cubic_box(const LinearParams& prm, double mu_wall, int n, double r, dou
   wm.kn = Linear::ball_kn<3>(prm, r);
   wm.ks = wm.kn / prm.kn_ks_ratio;
   wm.friction = mu_wall;
-  for (int d = 0; d < 3; ++d) {
-    const Vec<3> e = Vec<3>::Unit(d);
-    w.walls.push_back(Wall<3>::plane(lo * e, e));
-    w.walls.push_back(Wall<3>::plane(hi * e, -e));
-    w.walls[w.walls.size() - 2].material = wm;
-    w.walls.back().material = wm;
-  }
+  test::add_box_walls(w, lo, hi, wm);
   return w;
 }
 
@@ -119,13 +113,7 @@ TEST_CASE("damped_wall_loaded_assembly_energy_balance_closes") {
   WallMaterial wm;
   wm.kn = wm.ks = Linear::ball_kn<3>(prm, r);
   wm.friction = 0.5;
-  for (int d = 0; d < 3; ++d) {
-    const Vec<3> e = Vec<3>::Unit(d);
-    w.walls.push_back(Wall<3>::plane(lo * e, e));
-    w.walls.push_back(Wall<3>::plane(hi * e, -e));
-    w.walls[w.walls.size() - 2].material = wm;
-    w.walls.back().material = wm;
-  }
+  test::add_box_walls(w, lo, hi, wm);
   // The top (z = hi, normal −z) comes down at 5 cm/s after a smooth start, closing the gaps and then
   // compressing the packing (about 9 % in all; final overlaps ~1 % of r).
   Wall<3>& top = w.walls[5];

@@ -32,4 +32,15 @@ World<D> single_model_world(const typename Model::Params& params) {
   return w;
 }
 
+// Six infinite walls bounding the cube [lo, hi]³, normals inwards.
+inline void add_box_walls(World<3>& w, double lo, double hi, const WallMaterial& wm) {
+  for (int d = 0; d < 3; ++d) {
+    const Vec<3> e = Vec<3>::Unit(d);
+    w.walls.push_back(Wall<3>::plane(lo * e, e));
+    w.walls.push_back(Wall<3>::plane(hi * e, -e));
+    w.walls[w.walls.size() - 2].material = wm;
+    w.walls.back().material = wm;
+  }
+}
+
 }  // namespace mc::test

@@ -23,13 +23,7 @@ void box_walls(World<3>& w, const LinearParams& prm, double r, double lo, double
   wm.kn = Linear::ball_kn<3>(prm, r);
   wm.ks = wm.kn / prm.kn_ks_ratio;
   wm.friction = prm.friction;
-  for (int d = 0; d < 3; ++d) {
-    const Vec<3> e = Vec<3>::Unit(d);
-    w.walls.push_back(Wall<3>::plane(lo * e, e));
-    w.walls.push_back(Wall<3>::plane(hi * e, -e));
-    w.walls[w.walls.size() - 2].material = wm;
-    w.walls.back().material = wm;
-  }
+  test::add_box_walls(w, lo, hi, wm);
   w.domain_lo = Vec<3>::Constant(lo - 10 * r);
   w.domain_hi = Vec<3>::Constant(hi + 10 * r);
 }
