@@ -106,10 +106,11 @@ void World<D>::relink() {
 template <int D>
 double World<D>::critical_timestep() {
   const int n = particles.size();
-  SlotStiffness k;
-  k.kt.assign(slots_.f.size(), 0.0);
-  k.kra.assign(slots_.f.size(), 0.0);
-  k.krb.assign(slots_.f.size(), 0.0);
+  // Every slot is written by its set below, so the buffers are only resized, never cleared.
+  SlotStiffness& k = stiffness_;
+  k.kt.resize(slots_.f.size());
+  k.kra.resize(slots_.f.size());
+  k.krb.resize(slots_.f.size());
   for (std::size_t s = 0; s < sets.size(); ++s) sets[s]->stiffness(particles, walls, k, offset_[s], wall_offset_[s]);
   // The servo gain needs Σk_n of each wall's touching contacts; it is refreshed with the timestep.
   for (auto& wl : walls) wl.contact_kn = 0;

@@ -97,6 +97,7 @@ class World {
   void refresh_timestep();
 
   Slots<D> slots_;
+  SlotStiffness stiffness_;  // per-slot stiffness, reused by each timestep refresh
   std::vector<std::size_t> offset_, wall_offset_;
   std::vector<int> gather_start_, gather_split_, gather_items_;  // items: slots, A side first, then B side
   std::vector<Pair> slot_pair_;
