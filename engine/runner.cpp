@@ -127,6 +127,9 @@ class Run {
       for (auto& st : stops_) st.peak = rs[k++];
       for (auto& si : obs_.strain)
         for (int i = 0; i < D * D; ++i) si.strain.data()[i] = rs[k++];
+      // A run that stopped on a condition stays stopped: resuming it only closes the file again.
+      const auto& why = a.bytes.at("stop_reason");
+      stop_reason_.assign(why.begin(), why.end());
       out_->create_histories(names, units);
       out_->truncate(hrows, frows);
       if (hrows > 0) last_record_step_ = static_cast<std::int64_t>(out_->file().read_doubles("/history/step").back());
@@ -207,6 +210,7 @@ class Run {
     for (const auto& st : stops_) rs.push_back(st.peak);
     for (const auto& si : obs_.strain) rs.insert(rs.end(), si.strain.data(), si.strain.data() + D * D);
     a.reals["runner"] = rs;
+    a.bytes["stop_reason"] = std::vector<std::uint8_t>(stop_reason_.begin(), stop_reason_.end());
     out_->write_checkpoint(a, world_.step_count);
   }
 

@@ -845,3 +845,51 @@ TEST_CASE("resume_with_servo_walls_in_contact_matches_uninterrupted_run") {
   REQUIRE_MESSAGE(rest.code == 0, rest.describe());
   check_same_run(d / "whole.h5", d / "halves.h5");
 }
+
+// A run that ended on its stop condition keeps that end: resuming it (its final checkpoint holds the reason)
+// must not carry it on past the condition.
+TEST_CASE("resumed_stopped_run_stays_stopped") {
+  const TempDir d;
+  write_file(d / "stop.toml", R"(dimension = 2
+[[phases]]
+name = "g"
+density = 2600
+[[contacts]]
+phase_a = "g"
+model = "linear"
+modulus = 5e7
+[specimen]
+kind = "particles"
+[[specimen.particles]]
+x = [0, 0]
+radius = 0.001
+velocity = [0.05, 0]
+[[specimen.particles]]
+x = [0.00201, 0]
+radius = 0.001
+velocity = [-0.05, 0]
+[[probes]]
+name = "overlap"
+kind = "overlap"
+particles = [0, 1]
+[run]
+steps = 100000
+[[run.stop]]
+quantity = "overlap"
+above = 5e-7
+[output]
+history_every = 1
+)");
+  const Result first = mesocrack({"run", "stop.toml", "-o", "stop.h5"}, d.dir);
+  REQUIRE_MESSAGE(first.code == 0, first.describe());
+  const Json a = summary_of("stop.h5", d.dir);
+  CHECK(a["status"].text == "stopped");
+  // The overlap of two discs approaching at 0.1 m/s passes 5e-7 m long before the 100000 steps.
+  CHECK(a["steps"].number < 1000);
+  const Result again = mesocrack({"run", "stop.toml", "--resume", "stop.h5"}, d.dir);
+  REQUIRE_MESSAGE(again.code == 0, again.describe());
+  const Json b = summary_of("stop.h5", d.dir);
+  CHECK(b["status"].text == "stopped");
+  CHECK(b["steps"].number == a["steps"].number);
+  CHECK(b["history_rows"].number == a["history_rows"].number);
+}
