@@ -4,6 +4,8 @@
 #include <omp.h>
 
 #include <cstdint>
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <type_traits>
@@ -36,6 +38,30 @@ struct SlotStiffness {
 };
 
 
+// Random numbers for one pair, from the seed and the pair alone (splitmix64): a bond's strengths do not depend
+// on the order in which bonds are installed, nor on the thread count.
+struct PairRandom {
+  std::uint64_t state;
+  PairRandom(std::uint64_t seed, const Pair& p)
+      : state(seed ^ (static_cast<std::uint64_t>(p[0]) * 0x9e3779b97f4a7c15ull) ^
+              (static_cast<std::uint64_t>(p[1]) * 0xc2b2ae3d27d4eb4full)) {}
+  double uniform() {  // in (0, 1)
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    z ^= z >> 31;
+    return (static_cast<double>(z >> 11) + 0.5) * 0x1.0p-53;
+  }
+  // Normal(mean, std) truncated to positive values by redrawing (Box–Muller).
+  double operator()(double mean, double std) {
+    if (std == 0) return mean;
+    for (;;) {
+      const double x = mean + std * std::sqrt(-2.0 * std::log(uniform())) * std::cos(2.0 * M_PI * uniform());
+      if (x > 0) return x;
+    }
+  }
+};
+
 template <int D>
 class ContactSetBase {
  public:
@@ -55,6 +81,9 @@ class ContactSetBase {
                          std::size_t offset, std::size_t wall_offset) const = 0;
   virtual ContactStiffness nominal_stiffness(double r) const = 0;  // one contact with an identical particle
   virtual double damping_ratio() const = 0;                       // of the model's dashpots (0: none)
+  // Bonds the given pairs (sorted, all present in the list); returns how many were bonded. Models without
+  // bonds bond nothing.
+  virtual std::size_t install_bonds(const std::vector<Pair>& pairs, std::uint64_t seed) = 0;
   virtual double strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const = 0;
   // The whole history as bytes (checkpoints): pairs, wall pairs and states.
   virtual std::vector<std::uint8_t> save() const = 0;
@@ -156,6 +185,23 @@ class ContactSet final : public ContactSetBase<D> {
     g.r_a = g.r_b = r;
     g.overlap = 0;
     return Model::template stiffness<D>(Model::template pair<D>(params_, r, r), g, State{});
+  }
+
+  std::size_t install_bonds(const std::vector<Pair>& bond_pairs, std::uint64_t seed) override {
+    if constexpr (requires { Model::bondable; }) {
+      std::size_t n = 0;
+      for (const Pair& pr : bond_pairs) {
+        const auto it = std::lower_bound(pairs_.begin(), pairs_.end(), pr);
+        if (it == pairs_.end() || *it != pr) continue;
+        PairRandom rng(seed, pr);
+        Model::template install<D>(params_, states_[it - pairs_.begin()], rng);
+        ++n;
+      }
+      return n;
+    } else {
+      (void)bond_pairs, (void)seed;
+      return 0;
+    }
   }
 
   double damping_ratio() const override {

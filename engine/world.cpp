@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <iterator>
 #include <cmath>
 #include <sstream>
 
@@ -101,6 +102,30 @@ void World<D>::relink() {
       ++slot;
     }
   }
+}
+
+template <int D>
+std::size_t World<D>::install_bonds(double tolerance, std::uint64_t seed) {
+  const auto& p = particles;
+  const int nsets = static_cast<int>(sets.size());
+  std::vector<std::vector<Pair>> bond(nsets);
+  for (const Pair& pr : candidate_pairs<D>(p.x, p.radius, tolerance * p.max_radius())) {
+    const auto [i, j] = pr;
+    const double gap = (p.x[j] - p.x[i]).norm() - p.radius[i] - p.radius[j];
+    const int s = model_of[p.phase[i]][p.phase[j]];
+    if (s >= 0 && gap <= tolerance * std::min(p.radius[i], p.radius[j])) bond[s].push_back(pr);
+  }
+  std::size_t n = 0;
+  for (int s = 0; s < nsets; ++s) {
+    // The pairs to bond join the list (they may lie beyond the skin), then get their bonds.
+    std::vector<Pair> all;
+    std::set_union(sets[s]->pairs().begin(), sets[s]->pairs().end(), bond[s].begin(), bond[s].end(), std::back_inserter(all));
+    sets[s]->set_pairs(all);
+    n += sets[s]->install_bonds(bond[s], seed);
+  }
+  relink();
+  refresh_timestep();
+  return n;
 }
 
 template <int D>

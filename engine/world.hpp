@@ -61,6 +61,9 @@ class World {
   // Call once the particles, walls and sets are in place (and after loading a checkpoint).
   void init();
   void step();
+  // Bonds every pair whose gap is at most tolerance·min(R_A, R_B), with the model of its phase pair (models
+  // without bonds ignore it); strengths drawn per pair from `seed`. Call after init(). Returns the count.
+  std::size_t install_bonds(double tolerance, std::uint64_t seed);
   // Critical timestep from the current stiffnesses, Tang (3.22)–(3.24), without the safety factor.
   double critical_timestep();
   void update_energy();  // kinetic and strain energy at the current time into `energy`

@@ -1,0 +1,158 @@
+// Parallel bond (Potyondy & Cundall 2004; Tang 2013 eqs. 3.37–3.41) acting beside a linear contact with slip:
+// a short elastic beam of radius R̄ = λ̄ min(R_A, R_B) glued between the particles carries normal and shear force,
+// twisting (3D) and bending moments, incrementally; it breaks when the beam's maximum tensile or shear stress
+// reaches its strength. After the break the pair is a plain linear contact with slip.
+#pragma once
+#include <cmath>
+#include <cstdint>
+
+#include "contact_models/linear.hpp"
+#include "engine/contact_geometry.hpp"
+
+namespace mc {
+
+struct ParallelBondParams {
+  LinearParams contact;              // the grain contact in parallel (Tang 3.38: k_n = 2tE_c / 4RE_c)
+  double radius_multiplier = 1.0;    // λ̄ [-], Tang (3.40)
+  double modulus = kNaN;             // Ē_c [Pa]: k̄_n = Ē_c / (R_A + R_B), Tang (3.38)
+  double kn_ks_ratio = 1.0;          // k̄_n / k̄_s [-]
+  double tensile_mean = kNaN, tensile_std = 0.0;  // σ̄_c [Pa], normal distribution truncated to > 0
+  double shear_mean = kNaN, shear_std = 0.0;      // τ̄_c [Pa]
+};
+
+// Beam section of a bond, Tang (3.39): area, second moment, polar moment (2D: t = 1 m, J unused).
+template <int D>
+struct BondSection {
+  double radius, area, inertia, polar;
+  static BondSection of(double lambda, double ra, double rb) {
+    const double r = lambda * std::min(ra, rb);  // Tang (3.40)
+    if constexpr (D == 2) return {r, 2.0 * r, 2.0 / 3.0 * r * r * r, 0.0};
+    else return {r, M_PI * r * r, 0.25 * M_PI * r * r * r * r, 0.5 * M_PI * r * r * r * r};
+  }
+};
+
+enum class BondBreak : std::uint8_t { None = 0, Tensile = 1, Shear = 2 };
+
+struct ParallelBond {
+  static constexpr const char* name = "parallel_bond";
+  using Params = ParallelBondParams;
+  template <int D>
+  struct State {
+    Vec<D> fs = Vec<D>::Zero();      // linear contact shear force [N]
+    Vec<D> bond_fs = Vec<D>::Zero(); // F̄^s [N]
+    Rot<D> bond_ms = Rot<D>::Zero(); // M̄^s, bending [N m] (2D: the only moment)
+    double bond_fn = 0;              // F̄^n [N], positive in compression
+    double bond_mn = 0;              // M̄^n, twisting [N m] (3D)
+    double tensile = 0, shear = 0;   // this bond's strengths σ̄_c, τ̄_c [Pa]; 0: no bond (never bonded or broken)
+    double broke = 0;                // BondBreak of the last step (read by the engine's crack log, then cleared)
+  };
+  struct Coeffs {
+    Linear::Coeffs contact;
+    BondSection<3> section;  // the 2D numbers use the same fields
+    double kn, ks;           // k̄_n, k̄_s [Pa/m]
+  };
+
+  template <int D>
+  static Coeffs pair(const Params& p, double ra, double rb) {
+    const auto s = BondSection<D>::of(p.radius_multiplier, ra, rb);
+    const double kn = p.modulus / (ra + rb);  // Tang (3.38)
+    return {Linear::pair<D>(p.contact, ra, rb), {s.radius, s.area, s.inertia, s.polar}, kn, kn / p.kn_ks_ratio};
+  }
+  template <int D>
+  static Coeffs wall(const Params& p, const WallMaterial& w, double rb) {
+    return {Linear::wall<D>(p.contact, w, rb), {0, 0, 0, 0}, 0, 0};  // walls are never bonded
+  }
+
+  static constexpr bool bondable = true;
+
+  template <int D>
+  static bool bonded(const State<D>& s) { return s.tensile > 0; }
+
+  // A new bond: stress-free, with its own strengths drawn from the scene's distributions (Tang Table 5.1).
+  template <int D, class Normal>
+  static void install(const Params& p, State<D>& s, Normal& normal) {
+    s = State<D>{s.fs};
+    s.tensile = normal(p.tensile_mean, p.tensile_std);
+    s.shear = normal(p.shear_mean, p.shear_std);
+  }
+
+  // Tang (3.41): the beam's largest tensile and shear stresses.
+  template <int D>
+  static double max_tensile_stress(const Coeffs& c, const State<D>& s) {
+    return -s.bond_fn / c.section.area + s.bond_ms.norm() * c.section.radius / c.section.inertia;
+  }
+  template <int D>
+  static double max_shear_stress(const Coeffs& c, const State<D>& s) {
+    double t = s.bond_fs.norm() / c.section.area;
+    if constexpr (D == 3) t += std::abs(s.bond_mn) * c.section.radius / c.section.polar;
+    return t;
+  }
+
+  template <int D, bool Energy>
+  [[gnu::always_inline]] static ContactForce<D> force(const Coeffs& c, const ContactGeometry<D>& g, State<D>& s) {
+    Linear::State<D> ls{s.fs};
+    ContactForce<D> out = Linear::force<D, Energy>(c.contact, g, ls);  // the grain contact, in parallel
+    s.fs = ls.fs;
+    if (!bonded(s)) return out;
+    const double a = c.section.area, i = c.section.inertia, dt = g.dt;
+    const double vn = g.v_rel.dot(g.n);
+    const Vec<D> vs = g.v_rel - vn * g.n;
+    // Tang (3.37), increments from the relative motion of this step; the shear force and the bending moment
+    // turn with the contact plane.
+    s.bond_fn -= c.kn * a * vn * dt;
+    s.bond_fs = carry_shear<D>(s.bond_fs, g.n, g.spin_n, dt) - c.ks * a * vs * dt;
+    if constexpr (D == 2) {
+      s.bond_ms -= c.kn * i * g.w_rel * dt;
+    } else {
+      const double wn = g.w_rel.dot(g.n);
+      s.bond_mn -= c.ks * c.section.polar * wn * dt;
+      s.bond_ms = carry_shear<3>(s.bond_ms, g.n, g.spin_n, dt) - c.kn * i * (g.w_rel - wn * g.n) * dt;
+    }
+    const double energy = Energy ? strain_energy_bond<D>(c, s) : 0.0;
+    BondBreak b = BondBreak::None;
+    if (max_tensile_stress<D>(c, s) >= s.tensile) b = BondBreak::Tensile;
+    else if (max_shear_stress<D>(c, s) >= s.shear) b = BondBreak::Shear;
+    if (b != BondBreak::None) {
+      if constexpr (Energy) out.dissipated += energy;  // the beam's stored energy is released with the crack
+      const double keep_broke = static_cast<double>(b);
+      s = State<D>{s.fs};
+      s.broke = keep_broke;
+      return out;
+    }
+    out.force += s.bond_fn * g.n + s.bond_fs;
+    if constexpr (D == 2) out.moment += s.bond_ms;
+    else out.moment += s.bond_mn * g.n + s.bond_ms;
+    return out;
+  }
+
+  template <int D>
+  static ContactStiffness stiffness(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
+    ContactStiffness k = Linear::stiffness<D>(c.contact, g, Linear::State<D>{s.fs});
+    if (!bonded(s)) return k;
+    k.normal += c.kn * c.section.area;
+    k.shear += c.ks * c.section.area;
+    k.rotational += c.kn * c.section.inertia + (D == 3 ? c.ks * c.section.polar : 0.0);
+    return k;
+  }
+
+  // Tang (3.75), with the twisting term in 3D.
+  template <int D>
+  static double strain_energy_bond(const Coeffs& c, const State<D>& s) {
+    double e = s.bond_fn * s.bond_fn / (c.section.area * c.kn) + s.bond_fs.squaredNorm() / (c.section.area * c.ks) +
+               s.bond_ms.squaredNorm() / (c.section.inertia * c.kn);
+    if constexpr (D == 3) e += s.bond_mn * s.bond_mn / (c.section.polar * c.ks);
+    return 0.5 * e;
+  }
+  template <int D>
+  static double strain_energy(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
+    return Linear::strain_energy<D>(c.contact, g, Linear::State<D>{s.fs}) + (bonded(s) ? strain_energy_bond<D>(c, s) : 0.0);
+  }
+  template <int D>
+  static double released_energy(const Coeffs& c, const State<D>& s) {
+    return Linear::released_energy<D>(c.contact, Linear::State<D>{s.fs});
+  }
+  template <int D>
+  static bool persistent(const State<D>& s) { return bonded(s); }
+};
+
+}  // namespace mc
