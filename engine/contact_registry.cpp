@@ -10,6 +10,7 @@ const std::vector<std::pair<std::string, Reader>>& registry() {
   static const std::vector<std::pair<std::string, Reader>> r = {
       {"linear", linear_model},
       {"hertz_mindlin", hertz_mindlin_model},
+      {"parallel_bond", parallel_bond_model},
   };
   return r;
 }

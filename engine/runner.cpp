@@ -142,6 +142,7 @@ class Run {
     // init() may refuse the scene (a fixed timestep above the estimate): before the output file exists.
     try {
       world_.init();
+      if (scene_.bond_tolerance >= 0) world_.install_bonds(scene_.bond_tolerance, scene_.seed);
     } catch (const InputError& e) {
       throw InputError(scene_.file + ": " + e.what());
     }

@@ -120,6 +120,7 @@ struct Scene {
   std::vector<WallSpec> walls;
   std::vector<GroupSpec> groups;
 
+  double bond_tolerance = -1;  // [bonds]: bond pairs with gap ≤ tolerance·min(R_A, R_B) at the start; < 0: none
   std::optional<std::vector<double>> gravity;
   double local_damping = 0;
   double skin = 0;  // 0: 0.1 R_min

@@ -261,6 +261,14 @@ void read_physics(const Table& root, Scene& s) {
   }
 }
 
+void read_bonds(const Table& root, Scene& s) {
+  if (auto t = root.optional_table("bonds")) {
+    // Bonds are installed once, on the specimen as built (a packing loaded from an earlier run is settled).
+    s.bond_tolerance = t->number("gap_tolerance", Unit::None, Range::non_negative(), 0.0);
+    t->finish();
+  }
+}
+
 void read_observers(const Table& root, Scene& s) {
   const int d = s.dimension;
   for (const Table& t : root.tables("measure")) {
@@ -387,6 +395,7 @@ Scene read_scene(const TomlDoc& doc, const std::string& file) {
   read_walls(root, s);
   read_groups(root, s);
   read_physics(root, s);
+  read_bonds(root, s);
   read_observers(root, s);
   read_run(root, s);
   read_output(root, s);
