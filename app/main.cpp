@@ -18,13 +18,12 @@
 namespace {
 
 // report.py lives beside an installed binary (../share/mesocrack) or in the source tree it was built from.
-std::string report_script(const char* argv0) {
+std::string report_script() {
   namespace fs = std::filesystem;
   std::error_code ec;
   const fs::path exe = fs::canonical("/proc/self/exe", ec);
   const fs::path installed = exe.parent_path() / ".." / "share" / "mesocrack" / "report.py";
   if (!ec && fs::exists(installed)) return installed.string();
-  (void)argv0;
   return std::string(MESOCRACK_SOURCE_DIR) + "/app/report.py";
 }
 
@@ -87,7 +86,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*report_cmd) {
-      const std::string cmd = "/usr/bin/python3 " + shell_quote(report_script(argv[0])) + " " + shell_quote(target);
+      const std::string cmd = "/usr/bin/python3 " + shell_quote(report_script()) + " " + shell_quote(target);
       const int rc = std::system(cmd.c_str());
       return WIFEXITED(rc) ? WEXITSTATUS(rc) : 1;
     }

@@ -44,7 +44,7 @@ struct ParallelBond {
     double bond_fn = 0;              // F̄^n [N], positive in compression
     double bond_mn = 0;              // M̄^n, twisting [N m] (3D)
     double tensile = 0, shear = 0;   // this bond's strengths σ̄_c, τ̄_c [Pa]; 0: no bond (never bonded or broken)
-    double broke = 0;                // BondBreak of the last step (read by the engine's crack log, then cleared)
+    double broke = 0;                // BondBreak of the break, kept after the bond is gone (the crack log of issue 4 will read it)
   };
   struct Coeffs {
     Linear::Coeffs contact;

@@ -368,7 +368,8 @@ class ContactSet final : public ContactSetBase<D> {
     std::memcpy(&n, in.data() + at, sizeof n);
     at += sizeof n;
     v.resize(n);
-    std::memcpy(v.data(), in.data() + at, n * sizeof(T));
+    // States are plain numbers (see the class comment): their bytes are their value.
+    std::memcpy(static_cast<void*>(v.data()), in.data() + at, n * sizeof(T));
     at += n * sizeof(T);
   }
 
