@@ -72,15 +72,18 @@ struct Linear {
     }
     s.fs = fs;
     out.force = fn * g.n + fs;
-    if (c.zeta > 0) {
-      // Dashpots act beside the springs and store nothing; the shear dashpot rests while the contact slides.
-      const double cn = 2.0 * c.zeta * std::sqrt(g.m_eff * c.kn);
-      Vec<D> fd = -cn * vn * g.n;
-      if (!slipping) fd -= 2.0 * c.zeta * std::sqrt(g.m_eff * c.ks) * vs;
-      out.force += fd;
-      if constexpr (Energy) out.dashpot = fd;
-    }
+    if (c.zeta > 0) add_dashpots<D, Energy>(c, g, vn, vs, slipping, out);
     return out;
+  }
+
+  // Dashpots act beside the springs and store nothing; the shear dashpot rests while the contact slides.
+  template <int D, bool Energy>
+  static void add_dashpots(const Coeffs& c, const ContactGeometry<D>& g, double vn, const Vec<D>& vs, bool slipping,
+                           ContactForce<D>& out) {
+    Vec<D> fd = -2.0 * c.zeta * std::sqrt(g.m_eff * c.kn) * vn * g.n;
+    if (!slipping) fd -= 2.0 * c.zeta * std::sqrt(g.m_eff * c.ks) * vs;
+    out.force += fd;
+    if constexpr (Energy) out.dashpot = fd;
   }
 
   template <int D>

@@ -31,8 +31,6 @@ struct BondSection {
   }
 };
 
-enum class BondBreak : std::uint8_t { None = 0, Tensile = 1, Shear = 2 };
-
 struct ParallelBond {
   static constexpr const char* name = "parallel_bond";
   using Params = ParallelBondParams;
@@ -44,7 +42,6 @@ struct ParallelBond {
     double bond_fn = 0;              // F̄^n [N], positive in compression
     double bond_mn = 0;              // M̄^n, twisting [N m] (3D)
     double tensile = 0, shear = 0;   // this bond's strengths σ̄_c, τ̄_c [Pa]; 0: no bond (never bonded or broken)
-    double broke = 0;                // BondBreak of the break, kept after the bond is gone (the crack log of issue 4 will read it)
   };
   struct Coeffs {
     Linear::Coeffs contact;
@@ -70,7 +67,7 @@ struct ParallelBond {
 
   // A new bond: stress-free, with its own strengths drawn from the scene's distributions (Tang Table 5.1).
   template <int D, class Normal>
-  static void install(const Params& p, State<D>& s, Normal& normal) {
+  static void install(const Params& p, const ContactGeometry<D>&, State<D>& s, Normal& normal) {
     s = State<D>{s.fs};
     s.tensile = normal(p.tensile_mean, p.tensile_std);
     s.shear = normal(p.shear_mean, p.shear_std);
@@ -109,14 +106,11 @@ struct ParallelBond {
       s.bond_ms = carry_shear<3>(s.bond_ms, g.n, g.spin_n, dt) - c.kn * i * (g.w_rel - wn * g.n) * dt;
     }
     const double energy = Energy ? strain_energy_bond<D>(c, s) : 0.0;
-    BondBreak b = BondBreak::None;
-    if (max_tensile_stress<D>(c, s) >= s.tensile) b = BondBreak::Tensile;
-    else if (max_shear_stress<D>(c, s) >= s.shear) b = BondBreak::Shear;
-    if (b != BondBreak::None) {
+    if (max_tensile_stress<D>(c, s) >= s.tensile) out.event.mode = CrackMode::Tensile;
+    else if (max_shear_stress<D>(c, s) >= s.shear) out.event.mode = CrackMode::Shear;
+    if (out.event.mode != CrackMode::None) {
       if constexpr (Energy) out.dissipated += energy;  // the beam's stored energy is released with the crack
-      const double keep_broke = static_cast<double>(b);
       s = State<D>{s.fs};
-      s.broke = keep_broke;
       return out;
     }
     out.force += s.bond_fn * g.n + s.bond_fs;

@@ -26,7 +26,7 @@ struct Archive {
   void get(const std::string& key, std::vector<T>& v) const {
     const auto& d = at(reals, key);
     v.resize(d.size() / (sizeof(T) / sizeof(double)));
-    if (!d.empty()) std::memcpy(v.data(), d.data(), d.size() * sizeof(double));
+    if (!d.empty()) std::memcpy(static_cast<void*>(v.data()), d.data(), d.size() * sizeof(double));
   }
   void put_scalar(const std::string& key, double x) { reals[key] = {x}; }
   double scalar(const std::string& key) const { return at(reals, key).at(0); }

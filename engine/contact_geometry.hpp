@@ -1,6 +1,7 @@
 // What a contact model receives for one contact, and what it returns. The engine computes the geometry
 // (Tang 3.1–3.4, 3.6) once; models only turn it into forces.
 #pragma once
+#include "engine/crack.hpp"
 #include "engine/dim.hpp"
 
 namespace mc {
@@ -28,6 +29,7 @@ struct ContactForce {
   // The dashpot part of `force` (filled only when energy is traced). Its work is booked by the engine one
   // step later, against the velocity with which the particles actually moved under it.
   Vec<D> dashpot = Vec<D>::Zero();
+  BondEvent event;  // a bond broke or first yielded this step (the crack log)
 };
 
 // Stiffness seen by the timestep estimate, Tang (3.22)–(3.24).

@@ -11,6 +11,7 @@ const std::vector<std::pair<std::string, Reader>>& registry() {
       {"linear", linear_model},
       {"hertz_mindlin", hertz_mindlin_model},
       {"parallel_bond", parallel_bond_model},
+      {"contact_bond", contact_bond_model},
   };
   return r;
 }

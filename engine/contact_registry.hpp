@@ -18,5 +18,6 @@ ModelSpec model_spec(const typename Model::Params& p) {
 ModelSpec linear_model(const Table& t);
 ModelSpec hertz_mindlin_model(const Table& t);
 ModelSpec parallel_bond_model(const Table& t);
+ModelSpec contact_bond_model(const Table& t);
 
 }  // namespace mc

@@ -83,8 +83,11 @@ class ContactSetBase {
   virtual double damping_ratio() const = 0;                       // of the model's dashpots (0: none)
   // Bonds the given pairs (sorted, all present in the list); returns how many were bonded. Models without
   // bonds bond nothing.
-  virtual std::size_t install_bonds(const std::vector<Pair>& pairs, std::uint64_t seed) = 0;
+  virtual std::size_t install_bonds(const Particles<D>& p, const std::vector<Pair>& pairs, std::uint64_t seed) = 0;
   virtual double strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const = 0;
+  // Bonds that broke or first yielded in the last forces() call, in pair order (the same on any thread count).
+  virtual const std::vector<PairEvent<D>>& events() const = 0;
+  virtual std::size_t bond_count() const = 0;  // intact bonds
   // The whole history as bytes (checkpoints): pairs, wall pairs and states.
   virtual std::vector<std::uint8_t> save() const = 0;
   virtual void load(const std::vector<std::uint8_t>& bytes) = 0;
@@ -187,19 +190,31 @@ class ContactSet final : public ContactSetBase<D> {
     return Model::template stiffness<D>(Model::template pair<D>(params_, r, r), g, State{});
   }
 
-  std::size_t install_bonds(const std::vector<Pair>& bond_pairs, std::uint64_t seed) override {
+  const std::vector<PairEvent<D>>& events() const override { return events_; }
+
+  std::size_t bond_count() const override {
+    if constexpr (requires { Model::bondable; }) {
+      return std::count_if(states_.begin(), states_.end(), [](const State& s) { return Model::template bonded<D>(s); });
+    } else {
+      return 0;
+    }
+  }
+
+  std::size_t install_bonds(const Particles<D>& p, const std::vector<Pair>& bond_pairs, std::uint64_t seed) override {
     if constexpr (requires { Model::bondable; }) {
       std::size_t n = 0;
       for (const Pair& pr : bond_pairs) {
         const auto it = std::lower_bound(pairs_.begin(), pairs_.end(), pr);
         if (it == pairs_.end() || *it != pr) continue;
         PairRandom rng(seed, pr);
-        Model::template install<D>(params_, states_[it - pairs_.begin()], rng);
+        Vec<D> ca, cb;
+        const auto g = ball_geometry(p, pr[0], pr[1], 0.0, ca, cb);
+        Model::template install<D>(params_, g, states_[it - pairs_.begin()], rng);
         ++n;
       }
       return n;
     } else {
-      (void)bond_pairs, (void)seed;
+      (void)p, (void)bond_pairs, (void)seed;
       return 0;
     }
   }
@@ -260,6 +275,9 @@ class ContactSet final : public ContactSetBase<D> {
     std::vector<double> part(Energy ? block_count(n) : 0, 0.0);
     if (Energy && dashpot_.size() != n) dashpot_.assign(n, Vec<D>::Zero());
     if (Energy && wall_dashpot_.size() != wall_pairs_.size()) wall_dashpot_.assign(wall_pairs_.size(), Vec<D>::Zero());
+    // Events go to their block's list, joined in block order afterwards: rare, and deterministic.
+    block_events_.resize(block_count(n));
+    events_.clear();
 #pragma omp parallel for schedule(static) if (n > std::size_t(kParallelMin))
     for (int b = 0; b < block_count(n); ++b) {
       const std::size_t end = std::min(n, std::size_t(b + 1) * kBlock);
@@ -291,6 +309,8 @@ class ContactSet final : public ContactSetBase<D> {
         s.f[slot] = r.force;
         s.ma[slot] = Dim<D>::cross(ca, Vec<D>(-r.force)) - r.moment;
         s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
+        if (r.event.mode != CrackMode::None) [[unlikely]]
+          block_events_[b].push_back({i, j, p.x[i] + ca, g.n, r.event});
         if constexpr (Energy) {
           // Central differences balance ½ m v(t−½)·v(t+½) against ½ F(t)·(v(t−½) + v(t+½)) Δt: half of a
           // dashpot force's work is booked now, half at the next step with the velocity it produced.
@@ -299,6 +319,11 @@ class ContactSet final : public ContactSetBase<D> {
         }
       }
       if constexpr (Energy) part[b] = dissipated;
+    }
+    for (auto& be : block_events_) {
+      if (be.empty()) continue;
+      events_.insert(events_.end(), be.begin(), be.end());
+      be.clear();
     }
     double e = 0;
     for (double x : part) e += x;
@@ -377,6 +402,8 @@ class ContactSet final : public ContactSetBase<D> {
   std::vector<Pair> pairs_, wall_pairs_;
   std::vector<State> states_, wall_states_;
   std::vector<Vec<D>> dashpot_, wall_dashpot_;  // last step's dashpot forces, only while energy is traced
+  std::vector<std::vector<PairEvent<D>>> block_events_;
+  std::vector<PairEvent<D>> events_;
 };
 
 }  // namespace mc

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <iterator>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 #include "engine/errors.hpp"
@@ -121,7 +122,7 @@ std::size_t World<D>::install_bonds(double tolerance, std::uint64_t seed) {
     std::vector<Pair> all;
     std::set_union(sets[s]->pairs().begin(), sets[s]->pairs().end(), bond[s].begin(), bond[s].end(), std::back_inserter(all));
     sets[s]->set_pairs(all);
-    n += sets[s]->install_bonds(bond[s], seed);
+    n += sets[s]->install_bonds(particles, bond[s], seed);
   }
   relink();
   refresh_timestep();
@@ -196,6 +197,43 @@ void World<D>::compute_forces() {
   for (std::size_t s = 0; s < sets.size(); ++s)
     e += sets[s]->forces(particles, walls, dt, trace_energy, slots_, offset_[s], wall_offset_[s]);
   if (trace_energy) energy.dissipated_contacts += e;
+  log_cracks();
+}
+
+template <int D>
+void World<D>::log_cracks() {
+  const int np = static_cast<int>(model_of.size());
+  if (crack_counts_.size() != std::size_t(2 * 3 * np * np)) crack_counts_.assign(2 * 3 * np * np, 0);
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    for (const PairEvent<D>& e : sets[s]->events()) {
+      const int pa = particles.phase[e.a], pb = particles.phase[e.b];
+      // The step being taken (step_count counts completed steps) and the time of its force evaluation.
+      cracks.push_back({step_count + 1, time, e.a, e.b, e.position, e.normal, e.event.mode, e.event.kind,
+                        static_cast<int>(s), pa, pb});
+      const int lo = std::min(pa, pb), hi = std::max(pa, pb);
+      ++crack_counts_[((int(e.event.kind) * 3 + int(e.event.mode)) * np + lo) * np + hi];
+    }
+  }
+}
+
+template <int D>
+std::int64_t World<D>::crack_count(CrackKind kind, CrackMode mode, int phase_a, int phase_b) const {
+  const int np = static_cast<int>(model_of.size());
+  if (crack_counts_.empty()) return 0;
+  std::int64_t n = 0;
+  for (int a = 0; a < np; ++a)
+    for (int b = a; b < np; ++b) {
+      const bool match = (phase_a < 0 && phase_b < 0) || (std::min(phase_a, phase_b) == a && std::max(phase_a, phase_b) == b);
+      if (match) n += crack_counts_[((int(kind) * 3 + int(mode)) * np + a) * np + b];
+    }
+  return n;
+}
+
+template <int D>
+std::size_t World<D>::bond_count() const {
+  std::size_t n = 0;
+  for (const auto& s : sets) n += s->bond_count();
+  return n;
 }
 
 // Gather and law of motion for every particle (Tang 3.11–3.20), with PFC local damping: a force
@@ -208,7 +246,8 @@ double World<D>::move_particles() {
   const double h = dt, alpha = local_damping;
   const Vec<D> g = Gravity ? *gravity : Vec<D>::Zero();
   const int blocks = block_count(n);
-  std::vector<double> body(Energy ? blocks : 0, 0.0), local(Energy ? blocks : 0, 0.0), kin(Energy ? blocks : 0, 0.0);
+  std::vector<double> body(Energy ? blocks : 0, 0.0), local(Energy ? blocks : 0, 0.0), kin(Energy ? blocks : 0, 0.0),
+      held(Energy ? blocks : 0, 0.0);
   double moved2 = 0;
 #pragma omp parallel for schedule(static) reduction(max : moved2) if (n > kParallelMin)
   for (int b = 0; b < blocks; ++b) {
@@ -239,13 +278,24 @@ double World<D>::move_particles() {
       const FixMask fix = p.fix[i];
       Vec<D> fd = Vec<D>::Zero();
       Rot<D> md = Rot<D>::Zero();
+      // A held degree of freedom keeps its velocity: the support supplies −F, and does work −F·v Δt on the
+      // specimen (booked as boundary work, like a wall's).
+      double held_work = 0;
       for (int k = 0; k < D; ++k) {
+        if (fix & (1u << k)) {
+          if constexpr (Energy) held_work -= f[k] * v0[k] * h;
+          continue;
+        }
         if constexpr (Damp) fd[k] = -alpha * std::abs(f[k]) * (v0[k] > 0 ? 1.0 : (v0[k] < 0 ? -1.0 : 0.0));
-        if (!(fix & (1u << k))) p.v[i][k] += (f[k] + fd[k]) / p.mass[i] * h;  // Tang (3.18)
+        p.v[i][k] += (f[k] + fd[k]) / p.mass[i] * h;  // Tang (3.18)
       }
       for (int k = 0; k < Dim<D>::rot; ++k) {
+        if (fix & (1u << (D + k))) {
+          if constexpr (Energy) held_work -= m[k] * w0[k] * h;
+          continue;
+        }
         if constexpr (Damp) md[k] = -alpha * std::abs(m[k]) * (w0[k] > 0 ? 1.0 : (w0[k] < 0 ? -1.0 : 0.0));
-        if (!(fix & (1u << (D + k)))) p.w[i][k] += (m[k] + md[k]) / p.inertia[i] * h;  // Tang (3.19), spheres
+        p.w[i][k] += (m[k] + md[k]) / p.inertia[i] * h;  // Tang (3.19), spheres
       }
       const Vec<D> dx = p.v[i] * h;
       p.x[i] += dx;  // Tang (3.20)
@@ -255,6 +305,7 @@ double World<D>::move_particles() {
         // Forces act at t, between the half-step velocities they change: their power is F·v(t), with
         // v(t) = ½(v(t−Δt/2) + v(t+Δt/2)), which is what central differences take out of ½ m v(t−Δt/2)·v(t+Δt/2).
         body[b] += 0.5 * h * (fext.dot(v0 + p.v[i]) + mext.dot(w0 + p.w[i]));  // Tang (3.74)
+        held[b] += held_work;
         local[b] -= 0.5 * h * (fd.dot(v0 + p.v[i]) + md.dot(w0 + p.w[i]));
         // ½ m v(t−Δt/2)·v(t+Δt/2) is the kinetic energy at t for which central differences conserve
         // energy exactly in a linear system.
@@ -263,9 +314,10 @@ double World<D>::move_particles() {
     }
   }
   if constexpr (Energy) {
-    double sb = 0, sl = 0, sk = 0;
-    for (int b = 0; b < blocks; ++b) sb += body[b], sl += local[b], sk += kin[b];
+    double sb = 0, sl = 0, sk = 0, sh = 0;
+    for (int b = 0; b < blocks; ++b) sb += body[b], sl += local[b], sk += kin[b], sh += held[b];
     energy.body_work += sb;
+    energy.boundary_work += sh;
     energy.dissipated_local += sl;
     ke_half_ = sk;
   }
@@ -474,6 +526,8 @@ void World<D>::save(Archive& a) const {
   for (std::size_t s = 0; s < sets.size(); ++s) a.bytes["set" + std::to_string(s)] = sets[s]->save();
   // The last step's contact forces: the servo gain and the timestep refresh read them before the next force pass.
   a.put("slot_f", slots_.f);
+  const auto* cb = reinterpret_cast<const std::uint8_t*>(cracks.data());
+  a.bytes["cracks"] = std::vector<std::uint8_t>(cb, cb + cracks.size() * sizeof(Crack<D>));
   a.reals["scalars"] = {dt, dt_critical, time, static_cast<double>(step_count), static_cast<double>(rebuilds), moved_,
                         ke_half_, skin};
   const EnergyTrace& e = energy;
@@ -528,6 +582,14 @@ void World<D>::restore(const Archive& a) {
   // next step sees exactly the lists it would have seen.
   relink();
   a.get("slot_f", slots_.f);
+  // The crack log and its counts.
+  const auto& cb = a.bytes.at("cracks");
+  cracks.resize(cb.size() / sizeof(Crack<D>));
+  std::memcpy(static_cast<void*>(cracks.data()), cb.data(), cb.size());
+  const int np = static_cast<int>(model_of.size());
+  crack_counts_.assign(2 * 3 * np * np, 0);
+  for (const auto& c : cracks)
+    ++crack_counts_[((int(c.kind) * 3 + int(c.mode)) * np + std::min(c.phase_a, c.phase_b)) * np + std::max(c.phase_a, c.phase_b)];
 }
 
 template void World<2>::save(Archive&) const;

@@ -70,6 +70,12 @@ class World {
   // Stability guard: throws InstabilityError naming the step, particle or wall and the likely cause.
   void check_stability() const;
 
+  // The crack log: every bond break and first yield since the start, in step order then pair order.
+  std::vector<Crack<D>> cracks;
+  // Cracks of a kind and mode; phases −1 count any phase (the pair is unordered).
+  std::int64_t crack_count(CrackKind kind, CrackMode mode, int phase_a = -1, int phase_b = -1) const;
+  std::size_t bond_count() const;          // intact bonds of all models
+
   std::size_t contact_count() const;       // touching or bonded ball–ball contacts
   std::size_t candidate_count() const;     // pairs in the neighbour lists
   Vec<D> slot_force(std::size_t slot) const { return slots_.f[slot]; }
@@ -94,6 +100,7 @@ class World {
   void rebuild();
   void relink();  // slots and gather lists from the sets' current pair lists
   void compute_forces();
+  void log_cracks();
   template <bool Damp, bool Gravity, bool Applied, bool Energy>
   double move_particles();
   void move_walls();
@@ -108,6 +115,7 @@ class World {
   std::vector<Vec<D>> wall_at_rebuild_;
   double moved_ = kInf;   // max particle displacement since the last rebuild (+ walls)
   double ke_half_ = 0;
+  std::vector<std::int64_t> crack_counts_;  // [kind][mode][phase_a][phase_b], phase_a ≤ phase_b
 };
 
 template <int D>

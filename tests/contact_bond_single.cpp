@@ -1,0 +1,127 @@
+// One contact bond between two particles, driven kinematically: in tension the normal spring pulls with
+// k_n·δ until the force reaches the normal strength, then the pair lets go; in shear under a fixed compression
+// the shear spring holds well past μ·F_n (no slip while bonded) until the shear strength, then the pair slides
+// at μ·F_n (PFC contact bond, Tang 2013 §3.3.3, Fig. 3.6). Energy released with the crack closes the balance.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "contact_models/contact_bond.hpp"
+#include "tests/test_worlds.hpp"
+
+using namespace mc;
+
+namespace {
+
+constexpr double kR = 1e-3;
+
+ContactBondParams params(double normal, double shear) {
+  ContactBondParams p;
+  p.contact.modulus = 1e9;
+  p.contact.kn_ks_ratio = 2.0;
+  p.contact.friction = 0.3;
+  p.normal_mean = normal;
+  p.shear_mean = shear;
+  return p;
+}
+
+// Two particles, every degree of freedom prescribed; B starts at `overlap` and (optionally) a gap.
+template <int D>
+World<D> pair_world(const ContactBondParams& p, double overlap) {
+  auto w = test::single_model_world<D, ContactBond>(p);
+  Vec<D> b = Vec<D>::Zero();
+  b[0] = 2 * kR - overlap;
+  w.particles.add(Vec<D>::Zero(), kR, 2600, 0);
+  w.particles.add(b, kR, 2600, 0);
+  w.particles.fix.assign(2, 0xff);
+  w.timestep.safety = 0.5;
+  w.trace_energy = true;
+  w.init();
+  REQUIRE(w.install_bonds(0.01, 3) == 1);
+  return w;
+}
+
+// The energy balance counts from here: what the pair holds now (the pressed springs, the moving masses).
+template <int D>
+void start_energy(World<D>& w) {
+  w.update_energy();
+  w.energy.initial = w.energy.kinetic + w.energy.strain;
+}
+
+template <int D>
+void tension_break() {
+  const auto p = params(5.0, 1e9);
+  // Bonded across a small gap (within the 1 % tolerance): the bond starts unstrained there.
+  auto w = pair_world<D>(p, -0.002 * kR);
+  const auto c = ContactBond::pair<D>(p, kR, kR);
+  const double rate = p.normal_mean / c.kn / (4000 * w.dt);  // breaks after ~4000 steps
+  w.particles.v[1][0] = rate;
+  start_energy(w);
+  auto& set = static_cast<ContactSet<ContactBond, D>&>(*w.sets[0]);
+  double last = 0, stretch = 0, stiffness_ratio = 0;
+  for (int step = 0; step < 10000 && w.cracks.empty(); ++step) {
+    w.step();
+    if (!w.cracks.empty()) break;
+    last = -w.slot_force(0)[0];  // tension on B points back to A
+    if (step == 1000) stiffness_ratio = last / (c.kn * stretch);
+    stretch += rate * w.dt;  // the force pass of this step saw the particles before this step's move
+  }
+  REQUIRE(w.cracks.size() == 1);
+  CHECK(w.cracks[0].mode == CrackMode::Tensile);
+  // F = k_n δ from the bonded position; δ ~ 1e-9 m is a difference of coordinates ~ 1e-3 m: round-off ~ 1e-7.
+  CHECK(stiffness_ratio == doctest::Approx(1.0).epsilon(1e-6));
+  // Each step adds 1/4000 of the strength: the last intact force sits within 0.025 % below it.
+  CHECK(last / p.normal_mean == doctest::Approx(1.0).epsilon(5e-4));
+  CHECK(last <= p.normal_mean);
+  w.step();
+  CHECK(w.slot_force(0).norm() == 0.0);  // apart and unbonded: no force
+  CHECK(!ContactBond::bonded<D>(set.states()[0]));
+  // Work of the moving particle = energy released by the crack (the stretched spring). Work is booked with
+  // the force at the start of each step: the sum differs from ∫F dx by about one of the 4000 loading steps.
+  w.update_energy();
+  CHECK(w.energy.dissipated_contacts == doctest::Approx(0.5 * last * last / c.kn).epsilon(1e-3));
+  CHECK(std::abs(w.energy.residual()) < 1e-3 * w.energy.boundary_work);
+}
+
+template <int D>
+void shear_break_then_slide() {
+  const auto p = params(1e9, 0.5);
+  const auto c = ContactBond::pair<D>(p, kR, kR);
+  // Pressed so that μF_n is 1.5 % of the shear strength: the bond must hold far beyond the slip limit. The
+  // overlap (≥ 2.5e-11 m) stays much larger than the widening of the gap as the pair shears, (F_s/k_s)²/4R.
+  const double overlap = 0.05 * p.shear_mean / c.kn;
+  auto w = pair_world<D>(p, overlap);
+  const double rate = p.shear_mean / c.ks / (4000 * w.dt);
+  // Both particles move sideways in opposite senses: the line of centres turns, but only by ~1e-3 rad.
+  w.particles.v[1][1] = 0.5 * rate;
+  w.particles.v[0][1] = -0.5 * rate;
+  start_energy(w);
+  double last = 0;
+  std::int64_t broke_at = -1;
+  for (int step = 0; step < 12000; ++step) {
+    w.step();
+    if (!w.cracks.empty() && broke_at < 0) broke_at = w.step_count;
+    if (broke_at < 0) last = -w.slot_force(0)[1];  // the shear force on B opposes its motion (+y)
+  }
+  REQUIRE(w.cracks.size() == 1);
+  CHECK(w.cracks[0].mode == CrackMode::Shear);
+  CHECK(last / p.shear_mean == doctest::Approx(1.0).epsilon(5e-4));  // held to its strength without slipping
+  // Sliding after the break: |F_s| = μ F_n exactly (the normal force is that of the overlap).
+  const Vec<D> f = w.slot_force(0);
+  const Vec<D> n = (w.particles.x[1] - w.particles.x[0]).normalized();
+  const double f_n = f.dot(n), f_s = (f - f.dot(n) * n).norm();
+  CHECK(f_s / (p.contact.friction * f_n) == doctest::Approx(1.0).epsilon(1e-6));  // round-off of |F_s| ≪ |F|
+  // The overlap is a difference of coordinates ~ 1e-3 m: round-off ~ 1e-19 m on ≥ 2.5e-11 m.
+  CHECK(f_n == doctest::Approx(c.kn * (2 * kR - (w.particles.x[1] - w.particles.x[0]).norm())).epsilon(1e-6));
+  // Work of the moving pair = shear energy released at the break + friction work since; booked with the
+  // force at the start of each step (one loading step in 4000).
+  w.update_energy();
+  CHECK(std::abs(w.energy.residual()) < 1e-3 * w.energy.boundary_work);
+}
+
+}  // namespace
+
+TEST_CASE("contact_bond_tension_stiffness_and_break_at_normal_strength_2d") { tension_break<2>(); }
+TEST_CASE("contact_bond_tension_stiffness_and_break_at_normal_strength_3d") { tension_break<3>(); }
+TEST_CASE("contact_bond_shear_break_at_strength_then_slides_at_mu_fn_2d") { shear_break_then_slide<2>(); }
+TEST_CASE("contact_bond_shear_break_at_strength_then_slides_at_mu_fn_3d") { shear_break_then_slide<3>(); }
