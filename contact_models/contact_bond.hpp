@@ -57,7 +57,8 @@ struct ContactBond {
     const double vn = g.v_rel.dot(g.n);
     const Vec<D> vs = g.v_rel - vn * g.n;
     const double fn = c.kn * (g.overlap + s.gap0);  // Tang (3.9), negative (tension) allowed while bonded
-    Vec<D> fs = carry_shear<D>(s.fs, g.n, g.spin_n, g.dt) - c.ks * vs * g.dt;  // Tang (3.5), (3.10), no slip
+    const Vec<D> fs_before = carry_shear<D>(s.fs, g.n, g.spin_n, g.dt);
+    Vec<D> fs = fs_before - c.ks * vs * g.dt;  // Tang (3.5), (3.10), no slip
     if (-fn >= s.normal) out.event.mode = CrackMode::Tensile;
     else if (fs.norm() >= s.shear) out.event.mode = CrackMode::Shear;
     if (out.event.mode == CrackMode::None) {
@@ -67,15 +68,17 @@ struct ContactBond {
       return out;
     }
     // Broken: from this force pass on a linear contact with slip. What its springs held beyond what an
-    // unbonded contact can hold is released with the crack.
+    // unbonded contact can hold is released with the crack. A spring whose force vanishes in this pass had
+    // stored ½ F(t−Δt)·F(t)/K by the energy identity of central differences (see ParallelBond::bond_energy).
     s.normal = s.shear = s.gap0 = 0;
+    const double fn_before = fn + c.kn * vn * g.dt;  // the overlap closes by v_n Δt per step
     if (g.overlap <= 0) {  // apart: no force at all
-      if constexpr (Energy) out.dissipated += 0.5 * fn * fn / c.kn + 0.5 * fs.squaredNorm() / c.ks;
+      if constexpr (Energy) out.dissipated += 0.5 * fn * fn_before / c.kn + 0.5 * fs.dot(fs_before) / c.ks;
       s.fs.setZero();
       return out;
     }
     // Touching: the normal force is the overlap's again; the gap's share of the bonded force goes with the bond.
-    if constexpr (Energy) out.dissipated += 0.5 * (fn * fn - c.kn * c.kn * g.overlap * g.overlap) / c.kn;
+    if constexpr (Energy) out.dissipated += 0.5 * (fn - c.kn * g.overlap) * (fn_before - c.kn * g.overlap) / c.kn;
     const double fn_contact = c.kn * g.overlap;
     const double fs_max = c.mu * fn_contact, fs_mag = fs.norm();  // Tang (3.36)
     const bool slipping = fs_mag > fs_max;

@@ -92,6 +92,7 @@ struct ParallelBond {
     s.fs = ls.fs;
     if (!bonded(s)) return out;
     const double a = c.section.area, i = c.section.inertia, dt = g.dt;
+    const State<D> before = s;
     const double vn = g.v_rel.dot(g.n);
     const Vec<D> vs = g.v_rel - vn * g.n;
     // Tang (3.37), increments from the relative motion of this step; the shear force and the bending moment
@@ -105,11 +106,10 @@ struct ParallelBond {
       s.bond_mn -= c.ks * c.section.polar * wn * dt;
       s.bond_ms = carry_shear<3>(s.bond_ms, g.n, g.spin_n, dt) - c.kn * i * (g.w_rel - wn * g.n) * dt;
     }
-    const double energy = Energy ? strain_energy_bond<D>(c, s) : 0.0;
     if (max_tensile_stress<D>(c, s) >= s.tensile) out.event.mode = CrackMode::Tensile;
     else if (max_shear_stress<D>(c, s) >= s.shear) out.event.mode = CrackMode::Shear;
     if (out.event.mode != CrackMode::None) {
-      if constexpr (Energy) out.dissipated += energy;  // the beam's stored energy is released with the crack
+      if constexpr (Energy) out.dissipated += bond_energy<D>(c, before, s);  // released with the crack
       s = State<D>{s.fs};
       return out;
     }
@@ -129,14 +129,19 @@ struct ParallelBond {
     return k;
   }
 
-  // Tang (3.75), with the twisting term in 3D.
+  // Tang (3.75), with the twisting term in 3D: bond_energy(c, s, s). With two states, ½ Σ F_a F_b / K: the
+  // energy a bond releases when it breaks in the force pass that took it from a to b. Central differences
+  // conserve ½ m v(t−Δt/2)·v(t+Δt/2) + U(x(t)); a spring whose force vanishes at t has, by that identity,
+  // stored ½ K x(t−Δt) x(t), not ½ K x(t)²: the difference is O(Δt) per break and adds up over a crack.
   template <int D>
-  static double strain_energy_bond(const Coeffs& c, const State<D>& s) {
-    double e = s.bond_fn * s.bond_fn / (c.section.area * c.kn) + s.bond_fs.squaredNorm() / (c.section.area * c.ks) +
-               s.bond_ms.squaredNorm() / (c.section.inertia * c.kn);
-    if constexpr (D == 3) e += s.bond_mn * s.bond_mn / (c.section.polar * c.ks);
+  static double bond_energy(const Coeffs& c, const State<D>& a, const State<D>& b) {
+    double e = a.bond_fn * b.bond_fn / (c.section.area * c.kn) + a.bond_fs.dot(b.bond_fs) / (c.section.area * c.ks) +
+               a.bond_ms.dot(b.bond_ms) / (c.section.inertia * c.kn);
+    if constexpr (D == 3) e += a.bond_mn * b.bond_mn / (c.section.polar * c.ks);
     return 0.5 * e;
   }
+  template <int D>
+  static double strain_energy_bond(const Coeffs& c, const State<D>& s) { return bond_energy<D>(c, s, s); }
   template <int D>
   static double strain_energy(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
     return Linear::strain_energy<D>(c.contact, g, Linear::State<D>{s.fs}) + (bonded(s) ? strain_energy_bond<D>(c, s) : 0.0);

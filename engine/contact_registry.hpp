@@ -11,7 +11,7 @@ namespace mc {
 
 template <class Model>
 ModelSpec model_spec(const typename Model::Params& p) {
-  return {Model::name, [p] { return std::unique_ptr<ContactSetBase<2>>(new ContactSet<Model, 2>(p)); },
+  return {Model::name, requires { Model::bondable; }, requires { Model::yields; }, [p] { return std::unique_ptr<ContactSetBase<2>>(new ContactSet<Model, 2>(p)); },
           [p] { return std::unique_ptr<ContactSetBase<3>>(new ContactSet<Model, 3>(p)); }};
 }
 

@@ -36,6 +36,26 @@ std::vector<Series> make_series(const Scene& s, const World<D>* w, const Observe
   add("step", "-", [w] { return static_cast<double>(w->step_count); });
   add("dt", "s", [w] { return w->dt; });
   add("contacts", "-", [w] { return static_cast<double>(w->contact_count()); });
+  if (s.bond_tolerance >= 0) {
+    // Bonds and their cracks: intact bonds, breaks by mode, first yields (softening bonds), and breaks per
+    // bonded phase pair when there are several.
+    add("bonds.intact", "-", [w] { return static_cast<double>(w->bond_count()); });
+    for (CrackMode m : {CrackMode::Tensile, CrackMode::Shear})
+      add(std::string("cracks.") + mode_name(m), "-", [w, m] { return static_cast<double>(w->crack_count(CrackKind::Break, m)); });
+    if (std::any_of(s.contacts.begin(), s.contacts.end(), [](const ContactSpec& c) { return c.model.yields; }))
+      add("cracks.yield", "-", [w] {
+        return static_cast<double>(w->crack_count(CrackKind::Yield, CrackMode::Tensile) + w->crack_count(CrackKind::Yield, CrackMode::Shear));
+      });
+    const auto bonded = std::count_if(s.contacts.begin(), s.contacts.end(), [](const ContactSpec& c) { return c.model.bonds; });
+    if (bonded > 1)
+      for (const ContactSpec& c : s.contacts) {
+        if (!c.model.bonds) continue;
+        const int a = c.phase_a, b = c.phase_b;
+        for (CrackMode m : {CrackMode::Tensile, CrackMode::Shear})
+          add("cracks." + s.phases[a].name + "-" + s.phases[b].name + "." + mode_name(m), "-",
+              [w, m, a, b] { return static_cast<double>(w->crack_count(CrackKind::Break, m, a, b)); });
+      }
+  }
   for (std::size_t i = 0; i < s.walls.size(); ++i) {
     const std::string pre = "wall." + s.walls[i].name + ".";
     for (int k = 0; k < D; ++k) add(pre + "force_" + axis_name(k), "N", [w, i, k] { return w->walls[i].force[k]; });

@@ -117,7 +117,37 @@ Archive RunOutput::read_checkpoint() const {
   return a;
 }
 
-void RunOutput::truncate(std::int64_t history_rows, std::int64_t frame_rows) {
+namespace {
+const char* const kCrackInts[] = {"step", "mode", "kind", "phase_a", "phase_b", "model", "id_a", "id_b"};
+}
+
+void RunOutput::create_crack_log(int dimension, const std::vector<std::string>& models) {
+  if (file_.exists("/cracks")) return;  // resuming
+  for (const char* n : kCrackInts) file_.create_table(std::string("/cracks/") + n, 0, true);
+  file_.create_table("/cracks/time", 0);
+  file_.create_table("/cracks/position", dimension);
+  file_.create_table("/cracks/normal", dimension);
+  file_.set_attr("/cracks", "models", join(models));
+  file_.set_attr("/cracks", "modes", std::string("1=tensile,2=shear"));
+  file_.set_attr("/cracks", "kinds", std::string("0=break,1=first yield"));
+}
+
+void RunOutput::append_cracks(const CrackRows& r) {
+  if (r.size() == 0) return;
+  const std::vector<std::int64_t>* ints[] = {&r.step, &r.mode, &r.kind, &r.phase_a, &r.phase_b, &r.model, &r.id_a, &r.id_b};
+  for (int k = 0; k < 8; ++k) file_.append_rows(std::string("/cracks/") + kCrackInts[k], ints[k]->data(), r.size());
+  file_.append_rows("/cracks/time", r.time.data(), r.size());
+  file_.append_rows("/cracks/position", r.position.data(), r.size());
+  file_.append_rows("/cracks/normal", r.normal.data(), r.size());
+}
+
+std::int64_t RunOutput::crack_rows() const {
+  return file_.exists("/cracks/step") ? static_cast<std::int64_t>(file_.rows("/cracks/step")) : 0;
+}
+
+void RunOutput::truncate(std::int64_t history_rows, std::int64_t frame_rows, std::int64_t crack_rows) {
+  if (file_.exists("/cracks"))
+    for (const auto& n : file_.list("/cracks")) file_.truncate_rows("/cracks/" + n, crack_rows);
   for (const auto& n : names_) file_.truncate_rows("/history/" + n, history_rows);
   for (const char* f : {"/frames/time", "/frames/step", "/frames/x", "/frames/v", "/frames/force"})
     file_.truncate_rows(f, frame_rows);

@@ -32,12 +32,22 @@ class RunOutput {
                     const std::vector<double>& force);
   std::int64_t frame_rows() const;
 
+  // The crack log: one row per bond break or first yield (layout in README.md, "Output").
+  struct CrackRows {
+    std::vector<std::int64_t> step, mode, kind, phase_a, phase_b, model, id_a, id_b;
+    std::vector<double> time, position, normal;  // position, normal: D per row
+    std::size_t size() const { return step.size(); }
+  };
+  void create_crack_log(int dimension, const std::vector<std::string>& models);
+  void append_cracks(const CrackRows& rows);
+  std::int64_t crack_rows() const;
+
   // Checkpoints alternate between two slots; a slot counts only once its `complete` attribute is written, so a
   // kill while writing one leaves the other intact.
   void write_checkpoint(const Archive& a, std::int64_t step);
   Archive read_checkpoint() const;  // the newest complete one; IoError if there is none
-  // Drops history rows and frames written after the checkpoint being resumed.
-  void truncate(std::int64_t history_rows, std::int64_t frame_rows);
+  // Drops history rows, frames and cracks written after the checkpoint being resumed.
+  void truncate(std::int64_t history_rows, std::int64_t frame_rows, std::int64_t crack_rows);
 
   void set_status(const std::string& status, const std::string& message = "");
   void set_xy_plots(const std::string& pairs);

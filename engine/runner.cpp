@@ -124,6 +124,7 @@ class Run {
       const auto& rs = a.reals.at("runner");
       std::size_t k = 0;
       const auto hrows = static_cast<std::int64_t>(rs[k++]), frows = static_cast<std::int64_t>(rs[k++]);
+      const auto crows = static_cast<std::int64_t>(rs[k++]);
       for (auto& st : stops_) st.peak = rs[k++];
       for (auto& si : obs_.strain)
         for (int i = 0; i < D * D; ++i) si.strain.data()[i] = rs[k++];
@@ -131,7 +132,8 @@ class Run {
       const auto& why = a.bytes.at("stop_reason");
       stop_reason_.assign(why.begin(), why.end());
       out_->create_histories(names, units);
-      out_->truncate(hrows, frows);
+      out_->truncate(hrows, frows, crows);
+      cracks_written_ = static_cast<std::size_t>(crows);
       if (hrows > 0) last_record_step_ = static_cast<std::int64_t>(out_->file().read_doubles("/history/step").back());
       if (frows > 0) last_frame_step_ = out_->file().read_ints("/frames/step").back();
       first_step_ = world_.step_count;
@@ -148,6 +150,11 @@ class Run {
     }
     out_ = std::make_unique<RunOutput>(opt_.output, scene_.text, scene_.file, specimen());
     out_->create_histories(names, units);
+    if (scene_.crack_log) {
+      std::vector<std::string> models;
+      for (const auto& s : world_.sets) models.push_back(s->model());
+      out_->create_crack_log(D, models);
+    }
     if (!scene_.xy_plots.empty()) out_->set_xy_plots(scene_.xy_plots);
     if (scene_.energy) {
       world_.update_energy();
@@ -186,9 +193,31 @@ class Run {
   }
 
   void flush_history() {
+    flush_cracks();
     if (buffer_.empty() || buffer_[0].empty()) return;
     out_->append_history(buffer_);
     for (auto& b : buffer_) b.clear();
+  }
+
+  void flush_cracks() {
+    if (!scene_.crack_log || cracks_written_ == world_.cracks.size()) return;
+    RunOutput::CrackRows r;
+    for (std::size_t k = cracks_written_; k < world_.cracks.size(); ++k) {
+      const Crack<D>& c = world_.cracks[k];
+      r.step.push_back(c.step);
+      r.mode.push_back(static_cast<std::int64_t>(c.mode));
+      r.kind.push_back(static_cast<std::int64_t>(c.kind));
+      r.phase_a.push_back(c.phase_a);
+      r.phase_b.push_back(c.phase_b);
+      r.model.push_back(c.set);
+      r.id_a.push_back(world_.ids[c.a]);
+      r.id_b.push_back(world_.ids[c.b]);
+      r.time.push_back(c.time);
+      r.position.insert(r.position.end(), c.position.data(), c.position.data() + D);
+      r.normal.insert(r.normal.end(), c.normal.data(), c.normal.data() + D);
+    }
+    out_->append_cracks(r);
+    cracks_written_ = world_.cracks.size();
   }
 
   void frame() {
@@ -207,7 +236,8 @@ class Run {
     flush_history();
     Archive a;
     world_.save(a);
-    std::vector<double> rs = {static_cast<double>(out_->history_rows()), static_cast<double>(out_->frame_rows())};
+    std::vector<double> rs = {static_cast<double>(out_->history_rows()), static_cast<double>(out_->frame_rows()),
+                              static_cast<double>(cracks_written_)};
     for (const auto& st : stops_) rs.push_back(st.peak);
     for (const auto& si : obs_.strain) rs.insert(rs.end(), si.strain.data(), si.strain.data() + D * D);
     a.reals["runner"] = rs;
@@ -238,6 +268,7 @@ class Run {
   std::string stop_reason_;
   std::unique_ptr<RunOutput> out_;
   std::int64_t first_step_ = 0;
+  std::size_t cracks_written_ = 0;  // entries of world_.cracks already in the file
   std::int64_t last_record_step_ = -1, last_frame_step_ = -1;  // step of the newest history row and frame
   bool progress_shown_ = false;
 };

@@ -20,6 +20,8 @@ class TomlDoc;
 // A contact model with validated parameters, able to make its contact set in either dimension.
 struct ModelSpec {
   std::string name;
+  bool bonds = false;   // the model bonds pairs (and so breaks them: cracks)
+  bool yields = false;  // its bonds yield before they break (softening): first yields are logged too
   std::function<std::unique_ptr<ContactSetBase<2>>()> make2;
   std::function<std::unique_ptr<ContactSetBase<3>>()> make3;
 };
@@ -121,6 +123,7 @@ struct Scene {
   std::vector<GroupSpec> groups;
 
   double bond_tolerance = -1;  // [bonds]: bond pairs with gap ≤ tolerance·min(R_A, R_B) at the start; < 0: none
+  bool crack_log = false;      // [bonds] crack_log: every break (and first yield) written to /cracks
   std::optional<std::vector<double>> gravity;
   double local_damping = 0;
   double skin = 0;  // 0: 0.1 R_min

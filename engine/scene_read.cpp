@@ -265,6 +265,7 @@ void read_bonds(const Table& root, Scene& s) {
   if (auto t = root.optional_table("bonds")) {
     // Bonds are installed once, on the specimen as built (a packing loaded from an earlier run is settled).
     s.bond_tolerance = t->number("gap_tolerance", Unit::None, Range::non_negative(), 0.0);
+    s.crack_log = t->boolean("crack_log", true);
     t->finish();
   }
 }
