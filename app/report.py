@@ -22,7 +22,8 @@ matplotlib.use("Agg")  # headless: no display on compute nodes or CI
 import h5py  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from matplotlib.collections import EllipseCollection  # noqa: E402
+from matplotlib.collections import EllipseCollection, LineCollection  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
 FORMAT = "mesocrack-1"
@@ -117,6 +118,8 @@ def read_run(f):
         if len(x) == len(r) == len(phase):
             run["specimen"] = {"x": x, "radius": r, "phase": phase, "phase_names": [n.strip() for n in names]}
 
+    run["cracks"] = read_cracks(f, D, run["specimen"])
+
     frames = f.get("frames")
     if isinstance(frames, h5py.Group) and "time" in frames and "x" in frames:
         rows = [frames[k].shape[0] for k in ("time", "x", "force") if k in frames]
@@ -129,6 +132,26 @@ def read_run(f):
                             "force": (np.asarray(frames["force"][k], dtype=float).reshape(-1, D)
                                       if "force" in frames else None)}
     return run
+
+
+def read_cracks(f, D, spec):
+    """The crack log (None without one): positions, normals, mode (1 tensile, 2 shear), kind (0 break,
+    1 first yield), phase pair, and the crack's length in the plane (2·min(R_a, R_b))."""
+    g = f.get("cracks")
+    if not isinstance(g, h5py.Group) or "position" not in g:
+        return None
+    n = min(g[k].shape[0] for k in ("position", "normal", "mode", "kind", "phase_a", "phase_b", "id_a", "id_b"))
+    c = {"position": np.asarray(g["position"][:n], dtype=float).reshape(-1, D),
+         "normal": np.asarray(g["normal"][:n], dtype=float).reshape(-1, D),
+         "mode": np.asarray(g["mode"][:n], dtype=int), "kind": np.asarray(g["kind"][:n], dtype=int),
+         "phase_a": np.asarray(g["phase_a"][:n], dtype=int), "phase_b": np.asarray(g["phase_b"][:n], dtype=int),
+         "size": np.zeros(n)}
+    if spec is not None and "id" in f["specimen"]:
+        ids = np.asarray(f["specimen"]["id"], dtype=np.int64)
+        order = np.argsort(ids)
+        radius_of = lambda q: spec["radius"][order[np.searchsorted(ids, q, sorter=order)]]
+        c["size"] = 2 * np.minimum(radius_of(np.asarray(g["id_a"][:n])), radius_of(np.asarray(g["id_b"][:n])))
+    return c
 
 
 # ---------------------------------------------------------------- plots
@@ -348,6 +371,67 @@ def plot_specimen(run, stem, out_dir):
     return [save(fig, out_dir, stem, kind, dpi=200 if len(r) > 10000 else 120)]
 
 
+MODE_COLOURS = {1: "tab:blue", 2: "tab:red"}
+
+
+def plot_cracks(run, stem, out_dir):
+    """2D: every crack as a segment across its bond (perpendicular to the normal, as long as the smaller
+    diameter), over the specimen; colour = mode, line style = phase pair; first yields of softening bonds
+    dotted. 3D: crack positions projected on the x-z plane."""
+    c = run["cracks"]
+    if c is None or run["specimen"] is None:
+        return []
+    xy, r, phase, _, (ax0, ax1), limits, when = section(run)
+    fig, ax = plt.subplots(figsize=(7, 6), constrained_layout=True)
+    factor, lunit = si_scale(np.abs(limits).ravel(), "m")
+    if run["dimension"] == 2:
+        draw_discs(ax, xy, r, limits, factor, facecolors="0.92")
+    else:
+        ax.set_xlim(limits[0][0] * factor, limits[1][0] * factor)
+        ax.set_ylim(limits[0][1] * factor, limits[1][1] * factor)
+        ax.set_aspect("equal")
+    ax.set_xlabel(f"{ax0} [{lunit}]")
+    ax.set_ylabel(f"{ax1} [{lunit}]")
+    names = run["specimen"]["phase_names"]
+    pname = lambda p: names[p] if 0 <= p < len(names) and names[p] else f"phase {p}"
+    pairs = sorted({(min(a, b), max(a, b)) for a, b in zip(c["phase_a"], c["phase_b"])})
+    styles = ["-", "--", "-.", (0, (5, 1, 1, 1, 1, 1))]
+    handles = []
+    breaks = int((c["kind"] == 0).sum())
+    for kind, width, dash in ((1, 0.6, ":"), (0, 1.2, None)):
+        for mode, colour in MODE_COLOURS.items():
+            for k, pair in enumerate(pairs):
+                sel = (c["kind"] == kind) & (c["mode"] == mode) & \
+                      (np.minimum(c["phase_a"], c["phase_b"]) == pair[0]) & \
+                      (np.maximum(c["phase_a"], c["phase_b"]) == pair[1])
+                if not sel.any():
+                    continue
+                label = f"{'yield' if kind else 'break'}, {'tensile' if mode == 1 else 'shear'}"
+                if len(pairs) > 1:
+                    label += f", {pname(pair[0])}-{pname(pair[1])}"
+                label += f" ({int(sel.sum())})"
+                p = c["position"][sel]
+                if run["dimension"] == 2:
+                    n = c["normal"][sel]
+                    t = np.stack([-n[:, 1], n[:, 0]], axis=1) * (0.5 * c["size"][sel])[:, None]
+                    segs = np.stack([p - t, p + t], axis=1) * factor
+                    ax.add_collection(LineCollection(segs, colors=colour, linewidths=width,
+                                                     linestyles=dash or styles[k % len(styles)]))
+                    handles.append(Line2D([], [], color=colour, lw=width, ls=dash or styles[k % len(styles)], label=label))
+                else:
+                    ax.scatter(p[:, 0] * factor, p[:, 2] * factor, s=4 if kind == 0 else 1, c=colour,
+                               marker="o" if k == 0 else "x", label=label)
+    if run["dimension"] == 3:
+        handles = ax.get_legend_handles_labels()[0]
+        when += " (cracks: all, projected on the x-z plane)"
+    if handles:
+        ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize="small", title="cracks")
+    else:
+        ax.text(0.5, 0.5, "no bond has broken", ha="center", transform=ax.transAxes)
+    ax.set_title(f"{stem}: {breaks} broken bonds; {when}", fontsize="medium")
+    return [save(fig, out_dir, stem, "cracks", dpi=200 if len(r) > 10000 else 120)]
+
+
 def save(fig, out_dir, stem, kind, dpi=120):
     path = os.path.join(out_dir, f"{stem}_{kind}.png")
     try:
@@ -379,7 +463,7 @@ def main(argv=None):
         except OSError as e:
             raise ReportError(f"cannot create output directory {out_dir}: {e.strerror}")
         stem = os.path.splitext(os.path.basename(args.file))[0]
-        for plot in (plot_history, plot_xy, plot_energy, plot_specimen):
+        for plot in (plot_history, plot_xy, plot_energy, plot_specimen, plot_cracks):
             for path in plot(run, stem, out_dir):
                 print(path, flush=True)
     except ReportError as e:

@@ -32,7 +32,7 @@ def series(g, name, data, unit, label=None):
         d.attrs["label"] = label  # variable-length: both kinds must be read
 
 
-def make_run(path, dim, n, frames=3, history=True, xy=None, seed=1):
+def make_run(path, dim, n, frames=3, history=True, xy=None, seed=1, cracks=0):
     rng = np.random.default_rng(seed)
     with h5py.File(path, "w") as f:
         f.attrs.create("format", fixed("mesocrack-1"))
@@ -47,7 +47,22 @@ def make_run(path, dim, n, frames=3, history=True, xy=None, seed=1):
         phase = np.where(grid[:, 0] == 0, 2, rng.uniform(size=n) < 0.3)  # 0 mortar, 1 aggregate, 2 platen
         sp = f.create_group("specimen")
         sp["x"], sp["radius"], sp["phase"] = x, r, phase.astype(np.int32)
+        sp["id"] = np.arange(n, dtype=np.int64) + 100
         sp.attrs.create("phase_names", fixed("mortar,aggregate,platen"))
+        if cracks:
+            # Cracks between random pairs, as the engine logs them (ids, not indices).
+            a = rng.integers(0, n, cracks)
+            b = (a + 1) % n
+            c = f.create_group("cracks")
+            nrm = rng.standard_normal((cracks, dim))
+            c["position"] = 0.5 * (x[a] + x[b])
+            c["normal"] = nrm / np.linalg.norm(nrm, axis=1)[:, None]
+            c["mode"] = rng.integers(1, 3, cracks).astype(np.int64)
+            c["kind"] = (rng.uniform(size=cracks) < 0.2).astype(np.int64)
+            c["phase_a"], c["phase_b"] = phase[a].astype(np.int64), phase[b].astype(np.int64)
+            c["id_a"], c["id_b"] = a + 100, b + 100
+            c["step"] = np.arange(cracks, dtype=np.int64)
+            c["time"] = np.linspace(0, 1e-3, cracks)
         if history:
             h = f.create_group("history")
             S = 300
@@ -126,10 +141,11 @@ def main():
         os.makedirs(d, exist_ok=True)
 
         f2 = os.path.join(d, "disc2d.h5")
-        make_run(f2, 2, 3000, xy="axial_strain:axial_stress;measure.box.strain_yy:measure.box.stress_yy")
+        make_run(f2, 2, 3000, xy="axial_strain:axial_stress;measure.box.strain_yy:measure.box.stress_yy", cracks=400)
         before = (digest(f2), os.stat(f2).st_mtime_ns)
-        check_pngs("2D with frames", run_report(f2),
-                   ["disc2d_history.png", "disc2d_xy.png", "disc2d_energy.png", "disc2d_specimen.png"])
+        check_pngs("2D with frames and cracks", run_report(f2),
+                   ["disc2d_history.png", "disc2d_xy.png", "disc2d_energy.png", "disc2d_specimen.png",
+                    "disc2d_cracks.png"])
         check("2D: HDF5 file unchanged", (digest(f2), os.stat(f2).st_mtime_ns) == before)
 
         f2n = os.path.join(d, "disc2d_noframes.h5")
@@ -141,9 +157,10 @@ def main():
         check("2D no frames: PNGs in --out-dir", all(os.path.dirname(q) == out for q in p.stdout.split()))
 
         f3 = os.path.join(d, "sphere3d.h5")
-        make_run(f3, 3, 4000, xy="axial_strain:axial_stress")
-        check_pngs("3D with frames", run_report(f3),
-                   ["sphere3d_history.png", "sphere3d_xy.png", "sphere3d_energy.png", "sphere3d_slice.png"])
+        make_run(f3, 3, 4000, xy="axial_strain:axial_stress", cracks=300)
+        check_pngs("3D with frames and cracks", run_report(f3),
+                   ["sphere3d_history.png", "sphere3d_xy.png", "sphere3d_energy.png", "sphere3d_slice.png",
+                    "sphere3d_cracks.png"])
 
         f3n = os.path.join(d, "sphere3d_bare.h5")
         make_run(f3n, 3, 1000, frames=0, history=False)
