@@ -10,7 +10,7 @@
 // Only the stepping loop is timed (std::chrono::steady_clock); each timing is repeated (default 3) on a fresh
 // world and the best is kept. Ratios are always taken within one run: the machine is shared and noisy.
 //
-//   throughput [--quick] [--only shared|scaling|effects] [--specimen-dir DIR] [--reps N]
+//   throughput [--quick] [--only shared|bonded|scaling|effects] [--specimen-dir DIR] [--reps N]
 #include <omp.h>
 #include <unistd.h>
 
@@ -50,6 +50,7 @@ using Clock = std::chrono::steady_clock;
 struct Options {
   bool quick = false;
   bool shared = true, scaling = true, effects = true;
+  bool unbonded = true;  // the shared specimen also without bonds (--only bonded: with bonds only)
   std::string specimen_dir = MESOCRACK_SOURCE_DIR "/../shared/benchmark";
   int reps = 3;
   bool reps_given = false;
@@ -870,7 +871,7 @@ void section_effects(const Options& opt) {
 
 [[noreturn]] void usage(const std::string& why) {
   std::fprintf(stderr,
-               "%s\nusage: throughput [--quick] [--only shared|scaling|effects] [--specimen-dir DIR] [--reps N]\n",
+               "%s\nusage: throughput [--quick] [--only shared|bonded|scaling|effects] [--specimen-dir DIR] [--reps N]\n",
                why.c_str());
   std::exit(2);
 }
@@ -887,9 +888,10 @@ Options parse(int argc, char** argv) {
       o.quick = true;
     } else if (a == "--only") {
       const std::string v = value();
-      if (v != "shared" && v != "scaling" && v != "effects")
-        usage("--only '" + v + "': allowed shared, scaling, effects");
-      o.shared = v == "shared", o.scaling = v == "scaling", o.effects = v == "effects";
+      if (v != "shared" && v != "bonded" && v != "scaling" && v != "effects")
+        usage("--only '" + v + "': allowed shared, bonded, scaling, effects");
+      o.shared = v == "shared" || v == "bonded", o.scaling = v == "scaling", o.effects = v == "effects";
+      o.unbonded = v != "bonded";
     } else if (a == "--specimen-dir") {
       o.specimen_dir = value();
     } else if (a == "--reps") {
@@ -941,7 +943,7 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   };
   try {
-    if (opt.shared) section([&] { section_shared(opt, false); });
+    if (opt.shared && opt.unbonded) section([&] { section_shared(opt, false); });
     if (opt.shared) section([&] { section_shared(opt, true); });
     if (opt.scaling) section([&] { section_scaling(opt); });
     if (opt.effects) section([&] { section_effects(opt); });

@@ -66,8 +66,8 @@ struct HertzMindlin {
     out.force = fn * g.n + fs;
     if (c.zeta > 0) {
       const double kn_tangent = 1.5 * c.cn * sq;
-      Vec<D> fd = -2.0 * c.zeta * std::sqrt(g.m_eff * kn_tangent) * vn * g.n;
-      if (!slipping) fd -= 2.0 * c.zeta * std::sqrt(g.m_eff * ks) * vs;
+      Vec<D> fd = -2.0 * c.zeta * std::sqrt(g.m_eff() * kn_tangent) * vn * g.n;
+      if (!slipping) fd -= 2.0 * c.zeta * std::sqrt(g.m_eff() * ks) * vs;
       out.force += fd;
       if constexpr (Energy) out.dashpot = fd;
     }

@@ -80,8 +80,8 @@ struct Linear {
   template <int D, bool Energy>
   static void add_dashpots(const Coeffs& c, const ContactGeometry<D>& g, double vn, const Vec<D>& vs, bool slipping,
                            ContactForce<D>& out) {
-    Vec<D> fd = -2.0 * c.zeta * std::sqrt(g.m_eff * c.kn) * vn * g.n;
-    if (!slipping) fd -= 2.0 * c.zeta * std::sqrt(g.m_eff * c.ks) * vs;
+    Vec<D> fd = -2.0 * c.zeta * std::sqrt(g.m_eff() * c.kn) * vn * g.n;
+    if (!slipping) fd -= 2.0 * c.zeta * std::sqrt(g.m_eff() * c.ks) * vs;
     out.force += fd;
     if constexpr (Energy) out.dashpot = fd;
   }

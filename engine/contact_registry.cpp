@@ -12,6 +12,7 @@ const std::vector<std::pair<std::string, Reader>>& registry() {
       {"hertz_mindlin", hertz_mindlin_model},
       {"parallel_bond", parallel_bond_model},
       {"contact_bond", contact_bond_model},
+      {"softening_bond", softening_bond_model},
   };
   return r;
 }

@@ -19,5 +19,6 @@ ModelSpec linear_model(const Table& t);
 ModelSpec hertz_mindlin_model(const Table& t);
 ModelSpec parallel_bond_model(const Table& t);
 ModelSpec contact_bond_model(const Table& t);
+ModelSpec softening_bond_model(const Table& t);
 
 }  // namespace mc

@@ -107,7 +107,8 @@ inline ContactGeometry<D> ball_geometry(const Particles<D>& p, int i, int j, dou
   if constexpr (D == 3) g.spin_n = 0.5 * (p.w[i] + p.w[j]).dot(g.n); else g.spin_n = 0;
   g.r_a = p.radius[i];
   g.r_b = p.radius[j];
-  g.m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+  g.m_a = p.mass[i];
+  g.m_b = p.mass[j];
   g.dt = dt;
   return g;
 }
@@ -128,7 +129,8 @@ inline ContactGeometry<D> wall_geometry(const Particles<D>& p, const Wall<D>& w,
   if constexpr (D == 3) g.spin_n = 0.5 * p.w[j].dot(g.n); else g.spin_n = 0;
   g.r_a = kInf;
   g.r_b = p.radius[j];
-  g.m_eff = p.mass[j];
+  g.m_a = 0;
+  g.m_b = p.mass[j];
   g.dt = dt;
   return g;
 }

@@ -154,6 +154,8 @@ constexpr UnitDef kUnits[] = {
     {"mJ", Unit::Energy, -3},      {"rad", Unit::Angle, 0},           {"deg", Unit::Angle, 0, std::numbers::pi, 180.0},
     {"1/s", Unit::Rate, 0},        {"/s", Unit::Rate, 0},             {"Hz", Unit::Frequency, 0},
     {"kHz", Unit::Frequency, 3},   {"%", Unit::None, -2},
+    // Last: a unit of two kinds ("N/m") is named in messages by its first, the stiffness.
+    {"J/m2", Unit::EnergyPerArea, 0}, {"N/m", Unit::EnergyPerArea, 0},
 };
 
 struct KindDef {
@@ -180,6 +182,7 @@ const KindDef& kind_def(Unit u) {
       {"an angle", "rad", "0.785", "45 deg"},
       {"a rate", "1/s", "0.1", "0.1 /s"},
       {"a frequency", "Hz", "1000", "1 kHz"},
+      {"an energy per area", "J/m2", "100", "100 N/m"},
   };
   return defs[static_cast<int>(u)];
 }

@@ -26,6 +26,7 @@ enum class Unit {
   Angle,      // rad
   Rate,       // 1/s
   Frequency,  // Hz
+  EnergyPerArea,  // J/m2 = N/m: fracture energies
 };
 
 // The allowed interval of a number, in SI. Bounds are inclusive unless marked open.
