@@ -41,9 +41,13 @@ struct Linear {
   static double series(double a, double b) { return a * b / (a + b); }  // Tang (3.25)
 
   template <int D>
-  static Coeffs pair(const Params& p, double ra, double rb) {
-    const double kn = series(ball_kn<D>(p, ra), ball_kn<D>(p, rb));
-    return {kn, kn / p.kn_ks_ratio, p.friction, p.damping_ratio};
+  static Coeffs pair(const Params& p, double ra, double rb) { return pair<D>(p, ra, rb, 1.0 / (ra + rb)); }
+  // With 1/(R_A + R_B) given (a bond model shares it). Two balls in series: 2tE_c·2tE_c/(4tE_c) = E_c in 2D
+  // (t = 1 m), 4E_c R_A R_B/(R_A + R_B) in 3D.
+  template <int D>
+  static Coeffs pair(const Params& p, double ra, double rb, double inv_sum) {
+    const double kn = D == 2 ? p.modulus : 4.0 * p.modulus * ra * rb * inv_sum;
+    return {kn, kn * (1.0 / p.kn_ks_ratio), p.friction, p.damping_ratio};
   }
   template <int D>
   static Coeffs wall(const Params& p, const WallMaterial& w, double rb) {
@@ -64,9 +68,9 @@ struct Linear {
     const double fn = c.kn * g.overlap;                            // Tang (3.9)
     Vec<D> fs = carry_shear<D>(s.fs, g.n, g.spin_n, g.dt) - c.ks * vs * g.dt;  // Tang (3.5), (3.10)
     const double fs_max = c.mu * fn;                               // Tang (3.36)
-    const double fs_mag = fs.norm();
-    const bool slipping = fs_mag > fs_max;
+    const bool slipping = fs.squaredNorm() > fs_max * fs_max;
     if (slipping) {
+      const double fs_mag = fs.norm();
       if constexpr (Energy) out.dissipated += fs_max * (fs_mag - fs_max) / c.ks;  // Tang (3.77)–(3.78)
       fs *= fs_max / fs_mag;
     }

@@ -43,21 +43,33 @@ struct ParallelBond {
     double bond_mn = 0;              // M̄^n, twisting [N m] (3D)
     double tensile = 0, shear = 0;   // this bond's strengths σ̄_c, τ̄_c [Pa]; 0: no bond (never bonded or broken)
   };
+  // What the force pass needs of a pair, computed every step from the radii (cheaper than storing it: two
+  // divisions and a few products, against 56 more bytes per bond to stream).
   struct Coeffs {
     Linear::Coeffs contact;
-    BondSection<3> section;  // the 2D numbers use the same fields
-    double kn, ks;           // k̄_n, k̄_s [Pa/m]
+    double kn_a, ks_a;         // k̄_n A, k̄_s A [N/m], Tang (3.37)
+    double kn_i, ks_j;         // k̄_n I, k̄_s J [N m/rad]
+    double inv_a, r_i, r_j;    // 1/A, R̄/I, R̄/J: stress per unit force and moment, Tang (3.41)
   };
 
   template <int D>
   static Coeffs pair(const Params& p, double ra, double rb) {
-    const auto s = BondSection<D>::of(p.radius_multiplier, ra, rb);
-    const double kn = p.modulus / (ra + rb);  // Tang (3.38)
-    return {Linear::pair<D>(p.contact, ra, rb), {s.radius, s.area, s.inertia, s.polar}, kn, kn / p.kn_ks_ratio};
+    const double inv_sum = 1.0 / (ra + rb);
+    const double kn = p.modulus * inv_sum;           // Tang (3.38)
+    const double ks = kn * (1.0 / p.kn_ks_ratio);    // the reciprocal is loop-invariant: hoisted
+    const double r = p.radius_multiplier * std::min(ra, rb), inv_r = 1.0 / r;  // Tang (3.40)
+    const Linear::Coeffs lc = Linear::pair<D>(p.contact, ra, rb, inv_sum);
+    if constexpr (D == 2) {  // A = 2R̄, I = 2R̄³/3 (t = 1 m), Tang (3.39)
+      return {lc, kn * 2 * r, ks * 2 * r, kn * (2.0 / 3.0) * r * r * r, 0.0, 0.5 * inv_r, 1.5 * inv_r * inv_r, 0.0};
+    } else {  // A = πR̄², I = πR̄⁴/4, J = πR̄⁴/2
+      const double r4 = r * r * r * r, inv_r3 = inv_r * inv_r * inv_r;
+      return {lc, kn * M_PI * r * r, ks * M_PI * r * r, kn * 0.25 * M_PI * r4, ks * 0.5 * M_PI * r4,
+              inv_r * inv_r * M_1_PI, 4.0 * M_1_PI * inv_r3, 2.0 * M_1_PI * inv_r3};
+    }
   }
   template <int D>
   static Coeffs wall(const Params& p, const WallMaterial& w, double rb) {
-    return {Linear::wall<D>(p.contact, w, rb), {0, 0, 0, 0}, 0, 0};  // walls are never bonded
+    return {Linear::wall<D>(p.contact, w, rb), 0, 0, 0, 0, 0, 0, 0};  // walls are never bonded
   }
 
   static constexpr bool bondable = true;
@@ -76,13 +88,26 @@ struct ParallelBond {
   // Tang (3.41): the beam's largest tensile and shear stresses.
   template <int D>
   static double max_tensile_stress(const Coeffs& c, const State<D>& s) {
-    return -s.bond_fn / c.section.area + s.bond_ms.norm() * c.section.radius / c.section.inertia;
+    return -s.bond_fn * c.inv_a + s.bond_ms.norm() * c.r_i;
   }
   template <int D>
   static double max_shear_stress(const Coeffs& c, const State<D>& s) {
-    double t = s.bond_fs.norm() / c.section.area;
-    if constexpr (D == 3) t += std::abs(s.bond_mn) * c.section.radius / c.section.polar;
+    double t = s.bond_fs.norm() * c.inv_a;
+    if constexpr (D == 3) t += std::abs(s.bond_mn) * c.r_j;
     return t;
+  }
+  // The same comparisons with the strengths, without square roots: |M|R̄/I ≥ σ̄_c + F_n/A ⇔ the right side
+  // is ≤ 0 or its square is ≤ |M|²(R̄/I)²; likewise for shear.
+  template <int D>
+  [[gnu::always_inline]] static bool breaks_in_tension(const Coeffs& c, const State<D>& s) {
+    const double need = s.tensile + s.bond_fn * c.inv_a;
+    return need <= 0 || s.bond_ms.squaredNorm() * (c.r_i * c.r_i) >= need * need;
+  }
+  template <int D>
+  [[gnu::always_inline]] static bool breaks_in_shear(const Coeffs& c, const State<D>& s) {
+    double need = s.shear;
+    if constexpr (D == 3) need -= std::abs(s.bond_mn) * c.r_j;
+    return need <= 0 || s.bond_fs.squaredNorm() * (c.inv_a * c.inv_a) >= need * need;
   }
 
   template <int D, bool Energy>
@@ -91,24 +116,24 @@ struct ParallelBond {
     ContactForce<D> out = Linear::force<D, Energy>(c.contact, g, ls);  // the grain contact, in parallel
     s.fs = ls.fs;
     if (!bonded(s)) return out;
-    const double a = c.section.area, i = c.section.inertia, dt = g.dt;
+    const double dt = g.dt;
     const State<D> before = s;
     const double vn = g.v_rel.dot(g.n);
     const Vec<D> vs = g.v_rel - vn * g.n;
     // Tang (3.37), increments from the relative motion of this step; the shear force and the bending moment
     // turn with the contact plane.
-    s.bond_fn -= c.kn * a * vn * dt;
-    s.bond_fs = carry_shear<D>(s.bond_fs, g.n, g.spin_n, dt) - c.ks * a * vs * dt;
+    s.bond_fn -= c.kn_a * vn * dt;
+    s.bond_fs = carry_shear<D>(s.bond_fs, g.n, g.spin_n, dt) - c.ks_a * vs * dt;
     if constexpr (D == 2) {
-      s.bond_ms -= c.kn * i * g.w_rel * dt;
+      s.bond_ms -= c.kn_i * g.w_rel * dt;
     } else {
       const double wn = g.w_rel.dot(g.n);
-      s.bond_mn -= c.ks * c.section.polar * wn * dt;
-      s.bond_ms = carry_shear<3>(s.bond_ms, g.n, g.spin_n, dt) - c.kn * i * (g.w_rel - wn * g.n) * dt;
+      s.bond_mn -= c.ks_j * wn * dt;
+      s.bond_ms = carry_shear<3>(s.bond_ms, g.n, g.spin_n, dt) - c.kn_i * (g.w_rel - wn * g.n) * dt;
     }
-    if (max_tensile_stress<D>(c, s) >= s.tensile) out.event.mode = CrackMode::Tensile;
-    else if (max_shear_stress<D>(c, s) >= s.shear) out.event.mode = CrackMode::Shear;
-    if (out.event.mode != CrackMode::None) {
+    if (breaks_in_tension<D>(c, s)) [[unlikely]] out.event.mode = CrackMode::Tensile;
+    else if (breaks_in_shear<D>(c, s)) [[unlikely]] out.event.mode = CrackMode::Shear;
+    if (out.event.mode != CrackMode::None) [[unlikely]] {
       if constexpr (Energy) out.dissipated += bond_energy<D>(c, before, s);  // released with the crack
       s = State<D>{s.fs};
       return out;
@@ -123,9 +148,9 @@ struct ParallelBond {
   static ContactStiffness stiffness(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
     ContactStiffness k = Linear::stiffness<D>(c.contact, g, Linear::State<D>{s.fs});
     if (!bonded(s)) return k;
-    k.normal += c.kn * c.section.area;
-    k.shear += c.ks * c.section.area;
-    k.rotational += c.kn * c.section.inertia + (D == 3 ? c.ks * c.section.polar : 0.0);
+    k.normal += c.kn_a;
+    k.shear += c.ks_a;
+    k.rotational += c.kn_i + c.ks_j;
     return k;
   }
 
@@ -135,9 +160,8 @@ struct ParallelBond {
   // stored ½ K x(t−Δt) x(t), not ½ K x(t)²: the difference is O(Δt) per break and adds up over a crack.
   template <int D>
   static double bond_energy(const Coeffs& c, const State<D>& a, const State<D>& b) {
-    double e = a.bond_fn * b.bond_fn / (c.section.area * c.kn) + a.bond_fs.dot(b.bond_fs) / (c.section.area * c.ks) +
-               a.bond_ms.dot(b.bond_ms) / (c.section.inertia * c.kn);
-    if constexpr (D == 3) e += a.bond_mn * b.bond_mn / (c.section.polar * c.ks);
+    double e = a.bond_fn * b.bond_fn / c.kn_a + a.bond_fs.dot(b.bond_fs) / c.ks_a + a.bond_ms.dot(b.bond_ms) / c.kn_i;
+    if constexpr (D == 3) e += a.bond_mn * b.bond_mn / c.ks_j;
     return 0.5 * e;
   }
   template <int D>

@@ -94,11 +94,12 @@ class ContactSetBase {
 };
 
 template <int D>
-inline ContactGeometry<D> ball_geometry(const Particles<D>& p, int i, int j, double dt, Vec<D>& ca, Vec<D>& cb) {
+[[gnu::always_inline]] inline ContactGeometry<D> ball_geometry(const Particles<D>& p, int i, int j, double dt,
+                                                               Vec<D>& ca, Vec<D>& cb) {
   ContactGeometry<D> g;
   const Vec<D> d = p.x[j] - p.x[i];
   const double dist = d.norm();
-  g.n = d / dist;
+  g.n = d * (1.0 / dist);
   g.overlap = p.radius[i] + p.radius[j] - dist;
   ca = (p.radius[i] - 0.5 * g.overlap) * g.n;  // centre of A to the contact point, Tang (3.4)
   cb = ca - d;                                 // centre of B to the contact point
@@ -274,6 +275,9 @@ class ContactSet final : public ContactSetBase<D> {
   double forces_impl(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, Slots<D>& s,
                      std::size_t off, std::size_t woff) {
     const std::size_t n = pairs_.size();
+    // A local copy: the compiler then knows no store in the loop changes it, and hoists what depends on the
+    // parameters alone (reciprocals) out of the loop.
+    const typename Model::Params prm = params_;
     std::vector<double> part(Energy ? block_count(n) : 0, 0.0);
     if (Energy && dashpot_.size() != n) dashpot_.assign(n, Vec<D>::Zero());
     if (Energy && wall_dashpot_.size() != wall_pairs_.size()) wall_dashpot_.assign(wall_pairs_.size(), Vec<D>::Zero());
@@ -292,7 +296,7 @@ class ContactSet final : public ContactSetBase<D> {
         const double reach = p.radius[i] + p.radius[j];
         if (d.squaredNorm() >= reach * reach && !Model::template persistent<D>(st)) {
           if constexpr (Energy) {
-            dissipated += Model::template released_energy<D>(Model::template pair<D>(params_, p.radius[i], p.radius[j]), st);
+            dissipated += Model::template released_energy<D>(Model::template pair<D>(prm, p.radius[i], p.radius[j]), st);
             if (dashpot_[c].squaredNorm() > 0) {  // the last step's dashpot force acted as the pair parted
               Vec<D> ca, cb;
               dissipated -= 0.5 * dashpot_[c].dot(ball_geometry(p, i, j, dt, ca, cb).v_rel) * dt;
@@ -307,7 +311,10 @@ class ContactSet final : public ContactSetBase<D> {
         }
         Vec<D> ca, cb;
         const auto g = ball_geometry(p, i, j, dt, ca, cb);
-        const auto r = Model::template force<D, Energy>(Model::template pair<D>(params_, g.r_a, g.r_b), g, st);
+        // The model works on a copy in registers; one store back.
+        State local = st;
+        const auto r = Model::template force<D, Energy>(Model::template pair<D>(prm, g.r_a, g.r_b), g, local);
+        st = local;
         s.f[slot] = r.force;
         s.ma[slot] = Dim<D>::cross(ca, Vec<D>(-r.force)) - r.moment;
         s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
@@ -336,7 +343,7 @@ class ContactSet final : public ContactSetBase<D> {
       Vec<D> cw, cb;
       const auto g = wall_geometry(p, walls[w], j, dt, cw, cb);
       const auto r =
-          Model::template force<D, Energy>(Model::template wall<D>(params_, walls[w].material, g.r_b), g, wall_states_[c]);
+          Model::template force<D, Energy>(Model::template wall<D>(prm, walls[w].material, g.r_b), g, wall_states_[c]);
       s.f[slot] = r.force;
       s.ma[slot] = Dim<D>::cross(cw, Vec<D>(-r.force)) - r.moment;  // on the wall, about its origin
       s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;

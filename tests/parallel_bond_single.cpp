@@ -48,12 +48,14 @@ Outcome drive(const ParallelBondParams& p, Load load) {
   w.timestep.safety = 0.5;
   w.init();
   REQUIRE(w.install_bonds(1e-6, 7) == 1);
-  const auto c = ParallelBond::pair<D>(p, kR, kR);
-  const double a = c.section.area, inertia = c.section.inertia;
+  // Beam theory from the section of (3.39)–(3.40) and the stiffnesses of (3.38), independently of the model's
+  // own coefficients.
+  const auto sec = BondSection<D>::of(p.radius_multiplier, kR, kR);
+  const double kn = p.modulus / (2 * kR), ks = kn / p.kn_ks_ratio;
   double stiffness = 0, capacity = 0;
-  if (load == Load::Tension) stiffness = c.kn * a, capacity = p.tensile_mean * a;
-  if (load == Load::Shear) stiffness = c.ks * a, capacity = p.shear_mean * a;
-  if (load == Load::Bending) stiffness = c.kn * inertia, capacity = p.tensile_mean * inertia / c.section.radius;
+  if (load == Load::Tension) stiffness = kn * sec.area, capacity = p.tensile_mean * sec.area;
+  if (load == Load::Shear) stiffness = ks * sec.area, capacity = p.shear_mean * sec.area;
+  if (load == Load::Bending) stiffness = kn * sec.inertia, capacity = p.tensile_mean * sec.inertia / sec.radius;
   const double rate = capacity / stiffness / (4000 * w.dt);  // [m/s] or, for bending, [rad/s] of relative turn
   if (load == Load::Tension) w.particles.v[1][0] = rate;
   if (load == Load::Shear) w.particles.v[1][1] = rate;
