@@ -12,7 +12,7 @@ build: setup
 
 demo: build
 	@mkdir -p out
-	$(BUILD)/mesocrack run scenes/deposition_2d.toml -o out/demo.h5
+	$(BUILD)/mesocrack run scenes/lattice_tension_2d.toml -o out/demo.h5
 	$(BUILD)/mesocrack summary out/demo.h5
 	$(BUILD)/mesocrack report out/demo.h5
 

@@ -6,6 +6,7 @@
 #include "engine/errors.hpp"
 #include "engine/h5_file.hpp"
 #include "preprocess/random_box.hpp"
+#include "preprocess/regular_packing.hpp"
 #include "preprocess/spatial_order.hpp"
 #include "preprocess/sphere_list.hpp"
 
@@ -104,6 +105,14 @@ void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags, std::
       for (std::size_t i = 0; i < pk.x.size(); ++i) p.add(pk.x[i], pk.radius[i], density(sp.phase), sp.phase), tags.push_back(0);
       break;
     }
+    case SpecimenSpec::Kind::Lattice: {
+      // Row by row (2D) or layer by layer (3D): already local, no renumbering needed.
+      Packing<D> pk;
+      if constexpr (D == 2) pk = hexagonal_packing(v_of<2>(sp.box_lo), v_of<2>(sp.box_hi), sp.radius_min);
+      else pk = fcc_packing(v_of<3>(sp.box_lo), v_of<3>(sp.box_hi), sp.radius_min);
+      for (std::size_t i = 0; i < pk.x.size(); ++i) p.add(pk.x[i], pk.radius[i], density(sp.phase), sp.phase), tags.push_back(0);
+      break;
+    }
   }
 }
 
@@ -164,10 +173,10 @@ void apply_groups(const Scene& s, World<D>& w, const std::vector<int>& tags) {
       if (std::find(w.ids.begin(), w.ids.end(), id) == w.ids.end())
         throw InputError(s.file + ": group '" + g.name + "': particle id " + std::to_string(id) +
                          " does not exist (the specimen has " + std::to_string(p.size()) + " particles)");
-    int members = 0;
+    std::vector<int>& members = w.groups.emplace_back();
     for (int i = 0; i < p.size(); ++i) {
       if (!in_group(g, p, tags, w.ids, i)) continue;
-      ++members;
+      members.push_back(i);
       p.fix[i] |= g.fix;
       if (!g.velocity.empty()) p.v[i] = v_of<D>(g.velocity);
       if (!g.angular_velocity.empty()) p.w[i] = r_of<D>(g.angular_velocity);
@@ -179,7 +188,7 @@ void apply_groups(const Scene& s, World<D>& w, const std::vector<int>& tags) {
         if (!g.moment.empty()) p.m_applied[i] += r_of<D>(g.moment);
       }
     }
-    if (members == 0) throw InputError(s.file + ": group '" + g.name + "' selects no particle");
+    if (members.empty()) throw InputError(s.file + ": group '" + g.name + "' selects no particle");
   }
 }
 

@@ -65,6 +65,27 @@ std::vector<Series> make_series(const Scene& s, const World<D>* w, const Observe
     for (int k = 0; k < Dim<D>::rot; ++k)
       add(pre + "moment_" + axis_name(D == 2 ? 2 : k), "N m", [w, i, k] { return w->walls[i].moment[k]; });
   }
+  for (std::size_t gi = 0; gi < s.groups.size(); ++gi) {
+    // What holds a group on its prescribed motion: the supports' force on it (minus the force the rest of the
+    // specimen exerts), and its mean displacement from the start.
+    const std::string pre = "group." + s.groups[gi].name + ".";
+    auto x0 = std::make_shared<std::vector<Vec<D>>>();
+    if (w)
+      for (int i : w->groups[gi]) x0->push_back(w->particles.x[i]);
+    for (int k = 0; k < D; ++k)
+      add(pre + "reaction_" + axis_name(k), "N", [w, gi, k] {
+        double f = 0;
+        for (int i : w->groups[gi]) f -= w->particles.f[i][k];
+        return f;
+      });
+    for (int k = 0; k < D; ++k)
+      add(pre + "disp_" + axis_name(k), "m", [w, gi, k, x0] {
+        double u = 0;
+        const auto& m = w->groups[gi];
+        for (std::size_t n = 0; n < m.size(); ++n) u += w->particles.x[m[n]][k] - (*x0)[n][k];
+        return u / static_cast<double>(m.size());
+      });
+  }
   for (const WallStrainSpec& g : s.wall_strains) {
     // Engineering strain between two walls along the first one's normal, tension positive.
     const int a = g.walls[0], b = g.walls[1];

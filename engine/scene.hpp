@@ -43,14 +43,14 @@ struct InlineParticle {
 };
 
 struct SpecimenSpec {
-  enum class Kind { Particles, SphereList, Output, RandomBox } kind;
+  enum class Kind { Particles, SphereList, Output, RandomBox, Lattice } kind;
   std::vector<InlineParticle> particles;  // Particles
   std::string file;                       // SphereList, Output
   std::vector<int> tag_phase;             // SphereList: phase of each tag (index = tag)
-  std::vector<double> box_lo, box_hi;     // RandomBox: region filled
+  std::vector<double> box_lo, box_hi;     // RandomBox, Lattice: region filled
   std::int64_t count = 0;                 // RandomBox
-  double radius_min = 0, radius_max = 0;  // RandomBox, uniform in [min, max]
-  int phase = 0;                          // RandomBox
+  double radius_min = 0, radius_max = 0;  // RandomBox, uniform in [min, max]; Lattice: radius_min
+  int phase = 0;                          // RandomBox, Lattice
 };
 
 struct WallSpec {

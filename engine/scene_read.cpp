@@ -72,7 +72,7 @@ void read_specimen(const Table& root, Scene& s) {
   const Table t = root.table("specimen");
   SpecimenSpec& sp = s.specimen;
   const int d = s.dimension;
-  const std::string kind = t.choice("kind", {"particles", "sphere_list", "output", "random_box"});
+  const std::string kind = t.choice("kind", {"particles", "sphere_list", "output", "random_box", "lattice"});
   if (kind == "particles") {
     sp.kind = SpecimenSpec::Kind::Particles;
     for (const Table& p : t.tables("particles")) {
@@ -107,14 +107,21 @@ void read_specimen(const Table& root, Scene& s) {
       }
     }
   } else {
-    sp.kind = SpecimenSpec::Kind::RandomBox;
+    sp.kind = kind == "lattice" ? SpecimenSpec::Kind::Lattice : SpecimenSpec::Kind::RandomBox;
     sp.box_lo = vec(t, "lo", Unit::Length, d);
     sp.box_hi = vec(t, "hi", Unit::Length, d);
     for (int k = 0; k < d; ++k)
       if (sp.box_hi[k] <= sp.box_lo[k]) t.fail("hi", "each component must exceed the one of 'lo'");
-    sp.count = t.integer("count", Range::closed(1, 5e7));
-    sp.radius_min = t.number("radius_min", Unit::Length, Range::positive());
-    sp.radius_max = t.number("radius_max", Unit::Length, Range::at_least(sp.radius_min), sp.radius_min);
+    if (kind == "lattice") {  // equal particles: hexagonal (2D) or face-centred cubic (3D), Tang §8.1.1
+      sp.radius_min = sp.radius_max = t.number("radius", Unit::Length, Range::positive());
+      for (int k = 0; k < d; ++k)
+        if (sp.box_hi[k] - sp.box_lo[k] < 2 * sp.radius_min)
+          t.fail("radius", "the box [lo, hi] must be at least one diameter wide in every direction");
+    } else {
+      sp.count = t.integer("count", Range::closed(1, 5e7));
+      sp.radius_min = t.number("radius_min", Unit::Length, Range::positive());
+      sp.radius_max = t.number("radius_max", Unit::Length, Range::at_least(sp.radius_min), sp.radius_min);
+    }
     sp.phase = s.phases.size() == 1 && !t.has("phase") ? 0 : phase_index(t, "phase", s.phases);
   }
   t.finish();

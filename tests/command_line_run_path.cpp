@@ -407,6 +407,14 @@ void check_same_run(const fs::path& a, const fs::path& b) {
   const std::vector<double> last_a(xa.end() - static_cast<std::ptrdiff_t>(dims[1]), xa.end());
   const std::vector<double> last_b(xb.end() - static_cast<std::ptrdiff_t>(dims[1]), xb.end());
   CHECK_MESSAGE(same_bits(last_a, last_b), "final positions differ at value ", first_difference(last_a, last_b));
+  // The crack log, when there is one.
+  REQUIRE(fa.exists("/cracks") == fb.exists("/cracks"));
+  if (fa.exists("/cracks"))
+    for (const auto& n : fa.list("/cracks")) {
+      const auto ca = fa.read_doubles("/cracks/" + n), cb = fb.read_doubles("/cracks/" + n);
+      CHECK_MESSAGE(same_bits(ca, cb), "/cracks/", n, ": ", ca.size(), " vs ", cb.size(), " values, first difference at ",
+                    first_difference(ca, cb));
+    }
 }
 
 // The error cases below each run against this folder's `scene.toml` and `-o out.h5`, unless told otherwise.
@@ -842,6 +850,50 @@ TEST_CASE("resume_with_servo_walls_in_contact_matches_uninterrupted_run") {
     CHECK(std::abs(top[19]) + std::abs(top[20]) + std::abs(left[19]) + std::abs(left[20]) > 0);
   }
   const Result rest = mesocrack({"run", "servo.toml", "--resume", "halves.h5"}, d.dir);
+  REQUIRE_MESSAGE(rest.code == 0, rest.describe());
+  check_same_run(d / "whole.h5", d / "halves.h5");
+}
+
+// The bonded bar of scenes/lattice_tension_2d.toml pulled until it breaks: every broken bond is in /cracks (one
+// row each, the counts equal to the histories', positions inside the bar, normals of unit length), and a run
+// stopped while the crack runs and resumed writes the same crack log, bit for bit, as one never stopped.
+TEST_CASE("crack_log_of_a_bonded_bar_pulled_apart_is_complete_and_survives_resume") {
+  const TempDir d;
+  const std::string scene = (kScenes / "lattice_tension_2d.toml").string();
+  const Result whole = mesocrack({"run", scene, "-o", "whole.h5", "--threads", "2"}, d.dir);
+  REQUIRE_MESSAGE(whole.code == 0, whole.describe());
+  {
+    const mc::H5File f((d / "whole.h5").string(), mc::H5File::Mode::ReadOnly);
+    CHECK(f.attr_string("/", "status") == "stopped");  // by the post-peak condition: the bar broke
+    const auto mode = f.read_ints("/cracks/mode"), kind = f.read_ints("/cracks/kind"), step = f.read_ints("/cracks/step");
+    const auto tensile = f.read_doubles("/history/cracks.tensile").back(), shear = f.read_doubles("/history/cracks.shear").back();
+    REQUIRE(mode.size() > 50);
+    CHECK(static_cast<double>(std::count(mode.begin(), mode.end(), 1)) == tensile);
+    CHECK(static_cast<double>(std::count(mode.begin(), mode.end(), 2)) == shear);
+    CHECK(std::count(kind.begin(), kind.end(), 0) == static_cast<long>(mode.size()));  // parallel bonds only break
+    CHECK(std::is_sorted(step.begin(), step.end()));
+    const double bonds0 = f.read_doubles("/history/bonds.intact").front(), bonds1 = f.read_doubles("/history/bonds.intact").back();
+    CHECK(bonds0 - bonds1 == tensile + shear);
+    std::vector<hsize_t> dims;
+    const auto x = f.read_doubles("/cracks/position", &dims), n = f.read_doubles("/cracks/normal");
+    REQUIRE(dims == std::vector<hsize_t>{mode.size(), 2});
+    for (std::size_t k = 0; k < mode.size(); ++k) {
+      CHECK(x[2 * k] > 0);
+      CHECK(x[2 * k] < 20e-3);
+      CHECK(std::hypot(n[2 * k], n[2 * k + 1]) == doctest::Approx(1.0).epsilon(1e-12));
+    }
+  }
+  // Stopped at step 12000 (a history row and a frame fall there, so the first half adds no extra final row),
+  // when the first bonds have broken and the crack is about to run; then resumed.
+  const Result first = mesocrack({"run", scene, "-o", "halves.h5", "--set", "run.steps=12000"}, d.dir);
+  REQUIRE_MESSAGE(first.code == 0, first.describe());
+  {
+    const mc::H5File f((d / "halves.h5").string(), mc::H5File::Mode::ReadOnly);
+    const auto rows = f.rows("/cracks/mode");
+    CHECK(rows > 0);
+    CHECK(rows < mc::H5File((d / "whole.h5").string(), mc::H5File::Mode::ReadOnly).rows("/cracks/mode") / 2);
+  }
+  const Result rest = mesocrack({"run", scene, "--resume", "halves.h5"}, d.dir);
   REQUIRE_MESSAGE(rest.code == 0, rest.describe());
   check_same_run(d / "whole.h5", d / "halves.h5");
 }
