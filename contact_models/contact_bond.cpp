@@ -9,13 +9,18 @@ namespace mc {
 
 LinearParams read_linear_params(const Table& t);  // contact_models/linear.cpp
 
-ModelSpec contact_bond_model(const Table& t) {
-  ContactBondParams p;
+// Also read by the softening bond, which has these keys too.
+void read_contact_bond_params(const Table& t, ContactBondParams& p) {
   p.contact = read_linear_params(t);
   p.normal_mean = t.number("bond_normal_strength", Unit::Force, Range::positive());
   p.normal_std = t.number("bond_normal_strength_std", Unit::Force, Range::non_negative(), 0.0);
   p.shear_mean = t.number("bond_shear_strength", Unit::Force, Range::positive());
   p.shear_std = t.number("bond_shear_strength_std", Unit::Force, Range::non_negative(), 0.0);
+}
+
+ModelSpec contact_bond_model(const Table& t) {
+  ContactBondParams p;
+  read_contact_bond_params(t, p);
   return model_spec<ContactBond>(p);
 }
 

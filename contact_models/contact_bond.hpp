@@ -45,14 +45,19 @@ struct ContactBond {
     s.shear = normal(p.shear_mean, p.shear_std);
   }
 
+  // Never bonded, or broken: a linear contact with slip.
+  template <int D, bool Energy>
+  [[gnu::always_inline]] static ContactForce<D> unbonded_force(const Linear::Coeffs& c, const ContactGeometry<D>& g,
+                                                                State<D>& s) {
+    Linear::State<D> ls{s.fs};
+    const ContactForce<D> out = Linear::force<D, Energy>(c, g, ls);
+    s.fs = ls.fs;
+    return out;
+  }
+
   template <int D, bool Energy>
   [[gnu::always_inline]] static ContactForce<D> force(const Coeffs& c, const ContactGeometry<D>& g, State<D>& s) {
-    if (!bonded(s)) {
-      Linear::State<D> ls{s.fs};
-      const ContactForce<D> out = Linear::force<D, Energy>(c, g, ls);
-      s.fs = ls.fs;
-      return out;
-    }
+    if (!bonded(s)) return unbonded_force<D, Energy>(c, g, s);
     ContactForce<D> out;
     const double vn = g.v_rel.dot(g.n);
     const Vec<D> vs = g.v_rel - vn * g.n;

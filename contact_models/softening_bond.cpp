@@ -8,15 +8,11 @@
 
 namespace mc {
 
-LinearParams read_linear_params(const Table& t);  // contact_models/linear.cpp
+void read_contact_bond_params(const Table& t, ContactBondParams& p);  // contact_models/contact_bond.cpp
 
 ModelSpec softening_bond_model(const Table& t) {
   SofteningBondParams p;
-  p.contact = read_linear_params(t);
-  p.normal_mean = t.number("bond_normal_strength", Unit::Force, Range::positive());
-  p.normal_std = t.number("bond_normal_strength_std", Unit::Force, Range::non_negative(), 0.0);
-  p.shear_mean = t.number("bond_shear_strength", Unit::Force, Range::positive());
-  p.shear_std = t.number("bond_shear_strength_std", Unit::Force, Range::non_negative(), 0.0);
+  read_contact_bond_params(t, p);
   // Two ways to say one thing: both would contradict each other, neither leaves the softening undefined.
   const bool limit = t.has("bond_plastic_limit"), energy = t.has("bond_fracture_energy");
   const std::string allowed =

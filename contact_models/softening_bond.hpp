@@ -8,31 +8,30 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact_models/contact_bond.hpp"
 #include "contact_models/linear.hpp"
 #include "engine/contact_geometry.hpp"
 
 namespace mc {
 
-struct SofteningBondParams {
-  LinearParams contact;                          // springs, friction and dashpots, Tang (3.25)–(3.26), (3.38)
-  double normal_mean = kNaN, normal_std = 0.0;   // F_c^n, tensile strength [N], normal truncated to > 0
-  double shear_mean = kNaN, shear_std = 0.0;     // F_c^s, shear strength [N]
+// The contact bond's springs and strengths (F_c^n, F_c^s [N]), and how far the bond softens.
+struct SofteningBondParams : ContactBondParams {
   // U_p,max comes from exactly one of these (the other is 0).
   double plastic_limit = 0.0;                    // U_p,max [m]
   double fracture_energy = 0.0;                  // G_f [J/m²] over the bond's section
 };
 
-struct SofteningBond {
+// What it shares with the contact bond (glued springs measured from the gap at bonding, their energy, the
+// pair kept while bonded, the linear contact after the break) it inherits; the force law is its own.
+struct SofteningBond : ContactBond {
   static constexpr const char* name = "softening_bond";
   using Params = SofteningBondParams;
+  // The contact bond's state (shear force, strengths, gap0) and U_p. Here gap0 also widens with the bond's
+  // plastic opening.
   template <int D>
-  struct State {
-    Vec<D> fs = Vec<D>::Zero();     // shear force on B [N]
-    double normal = 0, shear = 0;   // this bond's unsoftened strengths [N]; 0: no bond (never bonded, or broken)
-    double gap0 = 0;                // gap at which the normal spring is unstrained [m]: the gap when bonded,
-                                    // widened by the bond's plastic opening
-    double up = 0;                  // U_p, accumulated plastic displacement [m], Tang (3.48); every yield adds
-                                    // to it, so U_p > 0 also marks a bond whose first yield was reported
+  struct State : ContactBond::State<D> {
+    double up = 0;  // U_p, accumulated plastic displacement [m], Tang (3.48); every yield adds to it, so
+                    // U_p > 0 also marks a bond whose first yield was reported
   };
   struct Coeffs : Linear::Coeffs {
     double plastic_limit;  // U_p,max [m], or 0: from fracture_work and the bond's own F_c^n
@@ -57,27 +56,17 @@ struct SofteningBond {
     return c.plastic_limit > 0 ? c.plastic_limit : 2.0 * c.fracture_work / s.normal;
   }
 
-  static constexpr bool bondable = true;
   static constexpr bool yields = true;  // first yields go to the crack log too
-  template <int D>
-  static bool bonded(const State<D>& s) { return s.normal > 0; }
   // Glued where it stands, as a contact bond: across a small gap the normal spring measures from that gap.
   template <int D, class Normal>
   static void install(const Params& p, const ContactGeometry<D>& g, State<D>& s, Normal& normal) {
-    s = State<D>{s.fs};
-    s.gap0 = std::max(0.0, -g.overlap);
-    s.normal = normal(p.normal_mean, p.normal_std);
-    s.shear = normal(p.shear_mean, p.shear_std);
+    s = State<D>{{s.fs}};
+    ContactBond::install<D>(p, g, s, normal);
   }
 
   template <int D, bool Energy>
   [[gnu::always_inline]] static ContactForce<D> force(const Coeffs& c, const ContactGeometry<D>& g, State<D>& s) {
-    if (!bonded(s)) {
-      Linear::State<D> ls{s.fs};
-      const ContactForce<D> out = Linear::force<D, Energy>(c, g, ls);
-      s.fs = ls.fs;
-      return out;
-    }
+    if (!bonded(s)) return unbonded_force<D, Energy>(c, g, s);
     ContactForce<D> out;
     const double vn = g.v_rel.dot(g.n);
     const Vec<D> vs = g.v_rel - vn * g.n;
@@ -170,23 +159,6 @@ struct SofteningBond {
     const double strain = 0.5 * ((fn_t * fn_t - fn * fn) / c.kn + (fs_t.squaredNorm() - fs.squaredNorm()) / c.ks);
     return strain + 0.5 * ((fn_t - fn) * g.n + (fs_t - fs)).dot(g.v_rel) * g.dt;
   }
-
-  template <int D>
-  static ContactStiffness stiffness(const Coeffs& c, const ContactGeometry<D>&, const State<D>&) {
-    return {c.kn, c.ks, 0.0};
-  }
-  template <int D>
-  static double strain_energy(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
-    if (!bonded(s)) return Linear::strain_energy<D>(c, g, Linear::State<D>{s.fs});
-    const double fn = c.kn * (g.overlap + s.gap0);
-    return 0.5 * (fn * fn / c.kn + s.fs.squaredNorm() / c.ks);  // Tang (3.80), tension included
-  }
-  template <int D>
-  static double released_energy(const Coeffs& c, const State<D>& s) {
-    return Linear::released_energy<D>(c, Linear::State<D>{s.fs});
-  }
-  template <int D>
-  static bool persistent(const State<D>& s) { return bonded(s); }
 };
 
 }  // namespace mc

@@ -88,6 +88,7 @@ class ContactSetBase {
   // Bonds that broke or first yielded in the last forces() call, in pair order (the same on any thread count).
   virtual const std::vector<PairEvent<D>>& events() const = 0;
   virtual std::size_t bond_count() const = 0;  // intact bonds
+  virtual std::size_t memory_bytes() const = 0;  // pairs, histories and side arrays, as allocated
   // The whole history as bytes (checkpoints): pairs, wall pairs and states.
   virtual std::vector<std::uint8_t> save() const = 0;
   virtual void load(const std::vector<std::uint8_t>& bytes) = 0;
@@ -194,6 +195,12 @@ class ContactSet final : public ContactSetBase<D> {
   }
 
   const std::vector<PairEvent<D>>& events() const override { return events_; }
+
+  std::size_t memory_bytes() const override {
+    return (pairs_.capacity() + wall_pairs_.capacity()) * sizeof(Pair) +
+           (states_.capacity() + wall_states_.capacity()) * sizeof(State) +
+           (dashpot_.capacity() + wall_dashpot_.capacity()) * sizeof(Vec<D>);
+  }
 
   std::size_t bond_count() const override {
     if constexpr (requires { Model::bondable; }) {

@@ -25,41 +25,15 @@ ContactBondParams params(double normal, double shear) {
   return p;
 }
 
-// Two particles, every degree of freedom prescribed; B starts at `overlap` and (optionally) a gap.
-template <int D>
-World<D> pair_world(const ContactBondParams& p, double overlap) {
-  auto w = test::single_model_world<D, ContactBond>(p);
-  Vec<D> b = Vec<D>::Zero();
-  b[0] = 2 * kR - overlap;
-  w.particles.add(Vec<D>::Zero(), kR, 2600, 0);
-  w.particles.add(b, kR, 2600, 0);
-  w.particles.fix.assign(2, 0xff);
-  w.timestep.safety = 0.5;
-  w.trace_energy = true;
-  w.init();
-  REQUIRE(w.install_bonds(0.01, 3) == 1);
-  return w;
-}
-
-// The energy balance counts from here: what the pair holds now (the pressed springs, the moving masses; the
-// velocities were prescribed after init(), so their kinetic energy is taken here).
-template <int D>
-void start_energy(World<D>& w) {
-  w.update_energy();
-  double kinetic = 0;
-  for (int i = 0; i < w.particles.size(); ++i) kinetic += 0.5 * w.particles.mass[i] * w.particles.v[i].squaredNorm();
-  w.energy.initial = kinetic + w.energy.strain;
-}
-
 template <int D>
 void tension_break() {
   const auto p = params(5.0, 1e9);
   // Bonded across a small gap (within the 1 % tolerance): the bond starts unstrained there.
-  auto w = pair_world<D>(p, -0.002 * kR);
+  auto w = test::held_bonded_pair<D, ContactBond>(p, kR, kR, -0.002 * kR);
   const auto c = ContactBond::pair<D>(p, kR, kR);
   const double rate = p.normal_mean / c.kn / (4000 * w.dt);  // breaks after ~4000 steps
   w.particles.v[1][0] = rate;
-  start_energy(w);
+  test::start_energy(w);
   auto& set = static_cast<ContactSet<ContactBond, D>&>(*w.sets[0]);
   double last = 0, stretch = 0, stiffness_ratio = 0;
   for (int step = 0; step < 10000 && w.cracks.empty(); ++step) {
@@ -93,12 +67,12 @@ void shear_break_then_slide() {
   // Pressed so that μF_n is 1.5 % of the shear strength: the bond must hold far beyond the slip limit. The
   // overlap (≥ 2.5e-11 m) stays much larger than the widening of the gap as the pair shears, (F_s/k_s)²/4R.
   const double overlap = 0.05 * p.shear_mean / c.kn;
-  auto w = pair_world<D>(p, overlap);
+  auto w = test::held_bonded_pair<D, ContactBond>(p, kR, kR, overlap);
   const double rate = p.shear_mean / c.ks / (4000 * w.dt);
   // Both particles move sideways in opposite senses: the line of centres turns, but only by ~1e-3 rad.
   w.particles.v[1][1] = 0.5 * rate;
   w.particles.v[0][1] = -0.5 * rate;
-  start_energy(w);
+  test::start_energy(w);
   double last = 0;
   std::int64_t broke_at = -1;
   for (int step = 0; step < 12000; ++step) {

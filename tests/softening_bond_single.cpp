@@ -28,35 +28,9 @@ SofteningBondParams params(double normal, double shear) {
   return p;
 }
 
-// A (radius kR) at the origin and B (radius rb) on the x axis at `overlap`, every degree of freedom prescribed.
-template <int D>
-World<D> pair_world(const SofteningBondParams& p, double rb, double overlap) {
-  auto w = test::single_model_world<D, SofteningBond>(p);
-  Vec<D> b = Vec<D>::Zero();
-  b[0] = kR + rb - overlap;
-  w.particles.add(Vec<D>::Zero(), kR, 2600, 0);
-  w.particles.add(b, rb, 2600, 0);
-  w.particles.fix.assign(2, 0xff);
-  w.timestep.safety = 0.5;
-  w.trace_energy = true;
-  w.init();
-  REQUIRE(w.install_bonds(0.01, 3) == 1);
-  return w;
-}
-
 template <int D>
 const SofteningBond::State<D>& bond_of(const World<D>& w) {
   return static_cast<const ContactSet<SofteningBond, D>&>(*w.sets[0]).states()[0];
-}
-
-// The energy balance counts from here: what the pair holds now (the pressed springs, the moving masses). The
-// engine's kinetic energy is still that of the velocities at init(), before these were prescribed.
-template <int D>
-void start_energy(World<D>& w) {
-  w.update_energy();
-  double kinetic = 0;
-  for (int i = 0; i < w.particles.size(); ++i) kinetic += 0.5 * w.particles.mass[i] * w.particles.v[i].squaredNorm();
-  w.energy.initial = kinetic + w.energy.strain;
 }
 
 // A pull along the line of centres until the bond breaks: at each force pass the opening since bonding and
@@ -71,7 +45,7 @@ struct Pull {
 
 template <int D>
 Pull<D> pull_apart(const SofteningBondParams& p, double rb) {
-  Pull<D> r{pair_world<D>(p, rb, -0.002 * kR)};  // bonded across a small gap: the bond starts unstrained there
+  Pull<D> r{test::held_bonded_pair<D, SofteningBond>(p, kR, rb, -0.002 * kR)};  // bonded across a small gap: the bond starts unstrained there
   World<D>& w = r.w;
   const auto c = SofteningBond::pair<D>(p, kR, rb);
   r.kn = c.kn;
@@ -80,7 +54,7 @@ Pull<D> pull_apart(const SofteningBondParams& p, double rb) {
   // The elastic rise F_c^n/k_n takes 1000 steps; the softening branch (from there to U_p,max) the rest.
   const double rate = r.strength / c.kn / (1000 * w.dt);
   w.particles.v[1][0] = rate;
-  start_energy(w);
+  test::start_energy(w);
   const double d0 = (w.particles.x[1] - w.particles.x[0]).norm();
   for (int step = 0; step < 40000 && SofteningBond::bonded<D>(bond_of(w)); ++step) {
     // The force pass of a step sees the particles before the step's move.
@@ -178,14 +152,14 @@ void in_compression_slips_at_mu_fn_plus_softened_cohesion() {
   const double mu = p.contact.friction, fcs = p.shear_mean;
   p.plastic_limit = 5 * fcs / c.ks;
   // Pressed to F_n = F_c^s: friction is μF_n = 0.3 F_c^s, the cohesion F_c^s on top of it.
-  auto w = pair_world<D>(p, kR, fcs / c.kn);
+  auto w = test::held_bonded_pair<D, SofteningBond>(p, kR, kR, fcs / c.kn);
   // The peak μF_n + F_c^s after ~1000 steps; the bond breaks ~3000 steps later.
   const double rate = (mu * fcs + fcs) / c.ks / (1000 * w.dt);
   // Both particles move sideways in opposite senses; the line of centres turns by ≲ 2e-3 rad (3D), which
   // changes the overlap by ≲ 1 %: F_n is measured at every step.
   w.particles.v[1][1] = 0.5 * rate;
   w.particles.v[0][1] = -0.5 * rate;
-  start_energy(w);
+  test::start_energy(w);
   struct Sample {
     double slide, fn, fs;
   };
