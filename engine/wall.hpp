@@ -80,7 +80,7 @@ struct Wall {
         const double a = std::isnan(servo_area) ? area() : servo_area;
         double speed = 0;
         if (contact_kn > 0) speed = servo_gain * a / (contact_kn * dt) * (target_stress - normal_stress());
-        else speed = servo_max_speed;  // nothing touched yet: approach at full speed
+        else if (std::isfinite(servo_max_speed)) speed = servo_max_speed;  // nothing touched yet: approach at full speed
         speed = std::clamp(speed, -servo_max_speed, servo_max_speed);
         velocity = speed * normal;
         break;
