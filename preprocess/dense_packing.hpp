@@ -1,9 +1,14 @@
 // Dense random packings by PFC material genesis (Potyondy & Cundall 2004; Tang 2013 §5.2): particles with radii
 // uniform in [R_min, R_max] are placed without overlap at half their radii inside a walled box, grown back in
-// steps to their full size (the box then holds them at the target porosity), settled, and brought to a small
-// isotropic stress by servo-controlled walls; particles left with too few contacts (floaters) are grown a
-// little until they are held. The genesis uses frictionless linear contacts with the material's contact
-// modulus, so the stress locked in when the packing is bonded is the isotropic stress asked for.
+// steps to their full size (the box then holds them at exactly the target porosity) and settled; then all radii
+// are changed uniformly, the walls staying put, until the isotropic stress is the small one asked for; last,
+// particles with fewer than D + 1 contacts (floaters) are grown just enough to touch a (D + 1)-th neighbour.
+// The genesis uses frictionless linear contacts with the material's contact modulus, so the stress locked in
+// when the packing is bonded is the isotropic stress asked for.
+//
+// The porosity asked for is the one of the grown packing (PFC's meaning). Relieving the stress of a packing
+// grown denser than it jams at σ0 loosens it to its jammed porosity: 0.169 for R_max/R_min = 1.66 discs at
+// σ0/E_c = 5e-6 when 0.16 is asked. The report gives both.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -29,9 +34,9 @@ struct DensePackingSpec {
 struct PackingReport {
   std::int64_t count = 0;          // particles (after carving a cylinder)
   double porosity_grown = 0;       // in the box, once grown to full size (the target, up to the count's rounding)
-  double porosity_final = 0;       // in the box the servo walls enclose at the end
+  double porosity_final = 0;       // in the box at the end (before carving a cylinder)
   double stress_final = 0;         // mean wall stress at the end [Pa]
-  int floaters = 0;                // particles with fewer than D + 1 contacts at the end
+  int floaters = 0;                // particles left with fewer than D + 1 contacts (rattlers in wide cages)
   std::int64_t steps = 0;          // genesis steps
 };
 
