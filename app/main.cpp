@@ -53,6 +53,15 @@ int run(const std::string& scene_file, std::string output, const std::vector<std
   return 0;
 }
 
+int generate(const std::string& scene_file, const std::string& output, const std::vector<std::string>& sets, int threads) {
+  if (output.empty()) throw mc::InputError("generate: give the specimen file with -o SPECIMEN.h5");
+  if (threads > 0) omp_set_num_threads(threads);
+  const mc::Scene scene = mc::read_scene(mc::TomlDoc::load(scene_file, sets), scene_file);
+  for (const auto& [name, value] : mc::generate_specimen(scene, output)) std::fprintf(stderr, "%s = %.6g\n", name.c_str(), value);
+  std::fprintf(stderr, "specimen -> %s\n", output.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -74,6 +83,11 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
   run_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
   run_cmd->add_option("--resume", resume, "continue this output file from its last checkpoint");
+  auto* generate_cmd = app.add_subcommand("generate", "build a scene's specimen (e.g. a dense packing) and save it");
+  generate_cmd->add_option("scene", scene, "scene file (TOML)")->required();
+  generate_cmd->add_option("-o,--output", output, "specimen file (HDF5; scenes load it with kind = \"output\")");
+  generate_cmd->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
+  generate_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
   auto* summary_cmd = app.add_subcommand("summary", "print the key results of a run as JSON");
   summary_cmd->add_option("output", target, "output file (HDF5)")->required();
   auto* report_cmd = app.add_subcommand("report", "write PNG plots of a run next to its output file");
@@ -81,6 +95,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     if (*run_cmd) return run(scene, output, sets, threads, resume);
+    if (*generate_cmd) return generate(scene, output, sets, threads);
     if (*summary_cmd) {
       std::cout << mc::summary_json(target);
       return 0;

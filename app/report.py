@@ -333,6 +333,8 @@ def plot_specimen(run, stem, out_dir):
         return []
     kind = "specimen" if run["dimension"] == 2 else "slice"
     xy, r, phase, fmag, (ax0, ax1), limits, when = section(run)
+    if fmag is not None and not (fmag > 0).any():
+        fmag = None  # a specimen at rest (e.g. generated): nothing to colour by force
     panels = 2 if fmag is not None else 1
     fig, axes = plt.subplots(1, panels, figsize=(6.5 * panels, 6), squeeze=False, constrained_layout=True)
     axes = axes.ravel()

@@ -5,6 +5,7 @@
 
 #include "engine/errors.hpp"
 #include "engine/h5_file.hpp"
+#include "preprocess/dense_packing.hpp"
 #include "preprocess/random_box.hpp"
 #include "preprocess/regular_packing.hpp"
 #include "preprocess/spatial_order.hpp"
@@ -28,7 +29,8 @@ Rot<D> r_of(const std::vector<double>& v) {
 }
 
 template <int D>
-void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags, std::vector<std::int64_t>& ids) {
+void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags, std::vector<std::int64_t>& ids,
+                  std::vector<std::pair<std::string, double>>& facts) {
   const SpecimenSpec& sp = s.specimen;
   auto density = [&](int phase) { return s.phases[phase].density; };
   switch (sp.kind) {
@@ -103,6 +105,25 @@ void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags, std::
         throw InputError(s.file + ": key 'specimen.count' = " + std::to_string(sp.count) + ": " + e.what());
       }
       for (std::size_t i = 0; i < pk.x.size(); ++i) p.add(pk.x[i], pk.radius[i], density(sp.phase), sp.phase), tags.push_back(0);
+      break;
+    }
+    case SpecimenSpec::Kind::Packing: {
+      DensePackingSpec<D> g;
+      g.shape = sp.cylinder ? DensePackingSpec<D>::Shape::Cylinder : DensePackingSpec<D>::Shape::Box;
+      g.lo = v_of<D>(sp.box_lo), g.hi = v_of<D>(sp.box_hi);
+      g.radius_min = sp.radius_min, g.radius_ratio = sp.radius_ratio, g.porosity = sp.porosity;
+      g.stress = sp.stress, g.modulus = sp.modulus, g.density = density(sp.phase), g.seed = s.seed;
+      PackingReport rep;
+      Packing<D> pk;
+      try {
+        pk = dense_packing<D>(g, &rep);
+      } catch (const InputError& e) {
+        throw InputError(s.file + ": [specimen] kind = \"packing\": " + e.what());
+      }
+      for (std::size_t i = 0; i < pk.x.size(); ++i) p.add(pk.x[i], pk.radius[i], density(sp.phase), sp.phase), tags.push_back(0);
+      facts = {{"packing_porosity_grown", rep.porosity_grown}, {"packing_porosity_final", rep.porosity_final},
+               {"packing_stress_final", rep.stress_final}, {"packing_floaters", double(rep.floaters)},
+               {"packing_steps", double(rep.steps)}};
       break;
     }
     case SpecimenSpec::Kind::Lattice: {
@@ -217,13 +238,14 @@ template <int D>
 World<D> build_world(const Scene& s) {
   World<D> w;
   std::vector<int> tags;
-  add_specimen<D>(s, w.particles, tags, w.ids);
+  add_specimen<D>(s, w.particles, tags, w.ids, w.specimen_facts);
   if (w.particles.size() == 0) throw InputError(s.file + ": the specimen holds no particle");
   if (w.ids.empty()) {
     w.ids.resize(w.particles.size());
     for (int i = 0; i < w.particles.size(); ++i) w.ids[i] = i;
   }
-  if (s.specimen.kind == SpecimenSpec::Kind::SphereList || s.specimen.kind == SpecimenSpec::Kind::RandomBox)
+  using K = SpecimenSpec::Kind;
+  if (s.specimen.kind == K::SphereList || s.specimen.kind == K::RandomBox || s.specimen.kind == K::Packing)
     spatial_sort<D>(w.particles, tags, w.ids);
   const int np = static_cast<int>(s.phases.size());
   w.model_of.assign(np, std::vector<int>(np, -1));

@@ -34,6 +34,7 @@ RunOutput::RunOutput(const std::string& path, const std::string& scene_text, con
   file_.write("/specimen/phase", s.phase, {n});
   file_.write("/specimen/id", s.id, {n});
   file_.set_attr("/specimen", "phase_names", join(s.phase_names));
+  for (const auto& [name, value] : s.facts) file_.set_attr("/specimen", name, value);
   file_.create_table("/frames/time", 0);
   file_.create_table("/frames/step", 0, true);
   for (const char* f : {"/frames/x", "/frames/v", "/frames/force"}) file_.create_table(f, n * s.dimension);

@@ -16,6 +16,7 @@ struct SpecimenData {
   std::vector<std::int32_t> phase;
   std::vector<std::string> phase_names;
   std::vector<std::int64_t> id;   // the specimen's own ids (particles may be renumbered for locality)
+  std::vector<std::pair<std::string, double>> facts;  // attributes of /specimen (a generated packing's porosity …)
 };
 
 class RunOutput {

@@ -28,6 +28,29 @@ struct StopState {
 };
 
 template <int D>
+SpecimenData specimen_data(const World<D>& w, const Scene& s) {
+  SpecimenData d{D, {}, w.particles.radius, {}, {}, w.ids, w.specimen_facts};
+  for (const auto& x : w.particles.x) d.x.insert(d.x.end(), x.data(), x.data() + D);
+  d.phase.assign(w.particles.phase.begin(), w.particles.phase.end());
+  for (const auto& p : s.phases) d.phase_names.push_back(p.name);
+  return d;
+}
+
+template <int D>
+std::vector<std::pair<std::string, double>> generate(const Scene& s, const std::string& output) {
+  const World<D> w = build_world<D>(s);  // the genesis happens here
+  RunOutput out(output, s.text, s.file, specimen_data(w, s));
+  std::vector<double> x, zero(static_cast<std::size_t>(w.particles.size()) * D, 0.0);
+  for (const auto& p : w.particles.x) x.insert(x.end(), p.data(), p.data() + D);
+  out.append_frame(0.0, 0, x, zero, zero);  // at rest: a scene loads it with kind = "output"
+  out.set_status("finished", "generated specimen");
+  out.flush();
+  auto facts = w.specimen_facts;
+  facts.insert(facts.begin(), {"particles", static_cast<double>(w.particles.size())});
+  return facts;
+}
+
+template <int D>
 class Run {
  public:
   Run(const Scene& s, const RunOptions& o) : scene_(s), opt_(o), world_(build_world<D>(s)), obs_(s) {
@@ -104,13 +127,7 @@ class Run {
     return -1;  // unreachable: read_scene checked the names
   }
 
-  SpecimenData specimen() const {
-    SpecimenData d{D, {}, world_.particles.radius, {}, {}, world_.ids};
-    for (const auto& x : world_.particles.x) d.x.insert(d.x.end(), x.data(), x.data() + D);
-    d.phase.assign(world_.particles.phase.begin(), world_.particles.phase.end());
-    for (const auto& p : scene_.phases) d.phase_names.push_back(p.name);
-    return d;
-  }
+  SpecimenData specimen() const { return specimen_data(world_, scene_); }
 
   void start_or_resume() {
     std::vector<std::string> names, units;
@@ -274,6 +291,15 @@ class Run {
 };
 
 }  // namespace
+
+std::vector<std::pair<std::string, double>> generate_specimen(const Scene& scene, const std::string& output) {
+  try {
+    return scene.dimension == 2 ? generate<2>(scene, output) : generate<3>(scene, output);
+  } catch (const InputError& e) {
+    std::remove(output.c_str());  // never a half-written file
+    throw;
+  }
+}
 
 RunResult run_scene(const Scene& scene, const RunOptions& options) {
   if (scene.dimension == 2) return Run<2>(scene, options).run();

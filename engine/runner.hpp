@@ -2,6 +2,8 @@
 // checkpoints, and stops on the scene's conditions or on an instability.
 #pragma once
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "engine/scene.hpp"
 
@@ -21,5 +23,9 @@ struct RunResult {
 
 // Throws InputError / IoError before anything runs; InstabilityError after recording it in the file.
 RunResult run_scene(const Scene& scene, const RunOptions& options);
+
+// Builds the scene's specimen (for kind = "packing": the genesis) and writes it to `output` as a finished run
+// with one frame at rest, which scenes load with kind = "output". Returns what the generation measured.
+std::vector<std::pair<std::string, double>> generate_specimen(const Scene& scene, const std::string& output);
 
 }  // namespace mc

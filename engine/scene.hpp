@@ -43,14 +43,17 @@ struct InlineParticle {
 };
 
 struct SpecimenSpec {
-  enum class Kind { Particles, SphereList, Output, RandomBox, Lattice } kind;
+  enum class Kind { Particles, SphereList, Output, RandomBox, Lattice, Packing } kind;
   std::vector<InlineParticle> particles;  // Particles
   std::string file;                       // SphereList, Output
   std::vector<int> tag_phase;             // SphereList: phase of each tag (index = tag)
   std::vector<double> box_lo, box_hi;     // RandomBox, Lattice: region filled
   std::int64_t count = 0;                 // RandomBox
   double radius_min = 0, radius_max = 0;  // RandomBox, uniform in [min, max]; Lattice: radius_min
-  int phase = 0;                          // RandomBox, Lattice
+  int phase = 0;                          // RandomBox, Lattice, Packing
+  // Packing (PFC genesis, preprocess/dense_packing.hpp): radius_min, and
+  bool cylinder = false;                  // 3D: carve a cylinder (axis z) out of the box
+  double radius_ratio = 1.66, porosity = 0.16, stress = 1e5, modulus = 0;
 };
 
 struct WallSpec {

@@ -72,7 +72,7 @@ void read_specimen(const Table& root, Scene& s) {
   const Table t = root.table("specimen");
   SpecimenSpec& sp = s.specimen;
   const int d = s.dimension;
-  const std::string kind = t.choice("kind", {"particles", "sphere_list", "output", "random_box", "lattice"});
+  const std::string kind = t.choice("kind", {"particles", "sphere_list", "output", "random_box", "lattice", "packing"});
   if (kind == "particles") {
     sp.kind = SpecimenSpec::Kind::Particles;
     for (const Table& p : t.tables("particles")) {
@@ -107,7 +107,9 @@ void read_specimen(const Table& root, Scene& s) {
       }
     }
   } else {
-    sp.kind = kind == "lattice" ? SpecimenSpec::Kind::Lattice : SpecimenSpec::Kind::RandomBox;
+    sp.kind = kind == "lattice"   ? SpecimenSpec::Kind::Lattice
+              : kind == "packing" ? SpecimenSpec::Kind::Packing
+                                  : SpecimenSpec::Kind::RandomBox;
     sp.box_lo = vec(t, "lo", Unit::Length, d);
     sp.box_hi = vec(t, "hi", Unit::Length, d);
     for (int k = 0; k < d; ++k)
@@ -117,6 +119,17 @@ void read_specimen(const Table& root, Scene& s) {
       for (int k = 0; k < d; ++k)
         if (sp.box_hi[k] - sp.box_lo[k] < 2 * sp.radius_min)
           t.fail("radius", "the box [lo, hi] must be at least one diameter wide in every direction");
+    } else if (kind == "packing") {  // PFC material genesis, Tang §5.2
+      sp.radius_min = t.number("radius_min", Unit::Length, Range::positive());
+      sp.radius_ratio = t.number("radius_ratio", Unit::None, Range::at_least(1.0), 1.66);
+      sp.porosity = t.number("porosity", Unit::None, Range{0.05, 0.9, true, true}, d == 2 ? 0.16 : 0.36);
+      sp.stress = t.number("stress", Unit::Pressure, Range::positive(), 1e5);
+      sp.modulus = t.number("modulus", Unit::Pressure, Range::positive());
+      sp.cylinder = t.choice("shape", {"box", "cylinder"}, "box") == "cylinder";
+      if (sp.cylinder && d == 2) t.fail("shape", "a cylinder is a 3D shape; 2D packings fill the rectangle [lo, hi]");
+      for (int k = 0; k < d; ++k)
+        if (sp.box_hi[k] - sp.box_lo[k] < 6 * sp.radius_min * sp.radius_ratio)
+          t.fail("radius_min", "the box [lo, hi] must be at least three largest diameters wide in every direction");
     } else {
       sp.count = t.integer("count", Range::closed(1, 5e7));
       sp.radius_min = t.number("radius_min", Unit::Length, Range::positive());

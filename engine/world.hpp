@@ -42,6 +42,7 @@ class World {
   Particles<D> particles;
   std::vector<std::int64_t> ids;  // the specimen's own particle ids (a sphere list's first column), per index
   std::vector<std::vector<int>> groups;  // members of the scene's [[groups]], in its order
+  std::vector<std::pair<std::string, double>> specimen_facts;  // what generating the specimen measured
   std::vector<Wall<D>> walls;
   std::vector<std::unique_ptr<ContactSetBase<D>>> sets;
   std::vector<std::vector<int>> model_of;   // [phase_a][phase_b] → index in sets; −1: no interaction

@@ -1,0 +1,222 @@
+#include "preprocess/dense_packing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "contact_models/linear.hpp"
+#include "engine/cell_grid.hpp"
+#include "engine/errors.hpp"
+#include "engine/world.hpp"
+
+namespace mc {
+
+namespace {
+
+// Mean particle volume (area in 2D, t = 1 m) for radii uniform in [a, b]: E[πR²] and E[4πR³/3].
+template <int D>
+double mean_volume(double a, double b) {
+  if constexpr (D == 2) return M_PI * (a * a + a * b + b * b) / 3.0;
+  else return M_PI * (a + b) * (a * a + b * b) / 3.0;
+}
+
+template <int D>
+double box_volume(const Vec<D>& lo, const Vec<D>& hi) {
+  double v = 1;
+  for (int k = 0; k < D; ++k) v *= hi[k] - lo[k];
+  return v;
+}
+
+// Unbalanced force: mean |net force| on the particles over the mean |contact force| (PFC's equilibrium ratio).
+template <int D>
+double unbalanced_ratio(const World<D>& w) {
+  double fp = 0, fc = 0;
+  std::size_t nc = 0;
+  for (const auto& f : w.particles.f) fp += f.norm();
+  for (std::size_t s = 0; s < w.slot_count(); ++s) {
+    const double f = w.slot_force(s).norm();
+    if (f > 0) fc += f, ++nc;
+  }
+  if (nc == 0) return kInf;
+  return (fp / w.particles.size()) / (fc / static_cast<double>(nc));
+}
+
+template <int D>
+void set_radius(Particles<D>& p, int i, double r, double density) {
+  p.radius[i] = r;
+  p.mass[i] = density * Dim<D>::volume(r);
+  p.inertia[i] = Dim<D>::inertia_factor * p.mass[i] * r * r;
+}
+
+}  // namespace
+
+template <int D>
+Packing<D> dense_packing(const DensePackingSpec<D>& s, PackingReport* report) {
+  const double a = s.radius_min, b = s.radius_min * s.radius_ratio;
+  if (!(s.porosity > 0.05 && s.porosity < 0.9))
+    throw InputError("porosity " + std::to_string(s.porosity) + " is outside (0.05, 0.9)");
+  for (int k = 0; k < D; ++k)
+    if (s.hi[k] - s.lo[k] < 6 * b) throw InputError("the box must be at least 3 largest diameters wide in every direction");
+  const double volume = box_volume<D>(s.lo, s.hi);
+  const auto count = static_cast<std::int64_t>(std::llround((1 - s.porosity) * volume / mean_volume<D>(a, b)));
+
+  // Placed without overlap at half size: a packing fraction of (1 − n)/2^D, which random placement reaches.
+  Packing<D> half = random_box_packing<D>(s.lo, s.hi, count, 0.5 * a, 0.5 * b, s.seed);
+  // The drawn radii, grown back to twice their size, fill exactly 1 − n of the box: scale them to that.
+  double drawn = 0;
+  for (double r : half.radius) drawn += Dim<D>::volume(2 * r);
+  const double scale = std::pow((1 - s.porosity) * volume / drawn, 1.0 / D);
+  for (double& r : half.radius) r *= scale;
+
+  LinearParams lp;
+  lp.modulus = s.modulus;
+  lp.kn_ks_ratio = 1.0;
+  lp.friction = 0.0;  // frictionless genesis: the packing densifies to its own jammed state
+  World<D> w;
+  w.sets.push_back(std::make_unique<ContactSet<Linear, D>>(lp));
+  w.model_of = {{0}};
+  for (std::size_t i = 0; i < half.x.size(); ++i) w.particles.add(half.x[i], half.radius[i], s.density, 0);
+  WallMaterial wm;
+  wm.kn = wm.ks = Linear::ball_kn<D>(lp, 0.5 * (a + b));
+  for (int k = 0; k < D; ++k) {
+    const Vec<D> e = Vec<D>::Unit(k);
+    w.walls.push_back(Wall<D>::plane(s.lo, e));
+    w.walls.push_back(Wall<D>::plane(s.hi, -e));
+  }
+  for (auto& wl : w.walls) wl.material = wm;
+  for (int k = 0; k < D; ++k)
+    for (int j = 0; j < D; ++j)
+      if (j != k)
+        for (int side = 0; side < 2; ++side) w.walls[2 * k + side].area_between.push_back({2 * j, 2 * j + 1});
+  w.local_damping = 0.7;
+  const Vec<D> size = s.hi - s.lo;
+  w.domain_lo = s.lo - size;
+  w.domain_hi = s.hi + size;
+  w.init();
+
+  std::int64_t steps = 0;
+  auto settle = [&](double ratio, std::int64_t max_steps, auto done) {
+    for (std::int64_t n = 0; n < max_steps; ++n) {
+      w.step();
+      ++steps;
+      if (n % 100 == 99 && unbalanced_ratio(w) < ratio && done()) return true;
+    }
+    return false;
+  };
+  auto always = [] { return true; };
+
+  // Grown back to full size in ten steps, each followed by some cycling: the overlaps stay moderate.
+  for (int g = 1; g <= 10; ++g) {
+    const double f = (0.5 + 0.05 * g) / (0.5 + 0.05 * (g - 1));
+    for (int i = 0; i < w.particles.size(); ++i) set_radius(w.particles, i, w.particles.radius[i] * f, s.density);
+    w.init();  // radii changed: lists and timestep anew
+    settle(1e-2, 300, always);
+  }
+  settle(1e-3, 20000, always);
+  double solids = 0;
+  for (double r : w.particles.radius) solids += Dim<D>::volume(r);
+  const double grown = 1 - solids / volume;
+
+  // The isotropic stress is brought to σ0 by changing all radii uniformly, the walls staying put (Potyondy &
+  // Cundall 2004): with linear contacts the stress follows the mean overlap, so each round removes the share
+  // of it that is too much, and the packing settles again.
+  auto mean_stress = [&] {
+    double st = 0;
+    for (const auto& wl : w.walls) st += wl.normal_stress() / (2 * D);
+    return st;
+  };
+  auto mean_overlap = [&] {
+    const auto& p = w.particles;
+    double u = 0;
+    int n = 0;
+    for (const Pair& pr : w.sets[0]->pairs()) {
+      const double o = p.radius[pr[0]] + p.radius[pr[1]] - (p.x[pr[1]] - p.x[pr[0]]).norm();
+      if (o > 0) u += o, ++n;
+    }
+    return n > 0 ? u / n : 0.0;
+  };
+  // The scale of the radii is bracketed: a scale that left the stress above σ0 bounds it from above, one that
+  // left it below from below; the mean-overlap estimate is taken when it falls inside the bracket, else its
+  // middle.
+  const double mean_r = 0.5 * (a + b);
+  auto relieve = [&] {
+    double scale_now = 1, scale_hi = kInf, scale_lo = 0;
+    for (int round = 0; round <= 30; ++round) {
+      const double sigma = mean_stress();
+      if (std::abs(sigma - s.stress) <= 0.02 * s.stress) {
+        return true;
+      }
+      if (round == 30) return false;
+      (sigma > s.stress ? scale_hi : scale_lo) = scale_now;
+      // Overlap to remove per contact, ½ from each radius (negative: to add, when the packing came apart).
+      const double u = mean_overlap();
+      const double du = sigma > 0 ? u * (1 - s.stress / sigma) : -1e-3 * mean_r;
+      double next = scale_now * (1 - 0.5 * du / mean_r);
+      if (!(next > scale_lo && next < scale_hi)) next = scale_lo > 0 ? 0.5 * (scale_lo + scale_hi) : 0.999 * scale_hi;
+      for (int i = 0; i < w.particles.size(); ++i)
+        set_radius(w.particles, i, w.particles.radius[i] * (next / scale_now), s.density);
+      scale_now = next;
+      w.init();
+      settle(1e-2, 20000, always);
+    }
+    return false;
+  };
+  // Floaters: a particle with fewer than D + 1 contacts is grown just enough to touch its (D + 1)-th nearest
+  // neighbour, if that takes less than 10 % of its radius (a rattler in a wider cage is left), and the stress
+  // relieved again; three rounds. What is left is counted.
+  auto grow_floaters = [&](bool grow) {
+    const auto& p = w.particles;
+    std::vector<std::vector<double>> gaps(p.size());
+    for (const Pair& pr : candidate_pairs<D>(p.x, p.radius, a)) {
+      const double g = (p.x[pr[1]] - p.x[pr[0]]).norm() - p.radius[pr[0]] - p.radius[pr[1]];
+      gaps[pr[0]].push_back(g), gaps[pr[1]].push_back(g);
+    }
+    int n = 0;
+    for (int i = 0; i < p.size(); ++i) {
+      auto& g = gaps[i];
+      std::sort(g.begin(), g.end());
+      if (g.size() > std::size_t(D) && g[D] < 0) continue;  // held
+      ++n;
+      if (grow && g.size() > std::size_t(D) && g[D] < 0.1 * p.radius[i])
+        set_radius(w.particles, i, p.radius[i] + g[D] + 1e-6 * a, s.density);
+    }
+    return n;
+  };
+  bool settled = relieve();
+  for (int round = 0; round < 3 && settled; ++round) {
+    if (grow_floaters(true) == 0) break;
+    w.init();
+    settle(1e-2, 20000, always);
+    settled = relieve();
+  }
+  if (!settled) {
+    std::ostringstream m;
+    m << "the genesis did not reach the isotropic stress " << s.stress << " Pa within 2 % in 30 rounds of radius "
+      << "change (" << steps << " steps; the mean wall stress is " << mean_stress() << " Pa)";
+    throw InputError(m.str());
+  }
+  const int floaters = grow_floaters(false);
+
+  Packing<D> out;
+  const Vec<D> centre = 0.5 * (s.lo + s.hi);
+  const double rc = 0.5 * std::min(size[0], size[1]);
+  for (int i = 0; i < w.particles.size(); ++i) {
+    const Vec<D>& x = w.particles.x[i];
+    if constexpr (D == 3)
+      if (s.shape == DensePackingSpec<D>::Shape::Cylinder && (x - centre).template head<2>().norm() > rc) continue;
+    out.x.push_back(x);
+    out.radius.push_back(w.particles.radius[i]);
+  }
+  if (report) {
+    double solid = 0;
+    for (double r : w.particles.radius) solid += Dim<D>::volume(r);
+    *report = {static_cast<std::int64_t>(out.x.size()), grown, 1 - solid / volume, mean_stress(), floaters, steps};
+  }
+  return out;
+}
+
+template Packing<2> dense_packing<2>(const DensePackingSpec<2>&, PackingReport*);
+template Packing<3> dense_packing<3>(const DensePackingSpec<3>&, PackingReport*);
+
+}  // namespace mc

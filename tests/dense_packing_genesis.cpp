@@ -1,0 +1,72 @@
+// PFC material genesis (preprocess/dense_packing): the grown packing has the porosity asked for, the settled
+// one carries the isotropic stress asked for with hardly any overlap, floaters are few, and the same seed gives
+// the same packing bit for bit.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "engine/cell_grid.hpp"
+#include "preprocess/dense_packing.hpp"
+
+using namespace mc;
+
+namespace {
+
+template <int D>
+DensePackingSpec<D> spec(std::uint64_t seed) {
+  DensePackingSpec<D> s;
+  s.lo = Vec<D>::Zero();
+  s.hi = Vec<D>::Constant(D == 2 ? 12e-3 : 10e-3);
+  if constexpr (D == 2) s.hi[1] = 24e-3;
+  s.radius_min = D == 2 ? 0.3e-3 : 0.5e-3;
+  s.porosity = D == 2 ? 0.16 : 0.36;  // Tang §5.2: the porosities of his PFC2D / PFC3D specimens
+  s.stress = 1e5;
+  s.modulus = 20e9;
+  s.density = 2400;
+  s.seed = seed;
+  return s;
+}
+
+template <int D>
+void genesis() {
+  const auto s = spec<D>(5);
+  PackingReport rep;
+  const Packing<D> p = dense_packing<D>(s, &rep);
+  MESSAGE(D, "D: ", rep.count, " particles, porosity grown ", rep.porosity_grown, ", final ", rep.porosity_final,
+          ", stress ", rep.stress_final, " Pa, floaters ", rep.floaters, ", steps ", rep.steps);
+  REQUIRE(p.x.size() > 200);
+  // Grown to exactly the porosity asked for (the radii are scaled to it; round-off only).
+  CHECK(rep.porosity_grown == doctest::Approx(s.porosity).epsilon(1e-9));
+  // Relieved to the isotropic stress within the genesis' 2 % tolerance; the packing loosens to its jammed
+  // porosity at that stress (a few % above the grown one, see dense_packing.hpp), never denser than grown.
+  CHECK(rep.stress_final == doctest::Approx(s.stress).epsilon(0.02));
+  CHECK(rep.porosity_final >= rep.porosity_grown);
+  CHECK(rep.porosity_final < 1.10 * s.porosity);
+  // Rattlers in wide cages are few (frictionless jammed packings hold ~5 %).
+  CHECK(rep.floaters < 0.10 * rep.count);
+  // Inside the box, and overlaps of the order σ0/E_c R only (≈ 5e-6 R), far below the 1e-3 R asserted.
+  double worst = 0;
+  for (std::size_t i = 0; i < p.x.size(); ++i)
+    for (int k = 0; k < D; ++k) {
+      CHECK(p.x[i][k] > s.lo[k]);
+      CHECK(p.x[i][k] < s.hi[k]);
+    }
+  for (const Pair& pr : candidate_pairs<D>(p.x, p.radius, 0.0)) {
+    const double overlap = p.radius[pr[0]] + p.radius[pr[1]] - (p.x[pr[1]] - p.x[pr[0]]).norm();
+    worst = std::max(worst, overlap / std::min(p.radius[pr[0]], p.radius[pr[1]]));
+  }
+  CHECK(worst < 1e-3);
+  // Reproducible by seed, and a different seed gives a different packing.
+  const Packing<D> again = dense_packing<D>(s);
+  REQUIRE(again.x.size() == p.x.size());
+  bool same = true;
+  for (std::size_t i = 0; i < p.x.size(); ++i) same = same && again.x[i] == p.x[i] && again.radius[i] == p.radius[i];
+  CHECK(same);
+  const Packing<D> other = dense_packing<D>(spec<D>(6));
+  CHECK((other.x.size() != p.x.size() || other.x[0] != p.x[0]));
+}
+
+}  // namespace
+
+TEST_CASE("dense_packing_genesis_reaches_porosity_and_stress_and_is_reproducible_2d") { genesis<2>(); }
+TEST_CASE("dense_packing_genesis_reaches_porosity_and_stress_and_is_reproducible_3d") { genesis<3>(); }
