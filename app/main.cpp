@@ -53,13 +53,19 @@ int run(const std::string& scene_file, std::string output, const std::vector<std
   return 0;
 }
 
+int report(const std::string& file) {
+  const std::string cmd = "/usr/bin/python3 " + shell_quote(report_script()) + " " + shell_quote(file);
+  const int rc = std::system(cmd.c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : 1;
+}
+
 int generate(const std::string& scene_file, const std::string& output, const std::vector<std::string>& sets, int threads) {
   if (output.empty()) throw mc::InputError("generate: give the specimen file with -o SPECIMEN.h5");
   if (threads > 0) omp_set_num_threads(threads);
   const mc::Scene scene = mc::read_scene(mc::TomlDoc::load(scene_file, sets), scene_file);
   for (const auto& [name, value] : mc::generate_specimen(scene, output)) std::fprintf(stderr, "%s = %.6g\n", name.c_str(), value);
   std::fprintf(stderr, "specimen -> %s\n", output.c_str());
-  return 0;
+  return report(output);  // the picture: particles by phase, aggregate outlines
 }
 
 }  // namespace
@@ -100,11 +106,7 @@ int main(int argc, char** argv) {
       std::cout << mc::summary_json(target);
       return 0;
     }
-    if (*report_cmd) {
-      const std::string cmd = "/usr/bin/python3 " + shell_quote(report_script()) + " " + shell_quote(target);
-      const int rc = std::system(cmd.c_str());
-      return WIFEXITED(rc) ? WEXITSTATUS(rc) : 1;
-    }
+    if (*report_cmd) return report(target);
   } catch (const mc::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 2;

@@ -22,7 +22,7 @@ matplotlib.use("Agg")  # headless: no display on compute nodes or CI
 import h5py  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from matplotlib.collections import EllipseCollection, LineCollection  # noqa: E402
+from matplotlib.collections import EllipseCollection, LineCollection, PolyCollection  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
@@ -116,7 +116,8 @@ def read_run(f):
         phase = np.asarray(spec["phase"], dtype=int) if "phase" in spec else np.zeros(len(r), int)
         names = text(spec.attrs.get("phase_names", "")).split(",") if "phase_names" in spec.attrs else []
         if len(x) == len(r) == len(phase):
-            run["specimen"] = {"x": x, "radius": r, "phase": phase, "phase_names": [n.strip() for n in names]}
+            run["specimen"] = {"x": x, "radius": r, "phase": phase, "phase_names": [n.strip() for n in names],
+                               "outlines": read_outlines(spec)}
 
     run["cracks"] = read_cracks(f, D, run["specimen"])
 
@@ -132,6 +133,22 @@ def read_run(f):
                             "force": (np.asarray(frames["force"][k], dtype=float).reshape(-1, D)
                                       if "force" in frames else None)}
     return run
+
+
+def read_outlines(spec):
+    """Aggregate outlines in the picture plane (2D; 3D: the mid-plane section), or []."""
+    if "outline_xy" not in spec or "outline_start" not in spec:
+        return []
+    xy = np.asarray(spec["outline_xy"], dtype=float).reshape(-1, 2)
+    start = np.asarray(spec["outline_start"], dtype=int)
+    return [xy[a:b] for a, b in zip(start[:-1], start[1:]) if b - a >= 3]
+
+
+def draw_outlines(ax, run, factor):
+    outlines = run["specimen"]["outlines"] if run["specimen"] else []
+    if outlines:
+        ax.add_collection(PolyCollection([o * factor for o in outlines], facecolors="none", edgecolors="0.1",
+                                         linewidths=0.8))
 
 
 def read_cracks(f, D, spec):
@@ -351,6 +368,7 @@ def plot_specimen(run, stem, out_dir):
     names = run["specimen"]["phase_names"]
     cmap = plt.get_cmap("tab10")
     draw_discs(axes[0], xy, r, limits, factor, facecolors=cmap(phase % 10))
+    draw_outlines(axes[0], run, factor)
     handles = [Patch(facecolor=cmap(p % 10), edgecolor="0.2",
                      label=names[p] if 0 <= p < len(names) and names[p] else f"phase {p}")
                for p in np.unique(phase)]
@@ -394,6 +412,7 @@ def plot_cracks(run, stem, out_dir):
         ax.set_aspect("equal")
     ax.set_xlabel(f"{ax0} [{lunit}]")
     ax.set_ylabel(f"{ax1} [{lunit}]")
+    draw_outlines(ax, run, factor)
     names = run["specimen"]["phase_names"]
     pname = lambda p: names[p] if 0 <= p < len(names) and names[p] else f"phase {p}"
     pairs = sorted({(min(a, b), max(a, b)) for a, b in zip(c["phase_a"], c["phase_b"])})

@@ -6,6 +6,7 @@
 #include "engine/errors.hpp"
 #include "engine/h5_file.hpp"
 #include "preprocess/dense_packing.hpp"
+#include "preprocess/aggregate_placement.hpp"
 #include "preprocess/random_box.hpp"
 #include "preprocess/regular_packing.hpp"
 #include "preprocess/spatial_order.hpp"
@@ -213,6 +214,75 @@ void apply_groups(const Scene& s, World<D>& w, const std::vector<int>& tags) {
   }
 }
 
+// Tang §4.2–4.3.1: aggregates laid over the specimen; mortar particles whose centres fall in one become aggregate.
+template <int D>
+void apply_mesostructure(const Scene& s, World<D>& w) {
+  const MesostructureSpec& m = s.mesostructure;
+  auto& p = w.particles;
+  PlacementSpec<D> spec;
+  if (!m.lo.empty()) {
+    spec.lo = v_of<D>(m.lo), spec.hi = v_of<D>(m.hi);
+  } else {
+    spec.lo = spec.hi = p.x[0];
+    for (int i = 0; i < p.size(); ++i)
+      spec.lo = spec.lo.cwiseMin(p.x[i] - Vec<D>::Constant(p.radius[i])), spec.hi = spec.hi.cwiseMax(p.x[i] + Vec<D>::Constant(p.radius[i]));
+  }
+  spec.grading.ranges.clear();
+  for (const auto& r : m.ranges) spec.grading.ranges.push_back({r[0], r[1], r[2]});
+  spec.fraction = m.fraction;
+  for (std::size_t k = 0; k < m.keep_out_lo.size(); ++k)
+    spec.keep_out_boxes.push_back({v_of<D>(m.keep_out_lo[k]), v_of<D>(m.keep_out_hi[k])});
+  for (std::size_t k = 0; k < m.keep_out_centre.size(); ++k)
+    spec.keep_out_balls.push_back({v_of<D>(m.keep_out_centre[k]), m.keep_out_radius[k]});
+  spec.cells_per_dmin = m.cells_per_dmin;
+  spec.seed = s.seed ^ 0x6d65736fULL;  // its own stream: the packing and the aggregates do not share draws
+  AggregateLayout<D> layout;
+  try {
+    layout = place_aggregates<D>(spec);
+  } catch (const InputError& e) {
+    throw InputError(s.file + ": [mesostructure]: " + e.what());
+  }
+  const double rho = s.phases[m.aggregate_phase].density;
+  double volume_all = 0, volume_agg = 0;
+  std::int64_t n_agg = 0;
+  for (int i = 0; i < p.size(); ++i) {
+    volume_all += Dim<D>::volume(p.radius[i]);
+    if (p.phase[i] != m.mortar_phase || layout.aggregate_at(p.x[i]) == 0) continue;
+    p.phase[i] = m.aggregate_phase;
+    p.mass[i] = rho * Dim<D>::volume(p.radius[i]);
+    p.inertia[i] = Dim<D>::inertia_factor * p.mass[i] * p.radius[i] * p.radius[i];
+    volume_agg += Dim<D>::volume(p.radius[i]);
+    ++n_agg;
+  }
+  auto& f = w.specimen_facts;
+  f.push_back({"aggregate_fraction_target", layout.target_fraction});
+  f.push_back({"aggregate_fraction_achieved", layout.achieved_fraction});
+  f.push_back({"aggregate_target_reached", layout.reached ? 1.0 : 0.0});
+  f.push_back({"aggregates", static_cast<double>(layout.aggregates.size())});
+  f.push_back({"aggregate_particles", static_cast<double>(n_agg)});
+  f.push_back({"aggregate_particle_fraction", volume_agg / volume_all});  // by particle area / volume (Fig. 4.14)
+  for (std::size_t r = 0; r < layout.ranges.size(); ++r) {
+    f.push_back({"aggregate_range" + std::to_string(r) + "_share_target", layout.ranges[r].target_share});
+    f.push_back({"aggregate_range" + std::to_string(r) + "_share_achieved", layout.ranges[r].achieved_share});
+  }
+  // Outlines for pictures: 2D polygons; 3D sections at the middle of the specimen along y, as (x, z).
+  double yc = 0;
+  if constexpr (D == 3) {
+    double lo = kInf, hi = -kInf;
+    for (int i = 0; i < p.size(); ++i) lo = std::min(lo, p.x[i][1] - p.radius[i]), hi = std::max(hi, p.x[i][1] + p.radius[i]);
+    yc = 0.5 * (lo + hi);
+  }
+  for (const auto& a : layout.aggregates) {
+    std::vector<std::array<double, 2>> o;
+    if constexpr (D == 2) {
+      for (const auto& v : a.shape.v) o.push_back({v[0], v[1]});
+    } else {
+      for (const auto& v : section(a.shape, 1, yc).v) o.push_back({v[1], v[0]});  // section gives (z, x)
+    }
+    if (!o.empty()) w.outlines.push_back(std::move(o));
+  }
+}
+
 template <int D>
 void set_domain(const Scene& s, World<D>& w) {
   if (!s.domain_lo.empty()) {
@@ -247,6 +317,7 @@ World<D> build_world(const Scene& s) {
   using K = SpecimenSpec::Kind;
   if (s.specimen.kind == K::SphereList || s.specimen.kind == K::RandomBox || s.specimen.kind == K::Packing)
     spatial_sort<D>(w.particles, tags, w.ids);
+  if (s.mesostructure.present) apply_mesostructure<D>(s, w);
   const int np = static_cast<int>(s.phases.size());
   w.model_of.assign(np, std::vector<int>(np, -1));
   for (const ContactSpec& c : s.contacts) {

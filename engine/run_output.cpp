@@ -35,6 +35,16 @@ RunOutput::RunOutput(const std::string& path, const std::string& scene_text, con
   file_.write("/specimen/id", s.id, {n});
   file_.set_attr("/specimen", "phase_names", join(s.phase_names));
   for (const auto& [name, value] : s.facts) file_.set_attr("/specimen", name, value);
+  if (!s.outlines.empty()) {  // /specimen/outline_xy [M, 2], outline_start [K + 1]: polygon k is rows start[k]..start[k+1]
+    std::vector<double> xy;
+    std::vector<std::int64_t> start{0};
+    for (const auto& o : s.outlines) {
+      for (const auto& v : o) xy.insert(xy.end(), {v[0], v[1]});
+      start.push_back(static_cast<std::int64_t>(xy.size() / 2));
+    }
+    file_.write("/specimen/outline_xy", xy, {xy.size() / 2, 2});
+    file_.write("/specimen/outline_start", start, {start.size()});
+  }
   file_.create_table("/frames/time", 0);
   file_.create_table("/frames/step", 0, true);
   for (const char* f : {"/frames/x", "/frames/v", "/frames/force"}) file_.create_table(f, n * s.dimension);

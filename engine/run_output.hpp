@@ -2,6 +2,7 @@
 // checkpoints, status; an XDMF sidecar so ParaView opens the frames; histories as CSV when the run ends.
 // Everything written is flushed at once (`flush`), so a run killed at any moment leaves a readable file.
 #pragma once
+#include <array>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@ struct SpecimenData {
   std::vector<std::string> phase_names;
   std::vector<std::int64_t> id;   // the specimen's own ids (particles may be renumbered for locality)
   std::vector<std::pair<std::string, double>> facts;  // attributes of /specimen (a generated packing's porosity …)
+  std::vector<std::vector<std::array<double, 2>>> outlines;  // aggregate outlines in the picture plane
 };
 
 class RunOutput {

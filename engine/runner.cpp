@@ -29,7 +29,7 @@ struct StopState {
 
 template <int D>
 SpecimenData specimen_data(const World<D>& w, const Scene& s) {
-  SpecimenData d{D, {}, w.particles.radius, {}, {}, w.ids, w.specimen_facts};
+  SpecimenData d{D, {}, w.particles.radius, {}, {}, w.ids, w.specimen_facts, w.outlines};
   for (const auto& x : w.particles.x) d.x.insert(d.x.end(), x.data(), x.data() + D);
   d.phase.assign(w.particles.phase.begin(), w.particles.phase.end());
   for (const auto& p : s.phases) d.phase_names.push_back(p.name);
@@ -161,7 +161,15 @@ class Run {
     // init() may refuse the scene (a fixed timestep above the estimate): before the output file exists.
     try {
       world_.init();
-      if (scene_.bond_tolerance >= 0) world_.install_bonds(scene_.bond_tolerance, scene_.seed);
+      if (scene_.bond_tolerance >= 0) {
+        world_.install_bonds(scene_.bond_tolerance, scene_.seed);
+        // Bonds per phase pair (mortar, aggregate, ITZ …): written with the specimen.
+        for (std::size_t c = 0; c < scene_.contacts.size(); ++c)
+          if (scene_.contacts[c].model.bonds)
+            world_.specimen_facts.push_back({"bonds_" + scene_.phases[scene_.contacts[c].phase_a].name + "-" +
+                                                 scene_.phases[scene_.contacts[c].phase_b].name,
+                                             static_cast<double>(world_.sets[c]->bond_count())});
+      }
     } catch (const InputError& e) {
       throw InputError(scene_.file + ": " + e.what());
     }

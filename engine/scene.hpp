@@ -56,6 +56,20 @@ struct SpecimenSpec {
   double radius_ratio = 1.66, porosity = 0.16, stress = 1e5, modulus = 0;
 };
 
+// Coarse aggregate laid over the specimen (Tang ch. 4): particles of the mortar phase whose centres fall in an
+// aggregate join the aggregate phase; the contact table then gives aggregate, mortar and ITZ pairs their models.
+struct MesostructureSpec {
+  bool present = false;
+  double fraction = 0;                              // target aggregate area / volume fraction of the domain
+  std::vector<std::array<double, 3>> ranges;        // (lo, hi, share) [m, m, -]; shares normalised
+  std::vector<double> lo, hi;                       // the domain; empty: the specimen's bounding box
+  std::vector<std::vector<double>> keep_out_lo, keep_out_hi;  // boxes that stay mortar (a notch)
+  std::vector<std::vector<double>> keep_out_centre;           // balls that stay mortar (around a notch tip)
+  std::vector<double> keep_out_radius;
+  double cells_per_dmin = 5;                        // background grid, Tang (4.6)
+  int mortar_phase = 0, aggregate_phase = 0;
+};
+
 struct WallSpec {
   std::string name;
   enum class Kind { Plane, Segment, Rectangle } kind;
@@ -120,6 +134,7 @@ struct Scene {
   std::string title;
 
   SpecimenSpec specimen;
+  MesostructureSpec mesostructure;
   std::vector<PhaseSpec> phases;
   std::vector<ContactSpec> contacts;
   std::vector<WallSpec> walls;

@@ -281,6 +281,52 @@ void read_physics(const Table& root, Scene& s) {
   }
 }
 
+void read_mesostructure(const Table& root, Scene& s) {
+  auto t = root.optional_table("mesostructure");
+  if (!t) return;
+  const int d = s.dimension;
+  MesostructureSpec& m = s.mesostructure;
+  m.present = true;
+  m.fraction = t->number("fraction", Unit::None, Range{0.0, 1.0, true, true});
+  // Tang Table 4.1 (4–8, 8–16, 16–32, 32–64 mm at 2:2:3:3), scaled by size_scale; or explicit ranges.
+  const std::string grading = t->choice("grading", {"table_4_1", "ranges"}, "table_4_1");
+  const double scale = t->number("size_scale", Unit::None, Range::positive(), 1.0);
+  if (grading == "table_4_1") {
+    for (auto [lo, hi, share] : {std::array<double, 3>{4, 8, 2}, {8, 16, 2}, {16, 32, 3}, {32, 64, 3}})
+      m.ranges.push_back({lo * 1e-3 * scale, hi * 1e-3 * scale, share / 10});
+  } else {
+    double total = 0;
+    for (const Table& r : t->tables("ranges")) {
+      const double lo = r.number("lo", Unit::Length, Range::positive());
+      const double hi = r.number("hi", Unit::Length, Range{lo, kInf, true, false});
+      const double share = r.number("share", Unit::None, Range::positive());
+      m.ranges.push_back({lo * scale, hi * scale, share});
+      total += share;
+      r.finish();
+    }
+    if (m.ranges.empty()) t->fail("ranges", "grading = \"ranges\" needs at least one [[mesostructure.ranges]] with lo, hi, share");
+    for (auto& r : m.ranges) r[2] /= total;
+  }
+  m.lo = opt_vec(*t, "lo", Unit::Length, d);
+  m.hi = opt_vec(*t, "hi", Unit::Length, d);
+  if (m.lo.empty() != m.hi.empty()) t->fail(m.lo.empty() ? "hi" : "lo", "lo and hi go together");
+  for (const Table& k : t->tables("keep_out")) {
+    if (k.has("radius")) {
+      m.keep_out_centre.push_back(vec(k, "centre", Unit::Length, d));
+      m.keep_out_radius.push_back(k.number("radius", Unit::Length, Range::positive()));
+    } else {
+      m.keep_out_lo.push_back(vec(k, "box_lo", Unit::Length, d));
+      m.keep_out_hi.push_back(vec(k, "box_hi", Unit::Length, d));
+    }
+    k.finish();
+  }
+  m.cells_per_dmin = t->number("cells_per_dmin", Unit::None, Range::closed(5, 10), 5);
+  m.mortar_phase = phase_index(*t, "mortar_phase", s.phases);
+  m.aggregate_phase = phase_index(*t, "aggregate_phase", s.phases);
+  if (m.mortar_phase == m.aggregate_phase) t->fail("aggregate_phase", "must differ from mortar_phase");
+  t->finish();
+}
+
 void read_bonds(const Table& root, Scene& s) {
   if (auto t = root.optional_table("bonds")) {
     // Bonds are installed once, on the specimen as built (a packing loaded from an earlier run is settled).
@@ -413,6 +459,7 @@ Scene read_scene(const TomlDoc& doc, const std::string& file) {
   read_phases(root, s);
   read_contacts(root, s);
   read_specimen(root, s);
+  read_mesostructure(root, s);
   read_walls(root, s);
   read_groups(root, s);
   read_physics(root, s);

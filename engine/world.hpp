@@ -2,6 +2,7 @@
 // contact detection → force–displacement per contact model → gather per particle → law of motion →
 // walls. What the scene observes (histories, frames, measurements) is driven from outside, by the runner.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -43,6 +44,9 @@ class World {
   std::vector<std::int64_t> ids;  // the specimen's own particle ids (a sphere list's first column), per index
   std::vector<std::vector<int>> groups;  // members of the scene's [[groups]], in its order
   std::vector<std::pair<std::string, double>> specimen_facts;  // what generating the specimen measured
+  // Aggregate outlines in the picture plane (2D: x–y; 3D: the section through the specimen's middle along y,
+  // as (x, z)), for drawing.
+  std::vector<std::vector<std::array<double, 2>>> outlines;
   std::vector<Wall<D>> walls;
   std::vector<std::unique_ptr<ContactSetBase<D>>> sets;
   std::vector<std::vector<int>> model_of;   // [phase_a][phase_b] → index in sets; −1: no interaction

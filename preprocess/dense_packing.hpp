@@ -1,8 +1,8 @@
 // Dense random packings by PFC material genesis (Potyondy & Cundall 2004; Tang 2013 §5.2): particles with radii
 // uniform in [R_min, R_max] are placed without overlap at half their radii inside a walled box, grown back in
 // steps to their full size (the box then holds them at exactly the target porosity) and settled; then all radii
-// are changed uniformly, the walls staying put, until the isotropic stress is the small one asked for; last,
-// particles with fewer than D + 1 contacts (floaters) are grown just enough to touch a (D + 1)-th neighbour.
+// are changed uniformly, the walls staying put, until the isotropic stress is the small one asked for.
+// Particles with fewer than D + 1 near neighbours (floaters, rattlers of the jammed packing) are counted.
 // The genesis uses frictionless linear contacts with the material's contact modulus, so the stress locked in
 // when the packing is bonded is the isotropic stress asked for.
 //
@@ -36,7 +36,7 @@ struct PackingReport {
   double porosity_grown = 0;       // in the box, once grown to full size (the target, up to the count's rounding)
   double porosity_final = 0;       // in the box at the end (before carving a cylinder)
   double stress_final = 0;         // mean wall stress at the end [Pa]
-  int floaters = 0;                // particles left with fewer than D + 1 contacts (rattlers in wide cages)
+  int floaters = 0;                // particles with fewer than D + 1 neighbours within 1e-3 R_min
   std::int64_t steps = 0;          // genesis steps
 };
 

@@ -898,6 +898,61 @@ TEST_CASE("crack_log_of_a_bonded_bar_pulled_apart_is_complete_and_survives_resum
   check_same_run(d / "whole.h5", d / "halves.h5");
 }
 
+// `generate` builds a scene's specimen without running it: here a PFC genesis packing with aggregates laid over
+// it. The file carries what the generation measured (porosity, stress, aggregate fractions) and the aggregate
+// outlines, is drawn by report, and an other scene loads it (kind = "output") and runs on it.
+TEST_CASE("generate_writes_a_mesostructure_packing_that_a_scene_loads") {
+  const TempDir d;
+  write_file(d / "gen.toml",
+             "title = \"genesis\"\ndimension = 2\nseed = 3\n"
+             "[[phases]]\nname = \"mortar\"\ndensity = \"2200 kg/m3\"\n"
+             "[[phases]]\nname = \"aggregate\"\ndensity = \"2700 kg/m3\"\n"
+             "[[contacts]]\nphase_a = \"mortar\"\nphase_b = \"mortar\"\nmodel = \"linear\"\nmodulus = \"20 GPa\"\n"
+             "[[contacts]]\nphase_a = \"aggregate\"\nmodel = \"linear\"\nmodulus = \"20 GPa\"\n"
+             "[[contacts]]\nphase_a = \"mortar\"\nphase_b = \"aggregate\"\nmodel = \"linear\"\nmodulus = \"20 GPa\"\n"
+             "[specimen]\nkind = \"packing\"\nlo = [0, 0]\nhi = [\"20 mm\", \"20 mm\"]\nradius_min = \"0.3 mm\"\n"
+             "modulus = \"20 GPa\"\nphase = \"mortar\"\n"
+             "[mesostructure]\nfraction = 0.3\ngrading = \"ranges\"\nmortar_phase = \"mortar\"\naggregate_phase = \"aggregate\"\n"
+             "[[mesostructure.ranges]]\nlo = \"3 mm\"\nhi = \"6 mm\"\nshare = 1\n"
+             "[run]\nsteps = 1\n");
+  const Result g = mesocrack({"generate", "gen.toml", "-o", "specimen.h5"}, d.dir);
+  REQUIRE_MESSAGE(g.code == 0, g.describe());
+  CHECK(contains(g.out, "specimen.png"));  // the picture, drawn by report
+  CHECK(fs::exists(d / "specimen_specimen.png"));
+  {
+    const mc::H5File f((d / "specimen.h5").string(), mc::H5File::Mode::ReadOnly);
+    CHECK(f.attr_string("/", "status") == "finished");
+    CHECK(f.attr_double("/specimen", "packing_porosity_grown") == doctest::Approx(0.16).epsilon(1e-9));
+    CHECK(f.attr_double("/specimen", "packing_stress_final") == doctest::Approx(1e5).epsilon(0.02));
+    CHECK(f.attr_double("/specimen", "aggregate_fraction_achieved") == doctest::Approx(0.3).epsilon(1e-9));
+    // Particles take the aggregate phase by their centres: their share tends to the aggregate fraction
+    // (Tang Fig. 4.14); at L/R ≈ 50 it is within a few percent.
+    CHECK(f.attr_double("/specimen", "aggregate_particle_fraction") == doctest::Approx(0.3).epsilon(0.15));
+    CHECK(f.rows("/specimen/outline_start") > 3);
+    const auto phase = f.read_ints("/specimen/phase");
+    CHECK(std::count(phase.begin(), phase.end(), 1) > 0);
+  }
+  write_file(d / "use.toml",
+             "title = \"use\"\ndimension = 2\n"
+             "[[phases]]\nname = \"mortar\"\ndensity = \"2200 kg/m3\"\n"
+             "[[phases]]\nname = \"aggregate\"\ndensity = \"2700 kg/m3\"\n"
+             "[[contacts]]\nphase_a = \"mortar\"\nmodel = \"parallel_bond\"\nmodulus = \"20 GPa\"\nbond_modulus = \"20 GPa\"\n"
+             "bond_tensile_strength = \"8 MPa\"\nbond_shear_strength = \"16 MPa\"\n"
+             "[[contacts]]\nphase_a = \"aggregate\"\nmodel = \"parallel_bond\"\nmodulus = \"40 GPa\"\nbond_modulus = \"40 GPa\"\n"
+             "bond_tensile_strength = \"30 MPa\"\nbond_shear_strength = \"60 MPa\"\n"
+             "[[contacts]]\nphase_a = \"mortar\"\nphase_b = \"aggregate\"\nmodel = \"parallel_bond\"\nmodulus = \"15 GPa\"\n"
+             "bond_modulus = \"15 GPa\"\nbond_tensile_strength = \"4 MPa\"\nbond_shear_strength = \"8 MPa\"\n"
+             "[bonds]\ngap_tolerance = 0.01\n"
+             "[specimen]\nkind = \"output\"\nfile = \"specimen.h5\"\n"
+             "[run]\nsteps = 50\n");
+  const Result r = mesocrack({"run", "use.toml", "-o", "run.h5"}, d.dir);
+  REQUIRE_MESSAGE(r.code == 0, r.describe());
+  const mc::H5File f((d / "run.h5").string(), mc::H5File::Mode::ReadOnly);
+  // Bonds of all three phase pairs (mortar, aggregate, ITZ) are installed and counted.
+  for (const char* pair : {"bonds_mortar-mortar", "bonds_aggregate-aggregate", "bonds_mortar-aggregate"})
+    CHECK_MESSAGE(f.attr_double("/specimen", pair) > 0, pair);
+}
+
 // A run that ended on its stop condition keeps that end: resuming it (its final checkpoint holds the reason)
 // must not carry it on past the condition.
 TEST_CASE("resumed_stopped_run_stays_stopped") {
