@@ -3,19 +3,20 @@
 // truncated to positive values.
 #include "contact_models/contact_bond.hpp"
 
+#include <tuple>
+
 #include "engine/contact_registry.hpp"
 
 namespace mc {
 
-LinearParams read_linear_params(const Table& t);  // contact_models/linear.cpp
+LinearParams read_linear_params(const Table& t);                                   // contact_models/linear.cpp
+std::tuple<double, double, double> read_strength(const Table& t, const std::string& key, Unit u);  // contact_models/linear.cpp
 
 // Also read by the softening bond, which has these keys too.
 void read_contact_bond_params(const Table& t, ContactBondParams& p) {
   p.contact = read_linear_params(t);
-  p.normal_mean = t.number("bond_normal_strength", Unit::Force, Range::positive());
-  p.normal_std = t.number("bond_normal_strength_std", Unit::Force, Range::non_negative(), 0.0);
-  p.shear_mean = t.number("bond_shear_strength", Unit::Force, Range::positive());
-  p.shear_std = t.number("bond_shear_strength_std", Unit::Force, Range::non_negative(), 0.0);
+  std::tie(p.normal_mean, p.normal_std, p.normal_weibull) = read_strength(t, "bond_normal_strength", Unit::Force);
+  std::tie(p.shear_mean, p.shear_std, p.shear_weibull) = read_strength(t, "bond_shear_strength", Unit::Force);
 }
 
 ModelSpec contact_bond_model(const Table& t) {

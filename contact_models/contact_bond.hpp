@@ -12,8 +12,10 @@ namespace mc {
 
 struct ContactBondParams {
   LinearParams contact;                          // springs, friction and dashpots, Tang (3.25)–(3.26), (3.38)
-  double normal_mean = kNaN, normal_std = 0.0;   // normal (tensile) strength [N], normal distribution truncated to > 0
-  double shear_mean = kNaN, shear_std = 0.0;     // shear strength [N]
+  // Normal (tensile) and shear strength [N]: normal (mean, std) truncated to > 0, or with a Weibull shape
+  // k > 0 Weibull with scale λ = the "mean" field (Tang 8.4).
+  double normal_mean = kNaN, normal_std = 0.0, normal_weibull = 0.0;
+  double shear_mean = kNaN, shear_std = 0.0, shear_weibull = 0.0;
 };
 
 struct ContactBond {
@@ -41,8 +43,8 @@ struct ContactBond {
   template <int D, class Normal>
   static void install(const Params& p, const ContactGeometry<D>& g, State<D>& s, Normal& normal) {
     s.gap0 = std::max(0.0, -g.overlap);
-    s.normal = normal(p.normal_mean, p.normal_std);
-    s.shear = normal(p.shear_mean, p.shear_std);
+    s.normal = normal(p.normal_mean, p.normal_std, p.normal_weibull);
+    s.shear = normal(p.shear_mean, p.shear_std, p.shear_weibull);
   }
 
   // Never bonded, or broken: a linear contact with slip.

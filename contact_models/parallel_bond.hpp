@@ -16,8 +16,10 @@ struct ParallelBondParams {
   double radius_multiplier = 1.0;    // λ̄ [-], Tang (3.40)
   double modulus = kNaN;             // Ē_c [Pa]: k̄_n = Ē_c / (R_A + R_B), Tang (3.38)
   double kn_ks_ratio = 1.0;          // k̄_n / k̄_s [-]
-  double tensile_mean = kNaN, tensile_std = 0.0;  // σ̄_c [Pa], normal distribution truncated to > 0
-  double shear_mean = kNaN, shear_std = 0.0;      // τ̄_c [Pa]
+  // σ̄_c, τ̄_c [Pa]: normal (mean, std) truncated to > 0, or with a Weibull shape k > 0 Weibull with scale
+  // λ = the "mean" field (Tang 8.4).
+  double tensile_mean = kNaN, tensile_std = 0.0, tensile_weibull = 0.0;
+  double shear_mean = kNaN, shear_std = 0.0, shear_weibull = 0.0;
 };
 
 // Beam section of a bond, Tang (3.39): area, second moment, polar moment (2D: t = 1 m, J unused).
@@ -81,8 +83,8 @@ struct ParallelBond {
   template <int D, class Normal>
   static void install(const Params& p, const ContactGeometry<D>&, State<D>& s, Normal& normal) {
     s = State<D>{s.fs};
-    s.tensile = normal(p.tensile_mean, p.tensile_std);
-    s.shear = normal(p.shear_mean, p.shear_std);
+    s.tensile = normal(p.tensile_mean, p.tensile_std, p.tensile_weibull);
+    s.shear = normal(p.shear_mean, p.shear_std, p.shear_weibull);
   }
 
   // Tang (3.41): the beam's largest tensile and shear stresses.

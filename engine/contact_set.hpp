@@ -60,6 +60,12 @@ struct PairRandom {
       if (x > 0) return x;
     }
   }
+  // With a Weibull shape k > 0: Weibull(scale λ = a, shape k), Tang (8.4), by inverse transform; else
+  // Normal(a, b) truncated to positive values.
+  double operator()(double a, double b, double weibull_shape) {
+    if (weibull_shape > 0) return a * std::pow(-std::log(uniform()), 1.0 / weibull_shape);
+    return (*this)(a, b);
+  }
 };
 
 template <int D>

@@ -459,6 +459,12 @@ TEST_CASE("bad_scene_input_gives_message_and_exit_2") {
     scene(edit(base, "density = \"2600 kg/m3\"\n", ""));
     check_refused(d.dir, run, 2, {"scene.toml: ", "missing key 'phases[0].density'", "kg/m3"});
   }
+  SUBCASE("a bond strength drawn from two distributions at once") {
+    const std::string lattice = (kScenes / "lattice_tension_2d.toml").string();
+    check_refused(d.dir, {"run", lattice, "--set", "contacts[0].bond_tensile_strength_weibull_shape=5"}, 2,
+                  {"lattice_tension_2d.toml: ", "'contacts[0].bond_tensile_strength_weibull_shape' (from --set) = 5",
+                   "bond_tensile_strength_std", "not both"});
+  }
   SUBCASE("missing table") {
     scene(edit(base, "[run]\nduration = \"0.3 ms\"\n", ""));
     check_refused(d.dir, run, 2, {"scene.toml: ", "missing key 'run' (a table)"});

@@ -1,0 +1,69 @@
+// Bond strengths drawn per bond at installation (Tang Table 5.1 normal; Tang 8.4 Weibull): over the ~5 300
+// bonds of a hexagonal lattice the sample mean and variance match the distribution's, within sampling error,
+// and the draws depend only on the seed and the pair.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "contact_models/parallel_bond.hpp"
+#include "preprocess/regular_packing.hpp"
+#include "tests/test_worlds.hpp"
+
+using namespace mc;
+
+namespace {
+
+std::vector<double> drawn_tensile_strengths(const ParallelBondParams& p, std::uint64_t seed) {
+  auto w = test::single_model_world<2, ParallelBond>(p);
+  const Packing<2> pk = hexagonal_packing(Vec<2>(0, 0), Vec<2>(40e-3, 40e-3), 0.5e-3);
+  for (std::size_t i = 0; i < pk.x.size(); ++i) w.particles.add(pk.x[i], pk.radius[i], 2400, 0);
+  w.init();
+  w.install_bonds(1e-6, seed);
+  std::vector<double> s;
+  for (const auto& st : static_cast<const ContactSet<ParallelBond, 2>&>(*w.sets[0]).states())
+    if (ParallelBond::bonded<2>(st)) s.push_back(st.tensile);
+  return s;
+}
+
+ParallelBondParams params() {
+  ParallelBondParams p;
+  p.contact.modulus = 20e9;
+  p.modulus = 20e9;
+  p.shear_mean = 1e9;
+  return p;
+}
+
+// Sample mean within 4 standard errors σ/√n, sample variance within 4 of its own, σ²√(2/n) (normal-like tails).
+void check_moments(const std::vector<double>& s, double mean, double variance) {
+  const double n = static_cast<double>(s.size());
+  double m = 0, v = 0;
+  for (double x : s) m += x;
+  m /= n;
+  for (double x : s) v += (x - m) * (x - m);
+  v /= n - 1;
+  MESSAGE(s.size(), " bonds: mean ", m, " (expected ", mean, "), variance ", v, " (expected ", variance, ")");
+  CHECK(std::abs(m - mean) < 4 * std::sqrt(variance / n));
+  CHECK(std::abs(v - variance) < 4 * variance * std::sqrt(2 / n));
+}
+
+}  // namespace
+
+TEST_CASE("weibull_bond_strengths_have_the_mean_and_variance_of_tang_8_4") {
+  auto p = params();
+  const double lambda = 10e6, k = 5;  // scale and shape
+  p.tensile_mean = lambda, p.tensile_weibull = k;
+  const auto s = drawn_tensile_strengths(p, 17);
+  REQUIRE(s.size() > 4000);
+  const double g1 = std::tgamma(1 + 1 / k), g2 = std::tgamma(1 + 2 / k);
+  check_moments(s, lambda * g1, lambda * lambda * (g2 - g1 * g1));
+  CHECK(drawn_tensile_strengths(p, 17) == s);  // by seed and pair alone
+  CHECK(drawn_tensile_strengths(p, 18) != s);
+}
+
+TEST_CASE("normal_bond_strengths_have_the_mean_and_variance_of_table_5_1") {
+  auto p = params();
+  p.tensile_mean = 18e6, p.tensile_std = 2e6;  // Tang Table 5.1 (2D): 9 std from zero, truncation negligible
+  const auto s = drawn_tensile_strengths(p, 3);
+  check_moments(s, 18e6, 4e12);
+}
