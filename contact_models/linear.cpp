@@ -16,13 +16,13 @@ LinearParams read_linear_params(const Table& t) {
   return p;
 }
 
-// A bond strength drawn per bond: `key` (mean, or the Weibull scale λ) with either `key_std` (normal truncated to
+// A bond parameter (strength, modulus) drawn per bond: `key` (mean, or the Weibull scale λ) with either `key_std` (normal truncated to
 // positive values) or `key_weibull_shape` (Weibull, Tang 8.4), not both. Returns {mean or λ, std, shape}.
-std::tuple<double, double, double> read_strength(const Table& t, const std::string& key, Unit u) {
+std::tuple<double, double, double> read_distribution(const Table& t, const std::string& key, Unit u) {
   const double a = t.number(key, u, Range::positive());
   const bool normal = t.has(key + "_std"), weibull = t.has(key + "_weibull_shape");
   if (normal && weibull)
-    t.fail(key + "_weibull_shape", "given together with " + key + "_std: a strength is drawn either from a normal "
+    t.fail(key + "_weibull_shape", "given together with " + key + "_std: a bond parameter is drawn either from a normal "
                                    "distribution (" + key + " = mean, " + key + "_std) or from a Weibull distribution (" +
                                    key + " = scale, " + key + "_weibull_shape), not both");
   const double b = t.number(key + "_std", u, Range::non_negative(), 0.0);

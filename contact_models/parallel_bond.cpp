@@ -10,16 +10,16 @@
 namespace mc {
 
 LinearParams read_linear_params(const Table& t);                                   // contact_models/linear.cpp
-std::tuple<double, double, double> read_strength(const Table& t, const std::string& key, Unit u);  // contact_models/linear.cpp
+std::tuple<double, double, double> read_distribution(const Table& t, const std::string& key, Unit u);  // contact_models/linear.cpp
 
 ModelSpec parallel_bond_model(const Table& t) {
   ParallelBondParams p;
   p.contact = read_linear_params(t);
   p.radius_multiplier = t.number("bond_radius_multiplier", Unit::None, Range::positive(), 1.0);
-  p.modulus = t.number("bond_modulus", Unit::Pressure, Range::positive());
+  std::tie(p.modulus, p.modulus_std, p.modulus_weibull) = read_distribution(t, "bond_modulus", Unit::Pressure);
   p.kn_ks_ratio = t.number("bond_kn_ks_ratio", Unit::None, Range::positive(), 1.0);
-  std::tie(p.tensile_mean, p.tensile_std, p.tensile_weibull) = read_strength(t, "bond_tensile_strength", Unit::Pressure);
-  std::tie(p.shear_mean, p.shear_std, p.shear_weibull) = read_strength(t, "bond_shear_strength", Unit::Pressure);
+  std::tie(p.tensile_mean, p.tensile_std, p.tensile_weibull) = read_distribution(t, "bond_tensile_strength", Unit::Pressure);
+  std::tie(p.shear_mean, p.shear_std, p.shear_weibull) = read_distribution(t, "bond_shear_strength", Unit::Pressure);
   return model_spec<ParallelBond>(p);
 }
 

@@ -15,6 +15,8 @@ struct ParallelBondParams {
   LinearParams contact;              // the grain contact in parallel (Tang 3.38: k_n = 2tE_c / 4RE_c)
   double radius_multiplier = 1.0;    // λ̄ [-], Tang (3.40)
   double modulus = kNaN;             // Ē_c [Pa]: k̄_n = Ē_c / (R_A + R_B), Tang (3.38)
+  // Per-bond Ē_c: normal (modulus, modulus_std) truncated to > 0, or Weibull (scale modulus, shape k) (8.4).
+  double modulus_std = 0.0, modulus_weibull = 0.0;
   double kn_ks_ratio = 1.0;          // k̄_n / k̄_s [-]
   // σ̄_c, τ̄_c [Pa]: normal (mean, std) truncated to > 0, or with a Weibull shape k > 0 Weibull with scale
   // λ = the "mean" field (Tang 8.4).
@@ -44,6 +46,7 @@ struct ParallelBond {
     double bond_fn = 0;              // F̄^n [N], positive in compression
     double bond_mn = 0;              // M̄^n, twisting [N m] (3D)
     double tensile = 0, shear = 0;   // this bond's strengths σ̄_c, τ̄_c [Pa]; 0: no bond (never bonded or broken)
+    double stiffness = 1;            // this bond's Ē_c over the scene's bond_modulus (heterogeneity, Tang §8.1.2)
   };
   // What the force pass needs of a pair, computed every step from the radii (cheaper than storing it: two
   // divisions and a few products, against 56 more bytes per bond to stream).
@@ -83,6 +86,7 @@ struct ParallelBond {
   template <int D, class Normal>
   static void install(const Params& p, const ContactGeometry<D>&, State<D>& s, Normal& normal) {
     s = State<D>{s.fs};
+    s.stiffness = normal(p.modulus, p.modulus_std, p.modulus_weibull) / p.modulus;
     s.tensile = normal(p.tensile_mean, p.tensile_std, p.tensile_weibull);
     s.shear = normal(p.shear_mean, p.shear_std, p.shear_weibull);
   }
@@ -124,14 +128,15 @@ struct ParallelBond {
     const Vec<D> vs = g.v_rel - vn * g.n;
     // Tang (3.37), increments from the relative motion of this step; the shear force and the bending moment
     // turn with the contact plane.
-    s.bond_fn -= c.kn_a * vn * dt;
-    s.bond_fs = carry_shear<D>(s.bond_fs, g.n, g.spin_n, dt) - c.ks_a * vs * dt;
+    const double kdt = s.stiffness * dt;
+    s.bond_fn -= c.kn_a * vn * kdt;
+    s.bond_fs = carry_shear<D>(s.bond_fs, g.n, g.spin_n, dt) - c.ks_a * vs * kdt;
     if constexpr (D == 2) {
-      s.bond_ms -= c.kn_i * g.w_rel * dt;
+      s.bond_ms -= c.kn_i * g.w_rel * kdt;
     } else {
       const double wn = g.w_rel.dot(g.n);
-      s.bond_mn -= c.ks_j * wn * dt;
-      s.bond_ms = carry_shear<3>(s.bond_ms, g.n, g.spin_n, dt) - c.kn_i * (g.w_rel - wn * g.n) * dt;
+      s.bond_mn -= c.ks_j * wn * kdt;
+      s.bond_ms = carry_shear<3>(s.bond_ms, g.n, g.spin_n, dt) - c.kn_i * (g.w_rel - wn * g.n) * kdt;
     }
     if (breaks_in_tension<D>(c, s)) [[unlikely]] out.event.mode = CrackMode::Tensile;
     else if (breaks_in_shear<D>(c, s)) [[unlikely]] out.event.mode = CrackMode::Shear;
@@ -150,9 +155,9 @@ struct ParallelBond {
   static ContactStiffness stiffness(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
     ContactStiffness k = Linear::stiffness<D>(c.contact, g, Linear::State<D>{s.fs});
     if (!bonded(s)) return k;
-    k.normal += c.kn_a;
-    k.shear += c.ks_a;
-    k.rotational += c.kn_i + c.ks_j;
+    k.normal += c.kn_a * s.stiffness;
+    k.shear += c.ks_a * s.stiffness;
+    k.rotational += (c.kn_i + c.ks_j) * s.stiffness;
     return k;
   }
 
@@ -164,7 +169,7 @@ struct ParallelBond {
   static double bond_energy(const Coeffs& c, const State<D>& a, const State<D>& b) {
     double e = a.bond_fn * b.bond_fn / c.kn_a + a.bond_fs.dot(b.bond_fs) / c.ks_a + a.bond_ms.dot(b.bond_ms) / c.kn_i;
     if constexpr (D == 3) e += a.bond_mn * b.bond_mn / c.ks_j;
-    return 0.5 * e;
+    return 0.5 * e / a.stiffness;
   }
   template <int D>
   static double strain_energy_bond(const Coeffs& c, const State<D>& s) { return bond_energy<D>(c, s, s); }

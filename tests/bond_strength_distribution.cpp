@@ -14,7 +14,8 @@ using namespace mc;
 
 namespace {
 
-std::vector<double> drawn_tensile_strengths(const ParallelBondParams& p, std::uint64_t seed) {
+// Each bond's drawn tensile strength, or (moduli = true) its drawn modulus Ē_c.
+std::vector<double> drawn_tensile_strengths(const ParallelBondParams& p, std::uint64_t seed, bool moduli = false) {
   auto w = test::single_model_world<2, ParallelBond>(p);
   const Packing<2> pk = hexagonal_packing(Vec<2>(0, 0), Vec<2>(40e-3, 40e-3), 0.5e-3);
   for (std::size_t i = 0; i < pk.x.size(); ++i) w.particles.add(pk.x[i], pk.radius[i], 2400, 0);
@@ -22,7 +23,7 @@ std::vector<double> drawn_tensile_strengths(const ParallelBondParams& p, std::ui
   w.install_bonds(1e-6, seed);
   std::vector<double> s;
   for (const auto& st : static_cast<const ContactSet<ParallelBond, 2>&>(*w.sets[0]).states())
-    if (ParallelBond::bonded<2>(st)) s.push_back(st.tensile);
+    if (ParallelBond::bonded<2>(st)) s.push_back(moduli ? st.stiffness * p.modulus : st.tensile);
   return s;
 }
 
@@ -66,4 +67,26 @@ TEST_CASE("normal_bond_strengths_have_the_mean_and_variance_of_table_5_1") {
   p.tensile_mean = 18e6, p.tensile_std = 2e6;  // Tang Table 5.1 (2D): 9 std from zero, truncation negligible
   const auto s = drawn_tensile_strengths(p, 3);
   check_moments(s, 18e6, 4e12);
+}
+
+// Tang §8.1.2: moduli as well as strengths are drawn per bond. The drawn moduli have the Weibull moments, and a
+// bond's axial force grows with its own modulus: after one step of stretching at speed v, F̄_n = Ē_c,bond A v Δt
+// / (R_A + R_B).
+TEST_CASE("weibull_bond_moduli_have_the_moments_of_tang_8_4_and_set_each_bonds_stiffness") {
+  auto p = params();
+  p.tensile_mean = 1e9;
+  const double lambda = 20e9, k = 8;
+  p.modulus = lambda, p.modulus_weibull = k;
+  const auto e = drawn_tensile_strengths(p, 23, true);
+  const double g1 = std::tgamma(1 + 1 / k), g2 = std::tgamma(1 + 2 / k);
+  check_moments(e, lambda * g1, lambda * lambda * (g2 - g1 * g1));
+
+  const double r = 1e-3, v = 1e-3;
+  auto w = test::held_bonded_pair<2, ParallelBond>(p, r, r, 0.0);
+  w.particles.v[1][0] = v;
+  w.step();
+  const auto& st = static_cast<const ContactSet<ParallelBond, 2>&>(*w.sets[0]).states()[0];
+  const double area = 2 * r;  // 2D, λ̄ = 1, Tang (3.39)
+  CHECK(st.stiffness != doctest::Approx(1.0));  // this bond drew its own modulus
+  CHECK(-st.bond_fn == doctest::Approx(st.stiffness * lambda / (2 * r) * area * v * w.dt).epsilon(1e-12));
 }
