@@ -121,6 +121,12 @@ struct StopSpec {
   double after_time = 0; // not before this time [s]
 };
 
+// Uniaxial compression results (Tang §5.2): from the histories named here, `summary` gives E (secant between
+// 25 % and 50 % of the peak), ν, UCS, the strain at the peak, the crack-initiation stress and crack counts.
+struct UniaxialSpec {
+  std::string stress, axial_strain, lateral_strain;  // history names; empty: no analysis
+};
+
 struct SummarySpec {
   std::string name, of;
   enum class Reduce { Max, Min, Final, Initial, TimeOfMax, DurationPositive, FinalOverInitial, MeanFinal10 } reduce;
@@ -156,6 +162,7 @@ struct Scene {
   double duration = 0;     // stop at this simulated time (0: no limit)
   std::vector<StopSpec> stops;
   std::vector<SummarySpec> summaries;
+  UniaxialSpec uniaxial;
   std::string xy_plots;    // "x:y;x2:y2" drawn by report
 
   std::int64_t history_every = 100, frame_every = 0, checkpoint_every = 0, guard_every = 100;

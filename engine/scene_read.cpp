@@ -141,6 +141,8 @@ void read_specimen(const Table& root, Scene& s) {
 }
 
 WallControl read_motion(const Table& t, WallSpec& w, int d) {
+  // The loaded area of the wall's stress history (and of a servo): a platen longer than the specimen it presses.
+  w.servo_area = t.number("area", d == 2 ? Unit::Length : Unit::None, Range::positive(), kNaN);
   const std::string m = t.choice("motion", {"fixed", "velocity", "servo"}, "fixed");
   if (m == "velocity") {
     w.velocity = vec(t, "velocity", Unit::Velocity, d);
@@ -149,7 +151,6 @@ WallControl read_motion(const Table& t, WallSpec& w, int d) {
   }
   if (m == "servo") {
     w.stress = t.number("stress", Unit::Pressure, Range::any());
-    w.servo_area = t.number("area", d == 2 ? Unit::Length : Unit::None, Range::positive(), kNaN);
     if (t.has("area_between")) {
       // area_between = "left right" (2D) or "x_lo x_hi y_lo y_hi" (3D): walls whose distances span the area.
       std::stringstream ss(t.string("area_between"));
@@ -431,6 +432,15 @@ void read_output(const Table& root, Scene& s) {
   }
 }
 
+void read_uniaxial(const Table& root, Scene& s) {
+  if (auto t = root.optional_table("uniaxial")) {
+    s.uniaxial.stress = t->string("stress");
+    s.uniaxial.axial_strain = t->string("axial_strain");
+    s.uniaxial.lateral_strain = t->string("lateral_strain");
+    t->finish();
+  }
+}
+
 // Names used by stop conditions and summaries must be histories the scene records.
 void check_names(const Table& root, const Scene& s, const std::vector<std::string>& histories) {
   auto known = [&](const std::string& n) { return std::find(histories.begin(), histories.end(), n) != histories.end(); };
@@ -442,6 +452,13 @@ void check_names(const Table& root, const Scene& s, const std::vector<std::strin
   auto sums = root.tables("summary");
   for (std::size_t i = 0; i < s.summaries.size(); ++i)
     if (!known(s.summaries[i].of)) sums[i].fail("of", "not a history of this scene; recorded: " + list);
+  if (!s.uniaxial.stress.empty()) {
+    const Table u = root.table("uniaxial");
+    for (const auto& [key, name] : {std::pair<std::string, std::string>{"stress", s.uniaxial.stress},
+                                    {"axial_strain", s.uniaxial.axial_strain}, {"lateral_strain", s.uniaxial.lateral_strain}})
+      if (!known(name)) u.fail(key, "not a history of this scene; recorded: " + list);
+    if (s.bond_tolerance < 0) u.fail("stress", "the crack-initiation stress needs bonds: declare [bonds]");
+  }
 }
 
 }  // namespace
@@ -467,6 +484,7 @@ Scene read_scene(const TomlDoc& doc, const std::string& file) {
   read_observers(root, s);
   read_run(root, s);
   read_output(root, s);
+  read_uniaxial(root, s);
   check_names(root, s, history_names(s));
   doc.finish_all();
   return s;

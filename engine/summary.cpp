@@ -1,5 +1,6 @@
 #include "engine/summary.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -71,6 +72,53 @@ double reduce(SummarySpec::Reduce r, const std::vector<double>& t, const std::ve
 
 }  // namespace
 
+// Tang §5.2: the pre-peak curve σ(ε_axial) gives E as the secant between 25 % and 50 % of the peak and ν as
+// −Δε_lateral/Δε_axial over the same stretch; UCS is the peak; the crack-initiation stress is the stress when the
+// cracks reach 1 % of their count at the peak. Compression is positive for the stress and the axial strain
+// (whatever signs the histories carry), the lateral strain keeps its sign (expansion positive).
+std::string uniaxial_json(const UniaxialSpec& u, std::map<std::string, std::vector<double>>& h) {
+  std::vector<double> s = h[u.stress], ea = h[u.axial_strain], el = h[u.lateral_strain];
+  const std::vector<double>& ct = h["cracks.tensile"];
+  const std::vector<double>& cs = h["cracks.shear"];
+  const std::size_t n = std::min({s.size(), ea.size(), el.size(), ct.size(), cs.size()});
+  if (n < 3) return "null";
+  for (std::size_t k = 0; k < n; ++k) s[k] = std::abs(s[k]), ea[k] = std::abs(ea[k]);
+  std::size_t peak = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    if (s[k] > s[peak]) peak = k;
+  const double ucs = s[peak];
+  // The first pre-peak crossing of a stress level, interpolated: returns the fractional row.
+  auto crossing = [&](double level) {
+    for (std::size_t k = 1; k <= peak; ++k)
+      if (s[k] >= level && s[k - 1] < level) return (k - 1) + (level - s[k - 1]) / (s[k] - s[k - 1]);
+    return kNaN;
+  };
+  auto at = [&](const std::vector<double>& y, double row) {
+    if (!std::isfinite(row)) return kNaN;
+    const auto k = static_cast<std::size_t>(row);
+    const double f = row - static_cast<double>(k);
+    return k + 1 < n ? y[k] + f * (y[k + 1] - y[k]) : y[k];
+  };
+  const double r25 = crossing(0.25 * ucs), r50 = crossing(0.5 * ucs);
+  const double modulus = 0.25 * ucs / (at(ea, r50) - at(ea, r25));
+  const double poisson = (at(el, r50) - at(el, r25)) / (at(ea, r50) - at(ea, r25));
+  const double cracks_at_peak = ct[peak] + cs[peak];
+  double initiation = kNaN;
+  for (std::size_t k = 0; k <= peak; ++k)
+    if (ct[k] + cs[k] >= std::max(1.0, 0.01 * cracks_at_peak)) {
+      initiation = s[k];
+      break;
+    }
+  std::ostringstream o;
+  o << "{\n    \"E\": " << num(modulus) << ",\n    \"E_definition\": \"secant between 25 % and 50 % of the peak stress\""
+    << ",\n    \"nu\": " << num(poisson) << ",\n    \"ucs\": " << num(ucs) << ",\n    \"strain_at_peak\": " << num(ea[peak])
+    << ",\n    \"crack_initiation_stress\": " << num(initiation)
+    << ",\n    \"crack_initiation_ratio\": " << num(initiation / ucs)
+    << ",\n    \"cracks_at_peak\": " << num(cracks_at_peak)
+    << ",\n    \"cracks_tensile\": " << num(ct[n - 1]) << ",\n    \"cracks_shear\": " << num(cs[n - 1]) << "\n  }";
+  return o.str();
+}
+
 std::string summary_json(const std::string& output_file) {
   const H5File f(output_file, H5File::Mode::ReadOnly);
   if (!f.has_attr("/", "format") || f.attr_string("/", "format") != "mesocrack-1")
@@ -92,7 +140,9 @@ std::string summary_json(const std::string& output_file) {
     const SummarySpec& s = scene.summaries[i];
     o << (i ? "," : "") << "\n    " << quote(s.name) << ": " << num(reduce(s.reduce, t, h[s.of]));
   }
-  o << (scene.summaries.empty() ? "}" : "\n  }") << ",\n  \"final\": {";
+  o << (scene.summaries.empty() ? "}" : "\n  }");
+  if (!scene.uniaxial.stress.empty()) o << ",\n  \"uniaxial\": " << uniaxial_json(scene.uniaxial, h);
+  o << ",\n  \"final\": {";
   bool first = true;
   for (const auto& [name, y] : h) {
     o << (first ? "" : ",") << "\n    " << quote(name) << ": " << num(y.empty() ? kNaN : y.back());

@@ -959,6 +959,64 @@ TEST_CASE("generate_writes_a_mesostructure_packing_that_a_scene_loads") {
     CHECK_MESSAGE(f.attr_double("/specimen", pair) > 0, pair);
 }
 
+// The uniaxial compression scene of Tang §5.2 (scenes/uniaxial_2d.toml) on a 25 mm × 50 mm specimen (about
+// 900 discs, L/R ≈ 30): E scales linearly with the contact and bond modulus (Tang 6.1, E = E_c Φ_E(k_n/k_s, …)),
+// and ν rises with k_n/k_s (6.2). Each run is a few seconds.
+TEST_CASE("uniaxial_compression_E_scales_with_E_c_and_nu_rises_with_kn_over_ks") {
+  const TempDir d;
+  // One packing for all runs (a genesis is chaotic: two of them differ like two random specimens, by several %
+  // in E at this size), generated once and loaded by a copy of the scene.
+  const std::string scene = (kScenes / "uniaxial_2d.toml").string();
+  const Result g = mesocrack({"generate", scene, "-o", "packing.h5", "--set", "specimen.hi=[\"25 mm\", \"50 mm\"]"}, d.dir);
+  REQUIRE_MESSAGE(g.code == 0, g.describe());
+  std::string text = slurp(scene);
+  const auto from = text.find("[specimen]"), to = text.find("[bonds]");
+  REQUIRE(from != std::string::npos);
+  REQUIRE(to != std::string::npos);
+  text.replace(from, to - from, "[specimen]\nkind = \"output\"\nfile = \"packing.h5\"\n\n");
+  write_file(d / "uniaxial.toml", text);
+  // A specimen of half the moduli is the same problem in other units when everything with the unit of stress
+  // (platen stiffness 2tE_c, bond strengths) is halved too and time runs slower by √2 (the wave speed √(E/ρ)),
+  // i.e. the platens move √2 slower (Tang 5.2–5.4: E = E_c Φ_E, σ_c = σ_b Φ_c(E_c/σ_b, …)).
+  auto run = [&](const std::string& name, double scale, const std::string& ratio) {
+    auto num = [](double x) { return std::to_string(x); };
+    const std::string speed = num(10e-3 * std::sqrt(scale)), ramp = num(2e-3 / std::sqrt(scale));
+    const Result r = mesocrack(
+        {"run", "uniaxial.toml", "-o", name,
+         "--set", "contacts[0].modulus=" + num(20e9 * scale), "--set", "contacts[0].bond_modulus=" + num(20e9 * scale),
+         "--set", "contacts[0].bond_tensile_strength=" + num(18e6 * scale),
+         "--set", "contacts[0].bond_tensile_strength_std=" + num(2e6 * scale),
+         "--set", "contacts[0].bond_shear_strength=" + num(36e6 * scale),
+         "--set", "contacts[0].bond_shear_strength_std=" + num(4e6 * scale),
+         "--set", "contacts[0].kn_ks_ratio=" + ratio, "--set", "contacts[0].bond_kn_ks_ratio=" + ratio,
+         "--set", "walls[0].kn=" + num(4e10 * scale), "--set", "walls[1].kn=" + num(4e10 * scale),
+         "--set", "walls[0].ramp_time=" + ramp, "--set", "walls[1].ramp_time=" + ramp, "--set", "run.stop[0].after_time=" + ramp,
+         "--set", "walls[0].b=[\"45 mm\", 0]", "--set", "walls[0].inside=[\"12.5 mm\", \"25 mm\"]", "--set",
+         "walls[0].area=25 mm", "--set", "walls[1].a=[\"-20 mm\", \"50 mm\"]", "--set", "walls[1].b=[\"45 mm\", \"50 mm\"]",
+         "--set", "walls[1].inside=[\"12.5 mm\", \"25 mm\"]", "--set", "walls[1].area=25 mm", "--set",
+         "measure[0].centre=[\"12.5 mm\", \"25 mm\"]", "--set", "measure[0].radius=10 mm", "--set",
+         "walls[0].velocity=[0, " + speed + "]", "--set", "walls[1].velocity=[0, -" + speed + "]"},
+        d.dir);
+    REQUIRE_MESSAGE(r.code == 0, r.describe());
+    const Json j = summary_of(name, d.dir);
+    REQUIRE(j["uniaxial"].kind == Json::Kind::Object);
+    MESSAGE(name, ": E = ", j["uniaxial"]["E"].number, " Pa, nu = ", j["uniaxial"]["nu"].number, ", UCS = ",
+            j["uniaxial"]["ucs"].number, " Pa, crack initiation / UCS = ", j["uniaxial"]["crack_initiation_ratio"].number);
+    CHECK(j["status"].text == "stopped");  // past the peak
+    return j["uniaxial"];
+  };
+  const Json a = run("e20.h5", 1.0, "2"), b = run("e10.h5", 0.5, "2");
+  // The same problem in other units, but for the locked-in genesis overlaps (σ0/E_c ≈ 5e-6 of strain against
+  // the ≈ 1e-4 of the 25–50 % window): E halves to 1 %, ν stays to 1 %. UCS, past many breaks, to 5 %.
+  CHECK(a["E"].number / b["E"].number == doctest::Approx(2.0).epsilon(0.01));
+  CHECK(a["nu"].number == doctest::Approx(b["nu"].number).epsilon(0.01));
+  CHECK(a["ucs"].number / b["ucs"].number == doctest::Approx(2.0).epsilon(0.05));
+  const Json c = run("r1.h5", 1.0, "1"), e = run("r3.h5", 1.0, "3");
+  CHECK(c["nu"].number < a["nu"].number);
+  CHECK(a["nu"].number < e["nu"].number);
+  CHECK(c["E"].number > e["E"].number);  // softer shear springs, softer specimen
+}
+
 // A run that ended on its stop condition keeps that end: resuming it (its final checkpoint holds the reason)
 // must not carry it on past the condition.
 TEST_CASE("resumed_stopped_run_stays_stopped") {
