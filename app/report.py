@@ -345,6 +345,47 @@ def draw_discs(ax, xy, r, limits, factor, **style):
     return coll
 
 
+def touching_pairs(xy, r, tol=1e-3):
+    """Pairs (i, j) whose discs touch or nearly (gap ≤ tol · the smaller radius): the bonds of a bonded
+    specimen, found on a grid of cells one largest diameter wide."""
+    h = 2 * r.max() * (1 + tol)
+    cells = {}
+    keys = np.floor((xy - xy.min(axis=0)) / h).astype(np.int64)
+    for i, (a, b) in enumerate(keys):
+        cells.setdefault((a, b), []).append(i)
+    pairs = []
+    for (a, b), members in cells.items():
+        near = [j for da in (-1, 0, 1) for db in (-1, 0, 1) for j in cells.get((a + da, b + db), ())]
+        near = np.asarray(near)
+        for i in members:
+            cand = near[near > i]
+            if len(cand) == 0:
+                continue
+            gap = np.linalg.norm(xy[cand] - xy[i], axis=1) - r[cand] - r[i]
+            for j in cand[gap <= tol * np.minimum(r[cand], r[i])]:
+                pairs.append((i, j))
+    return np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
+
+
+def draw_bond_phases(ax, xy, r, phase, names, factor):
+    """Tang Fig. 4.13: the bonds coloured by the phases they join (2D, several phases)."""
+    pairs = touching_pairs(xy, r)
+    if len(pairs) == 0:
+        return
+    lo, hi = np.minimum(phase[pairs[:, 0]], phase[pairs[:, 1]]), np.maximum(phase[pairs[:, 0]], phase[pairs[:, 1]])
+    cmap = plt.get_cmap("Dark2")
+    handles = []
+    for k, (a, b) in enumerate(sorted(set(zip(lo.tolist(), hi.tolist())))):
+        sel = (lo == a) & (hi == b)
+        segs = np.stack([xy[pairs[sel, 0]], xy[pairs[sel, 1]]], axis=1) * factor
+        ax.add_collection(LineCollection(segs, colors=[cmap(k % 8)], linewidths=0.6))
+        pa = names[a] if 0 <= a < len(names) and names[a] else f"phase {a}"
+        pb = names[b] if 0 <= b < len(names) and names[b] else f"phase {b}"
+        handles.append(Line2D([], [], color=cmap(k % 8), lw=1.5, label=f"{pa}-{pb} ({int(sel.sum())})"))
+    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize="small", title="bonds")
+    ax.set_title("bonds by phase pair", fontsize="medium")
+
+
 def plot_specimen(run, stem, out_dir):
     if run["specimen"] is None or len(run["specimen"]["radius"]) == 0:
         return []
@@ -352,7 +393,10 @@ def plot_specimen(run, stem, out_dir):
     xy, r, phase, fmag, (ax0, ax1), limits, when = section(run)
     if fmag is not None and not (fmag > 0).any():
         fmag = None  # a specimen at rest (e.g. generated): nothing to colour by force
-    panels = 2 if fmag is not None else 1
+    # 2D specimens of several phases (mortar, aggregate …) also show their bonds by phase pair, as Tang's Fig.
+    # 4.13; up to 50 000 discs (the neighbour search is plain Python).
+    bond_panel = run["dimension"] == 2 and len(np.unique(phase)) > 1 and len(r) <= 50000
+    panels = 1 + (fmag is not None) + bond_panel
     fig, axes = plt.subplots(1, panels, figsize=(6.5 * panels, 6), squeeze=False, constrained_layout=True)
     axes = axes.ravel()
     fig.suptitle(f"{stem}: {when}", fontsize="medium")
@@ -387,6 +431,12 @@ def plot_specimen(run, stem, out_dir):
         fig.colorbar(coll, ax=axes[1], label=f"|F| [{funit}]", shrink=0.8,
                      extend="max" if fmag.max() * ffac > vmax else "neither")
         axes[1].set_title("resultant contact force magnitude", fontsize="medium")
+    if bond_panel:
+        ax = axes[-1]
+        ax.set_xlim(limits[0][0] * factor, limits[1][0] * factor)
+        ax.set_ylim(limits[0][1] * factor, limits[1][1] * factor)
+        ax.set_aspect("equal")
+        draw_bond_phases(ax, xy, r, phase, names, factor)
     # More pixels for large specimens, so single discs stay visible when zooming in.
     return [save(fig, out_dir, stem, kind, dpi=200 if len(r) > 10000 else 120)]
 
