@@ -30,9 +30,13 @@ struct ContactBond {
   using Coeffs = Linear::Coeffs;
 
   template <int D>
-  static Coeffs pair(const Params& p, double ra, double rb) { return Linear::pair<D>(p.contact, ra, rb); }
+  static Coeffs pair(const Params& p, double ra, double rb, double fa = 1, double fb = 1) {
+    return Linear::pair<D>(p.contact, ra, rb, fa, fb);
+  }
   template <int D>
-  static Coeffs wall(const Params& p, const WallMaterial& w, double rb) { return Linear::wall<D>(p.contact, w, rb); }
+  static Coeffs wall(const Params& p, const WallMaterial& w, double rb, double fb = 1) {
+    return Linear::wall<D>(p.contact, w, rb, fb);
+  }
 
   static constexpr bool bondable = true;
   template <int D>

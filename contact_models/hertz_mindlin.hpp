@@ -28,18 +28,19 @@ struct HertzMindlin {
     double mu, zeta;
   };
 
-  static Coeffs make(const Params& p, double r_tilde, double mu) {
-    const double g = p.shear_modulus, nu = p.poisson;
+  // g_factor: the particles' stiffness factors enter ⟨G⟩ (3.30) as ½(f_A + f_B) G (one ball: f G, 3.33).
+  static Coeffs make(const Params& p, double r_tilde, double mu, double g_factor) {
+    const double g = p.shear_modulus * g_factor, nu = p.poisson;
     return {2.0 * g * std::sqrt(2.0 * r_tilde) / (3.0 * (1.0 - nu)),
             2.0 * std::cbrt(g * g * 3.0 * (1.0 - nu) * r_tilde) / (2.0 - nu), mu, p.damping_ratio};
   }
   template <int D>
-  static Coeffs pair(const Params& p, double ra, double rb) {
-    return make(p, 2.0 * ra * rb / (ra + rb), p.friction);  // Tang (3.29); same material: (3.30)–(3.31)
+  static Coeffs pair(const Params& p, double ra, double rb, double fa = 1, double fb = 1) {
+    return make(p, 2.0 * ra * rb / (ra + rb), p.friction, 0.5 * (fa + fb));  // Tang (3.29)–(3.31)
   }
   template <int D>
-  static Coeffs wall(const Params& p, const WallMaterial& w, double rb) {
-    return make(p, rb, w.friction);  // Tang (3.32)–(3.34): the ball's G and ν, R̃ = R
+  static Coeffs wall(const Params& p, const WallMaterial& w, double rb, double fb = 1) {
+    return make(p, rb, w.friction, fb);  // Tang (3.32)–(3.34): the ball's G and ν, R̃ = R
   }
 
   template <int D, bool Energy>

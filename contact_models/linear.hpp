@@ -40,18 +40,17 @@ struct Linear {
   }
   static double series(double a, double b) { return a * b / (a + b); }  // Tang (3.25)
 
+  // Two balls in series, each with its stiffness factor f (1 unless the phase scatters it): in 2D (t = 1 m)
+  // 2tE_c f_A · 2tE_c f_B / (2tE_c (f_A + f_B)), E_c for f = 1; in 3D 4E_c (R_A f_A)(R_B f_B)/(R_A f_A + R_B f_B).
   template <int D>
-  static Coeffs pair(const Params& p, double ra, double rb) { return pair<D>(p, ra, rb, 1.0 / (ra + rb)); }
-  // With 1/(R_A + R_B) given (a bond model shares it). Two balls in series: 2tE_c·2tE_c/(4tE_c) = E_c in 2D
-  // (t = 1 m), 4E_c R_A R_B/(R_A + R_B) in 3D.
-  template <int D>
-  static Coeffs pair(const Params& p, double ra, double rb, double inv_sum) {
-    const double kn = D == 2 ? p.modulus : 4.0 * p.modulus * ra * rb * inv_sum;
+  static Coeffs pair(const Params& p, double ra, double rb, double fa = 1, double fb = 1) {
+    const double a = D == 2 ? fa : ra * fa, b = D == 2 ? fb : rb * fb;
+    const double kn = (D == 2 ? 2.0 : 4.0) * p.modulus * a * b / (a + b);
     return {kn, kn * (1.0 / p.kn_ks_ratio), p.friction, p.damping_ratio};
   }
   template <int D>
-  static Coeffs wall(const Params& p, const WallMaterial& w, double rb) {
-    const double kb = ball_kn<D>(p, rb);
+  static Coeffs wall(const Params& p, const WallMaterial& w, double rb, double fb = 1) {
+    const double kb = ball_kn<D>(p, rb) * fb;
     return {series(kb, w.kn), series(kb / p.kn_ks_ratio, w.ks), w.friction, p.damping_ratio};
   }
 

@@ -58,12 +58,12 @@ struct ParallelBond {
   };
 
   template <int D>
-  static Coeffs pair(const Params& p, double ra, double rb) {
+  static Coeffs pair(const Params& p, double ra, double rb, double fa = 1, double fb = 1) {
     const double inv_sum = 1.0 / (ra + rb);
     const double kn = p.modulus * inv_sum;           // Tang (3.38)
     const double ks = kn * (1.0 / p.kn_ks_ratio);    // the reciprocal is loop-invariant: hoisted
     const double r = p.radius_multiplier * std::min(ra, rb), inv_r = 1.0 / r;  // Tang (3.40)
-    const Linear::Coeffs lc = Linear::pair<D>(p.contact, ra, rb, inv_sum);
+    const Linear::Coeffs lc = Linear::pair<D>(p.contact, ra, rb, fa, fb);  // the grain contact
     if constexpr (D == 2) {  // A = 2R̄, I = 2R̄³/3 (t = 1 m), Tang (3.39)
       return {lc, kn * 2 * r, ks * 2 * r, kn * (2.0 / 3.0) * r * r * r, 0.0, 0.5 * inv_r, 1.5 * inv_r * inv_r, 0.0};
     } else {  // A = πR̄², I = πR̄⁴/4, J = πR̄⁴/2
@@ -73,8 +73,8 @@ struct ParallelBond {
     }
   }
   template <int D>
-  static Coeffs wall(const Params& p, const WallMaterial& w, double rb) {
-    return {Linear::wall<D>(p.contact, w, rb), 0, 0, 0, 0, 0, 0, 0};  // walls are never bonded
+  static Coeffs wall(const Params& p, const WallMaterial& w, double rb, double fb = 1) {
+    return {Linear::wall<D>(p.contact, w, rb, fb), 0, 0, 0, 0, 0, 0, 0};  // walls are never bonded
   }
 
   static constexpr bool bondable = true;

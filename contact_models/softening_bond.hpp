@@ -39,14 +39,14 @@ struct SofteningBond : ContactBond {
   };
 
   template <int D>
-  static Coeffs pair(const Params& p, double ra, double rb) {
+  static Coeffs pair(const Params& p, double ra, double rb, double fa = 1, double fb = 1) {
     const double r = std::min(ra, rb);
     const double area = D == 2 ? 2.0 * r : M_PI * r * r;  // Tang (3.39) with λ̄ = 1, t = 1 m
-    return {Linear::pair<D>(p.contact, ra, rb), p.plastic_limit, p.fracture_energy * area};
+    return {Linear::pair<D>(p.contact, ra, rb, fa, fb), p.plastic_limit, p.fracture_energy * area};
   }
   template <int D>
-  static Coeffs wall(const Params& p, const WallMaterial& w, double rb) {
-    return {Linear::wall<D>(p.contact, w, rb), 0.0, 0.0};  // walls are never bonded
+  static Coeffs wall(const Params& p, const WallMaterial& w, double rb, double fb = 1) {
+    return {Linear::wall<D>(p.contact, w, rb, fb), 0.0, 0.0};  // walls are never bonded
   }
 
   // Given, or such that opening the bond in pure tension takes G_f A: the triangle ½ F_c^n U_p,max under

@@ -170,7 +170,7 @@ void spatial_sort(Particles<D>& p, std::vector<int>& tags, std::vector<std::int6
     for (std::size_t k = 0; k < order.size(); ++k) v[k] = old[order[k]];
   };
   permute(p.x), permute(p.v), permute(p.f), permute(p.w), permute(p.m), permute(p.q);
-  permute(p.radius), permute(p.mass), permute(p.inertia), permute(p.phase), permute(p.fix);
+  permute(p.radius), permute(p.mass), permute(p.inertia), permute(p.phase), permute(p.fix), permute(p.stiffness);
   permute(tags), permute(ids);
 }
 
@@ -318,6 +318,14 @@ World<D> build_world(const Scene& s) {
   if (s.specimen.kind == K::SphereList || s.specimen.kind == K::RandomBox || s.specimen.kind == K::Packing)
     spatial_sort<D>(w.particles, tags, w.ids);
   if (s.mesostructure.present) apply_mesostructure<D>(s, w);
+  // Heterogeneity of the particles' stiffness, per phase (after the mesostructure has set the phases). Drawn
+  // from the seed and the particle's index (the order is fixed for a scene), so any thread count sees the same.
+  for (int i = 0; i < w.particles.size(); ++i) {
+    const PhaseSpec& ph = s.phases[w.particles.phase[i]];
+    if (ph.stiffness_std == 0 && ph.stiffness_weibull == 0) continue;
+    PairRandom rng(s.seed ^ 0x73746966ULL, Pair{i, i});
+    w.particles.stiffness[i] = rng(1.0, ph.stiffness_std, ph.stiffness_weibull);
+  }
   const int np = static_cast<int>(s.phases.size());
   w.model_of.assign(np, std::vector<int>(np, -1));
   for (const ContactSpec& c : s.contacts) {

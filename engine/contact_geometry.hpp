@@ -16,6 +16,7 @@ struct ContactGeometry {
   double spin_n;     // ½(ω_A + ω_B)·n (3D): rigid spin of the contact plane about its normal
   double r_a, r_b;   // radii (r_a = ∞ for a wall)
   double m_a, m_b;   // masses (m_a = 0 for a wall, which is immovable)
+  double k_a, k_b;   // the particles' stiffness factors (1 for a wall, and unless heterogeneity is declared)
   double dt;
   // m_A m_B / (m_A + m_B) (m_B for a wall): the critical damping of dashpots. Only models with dashpots ask.
   double m_eff() const { return m_a > 0 ? m_a * m_b / (m_a + m_b) : m_b; }

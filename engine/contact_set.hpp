@@ -117,6 +117,8 @@ template <int D>
   g.r_b = p.radius[j];
   g.m_a = p.mass[i];
   g.m_b = p.mass[j];
+  g.k_a = p.stiffness[i];
+  g.k_b = p.stiffness[j];
   g.dt = dt;
   return g;
 }
@@ -139,6 +141,8 @@ inline ContactGeometry<D> wall_geometry(const Particles<D>& p, const Wall<D>& w,
   g.r_b = p.radius[j];
   g.m_a = 0;
   g.m_b = p.mass[j];
+  g.k_a = 1;
+  g.k_b = p.stiffness[j];
   g.dt = dt;
   return g;
 }
@@ -175,7 +179,7 @@ class ContactSet final : public ContactSetBase<D> {
       const auto [i, j] = pairs_[c];
       Vec<D> ca, cb;
       const auto g = ball_geometry(p, i, j, 0.0, ca, cb);
-      const auto st = Model::template stiffness<D>(Model::template pair<D>(params_, g.r_a, g.r_b), g, states_[c]);
+      const auto st = Model::template stiffness<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g, states_[c]);
       k.kt[off + c] = st.normal + st.shear;
       k.kra[off + c] = st.shear * ca.squaredNorm() + st.rotational;
       k.krb[off + c] = st.shear * cb.squaredNorm() + st.rotational;
@@ -185,7 +189,7 @@ class ContactSet final : public ContactSetBase<D> {
       const auto [w, j] = wall_pairs_[c];
       Vec<D> cw, cb;
       const auto g = wall_geometry(p, walls[w], j, 0.0, cw, cb);
-      const auto st = Model::template stiffness<D>(Model::template wall<D>(params_, walls[w].material, g.r_b), g,
+      const auto st = Model::template stiffness<D>(Model::template wall<D>(params_, walls[w].material, g.r_b, g.k_b), g,
                                                    wall_states_[c]);
       k.kt[woff + c] = st.normal + st.shear;
       k.kra[woff + c] = 0;
@@ -248,7 +252,7 @@ class ContactSet final : public ContactSetBase<D> {
       for (std::size_t c = std::size_t(b) * kBlock; c < end; ++c) {
         Vec<D> ca, cb;
         const auto g = ball_geometry(p, pairs_[c][0], pairs_[c][1], 0.0, ca, cb);
-        part[b] += Model::template strain_energy<D>(Model::template pair<D>(params_, g.r_a, g.r_b), g, states_[c]);
+        part[b] += Model::template strain_energy<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g, states_[c]);
       }
     }
     double e = 0;
@@ -257,7 +261,7 @@ class ContactSet final : public ContactSetBase<D> {
       const auto [w, j] = wall_pairs_[c];
       Vec<D> cw, cb;
       const auto g = wall_geometry(p, walls[w], j, 0.0, cw, cb);
-      e += Model::template strain_energy<D>(Model::template wall<D>(params_, walls[w].material, g.r_b), g,
+      e += Model::template strain_energy<D>(Model::template wall<D>(params_, walls[w].material, g.r_b, g.k_b), g,
                                             wall_states_[c]);
     }
     return e;
@@ -309,7 +313,7 @@ class ContactSet final : public ContactSetBase<D> {
         const double reach = p.radius[i] + p.radius[j];
         if (d.squaredNorm() >= reach * reach && !Model::template persistent<D>(st)) {
           if constexpr (Energy) {
-            dissipated += Model::template released_energy<D>(Model::template pair<D>(prm, p.radius[i], p.radius[j]), st);
+            dissipated += Model::template released_energy<D>(Model::template pair<D>(prm, p.radius[i], p.radius[j], p.stiffness[i], p.stiffness[j]), st);
             if (dashpot_[c].squaredNorm() > 0) {  // the last step's dashpot force acted as the pair parted
               Vec<D> ca, cb;
               dissipated -= 0.5 * dashpot_[c].dot(ball_geometry(p, i, j, dt, ca, cb).v_rel) * dt;
@@ -326,7 +330,7 @@ class ContactSet final : public ContactSetBase<D> {
         const auto g = ball_geometry(p, i, j, dt, ca, cb);
         // The model works on a copy in registers; one store back.
         State local = st;
-        const auto r = Model::template force<D, Energy>(Model::template pair<D>(prm, g.r_a, g.r_b), g, local);
+        const auto r = Model::template force<D, Energy>(Model::template pair<D>(prm, g.r_a, g.r_b, g.k_a, g.k_b), g, local);
         st = local;
         s.f[slot] = r.force;
         s.ma[slot] = Dim<D>::cross(ca, Vec<D>(-r.force)) - r.moment;
@@ -356,7 +360,7 @@ class ContactSet final : public ContactSetBase<D> {
       Vec<D> cw, cb;
       const auto g = wall_geometry(p, walls[w], j, dt, cw, cb);
       const auto r =
-          Model::template force<D, Energy>(Model::template wall<D>(prm, walls[w].material, g.r_b), g, wall_states_[c]);
+          Model::template force<D, Energy>(Model::template wall<D>(prm, walls[w].material, g.r_b, g.k_b), g, wall_states_[c]);
       s.f[slot] = r.force;
       s.ma[slot] = Dim<D>::cross(cw, Vec<D>(-r.force)) - r.moment;  // on the wall, about its origin
       s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;

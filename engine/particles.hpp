@@ -20,6 +20,7 @@ struct Particles {
   std::vector<typename Dim<D>::Orientation> q;
   std::vector<double> radius, mass, inertia;   // [m], [kg], [kg m²]
   std::vector<int> phase;
+  std::vector<double> stiffness;          // factor on the particle's own springs (heterogeneity, Tang §8.1.2); 1
   std::vector<FixMask> fix;
   std::vector<Vec<D>> f_applied;          // declared external loads (empty unless the scene applies any)
   std::vector<R> m_applied;
@@ -39,6 +40,7 @@ struct Particles {
     mass.push_back(mass_);
     inertia.push_back(Dim<D>::inertia_factor * mass_ * r * r);
     phase.push_back(ph);
+    stiffness.push_back(1.0);
     fix.push_back(0);
     return size() - 1;
   }

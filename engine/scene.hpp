@@ -29,6 +29,9 @@ struct ModelSpec {
 struct PhaseSpec {
   std::string name;
   double density;  // kg/m³
+  // Heterogeneity (Tang §8.1.2): each particle's springs scaled by a factor drawn from a normal (mean 1,
+  // stiffness_std, truncated to > 0) or a Weibull (scale 1, shape stiffness_weibull, 8.4); 0: all 1.
+  double stiffness_std = 0, stiffness_weibull = 0;
 };
 
 struct ContactSpec {

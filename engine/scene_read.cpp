@@ -39,6 +39,12 @@ void read_phases(const Table& root, Scene& s) {
     PhaseSpec p;
     p.name = t.string("name");
     p.density = t.number("density", Unit::Density, Range::positive());
+    p.stiffness_std = t.number("stiffness_std", Unit::None, Range::non_negative(), 0.0);
+    p.stiffness_weibull = t.number("stiffness_weibull_shape", Unit::None, Range::positive(), 0.0);
+    if (p.stiffness_std > 0 && p.stiffness_weibull > 0)
+      t.fail("stiffness_weibull_shape", "given together with stiffness_std: the particles' stiffness factor is drawn "
+                                        "either from a normal distribution (mean 1, stiffness_std) or from a Weibull "
+                                        "distribution (scale 1, stiffness_weibull_shape), not both");
     for (const auto& q : s.phases)
       if (q.name == p.name) t.fail("name", "phase names must be unique");
     s.phases.push_back(p);

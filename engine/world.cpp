@@ -499,6 +499,7 @@ template <int D>
 void World<D>::save(Archive& a) const {
   const auto& p = particles;
   a.put("radius", p.radius);
+  a.put("stiffness", p.stiffness);
   a.put("mass", p.mass);
   a.put("inertia", p.inertia);
   a.bytes["fix"] = p.fix;
@@ -538,6 +539,7 @@ template <int D>
 void World<D>::restore(const Archive& a) {
   auto& p = particles;
   a.get("radius", p.radius);
+  a.get("stiffness", p.stiffness);
   a.get("mass", p.mass);
   a.get("inertia", p.inertia);
   p.fix = a.bytes.at("fix");
