@@ -45,7 +45,13 @@ struct Linear {
   template <int D>
   static Coeffs pair(const Params& p, double ra, double rb, double fa = 1, double fb = 1) {
     const double a = D == 2 ? fa : ra * fa, b = D == 2 ? fb : rb * fb;
-    const double kn = (D == 2 ? 2.0 : 4.0) * p.modulus * a * b / (a + b);
+    return pair_from<D>(p, a * b / (a + b));
+  }
+  // From the series "length" a b/(a + b) (a = R f in 3D, f in 2D): a bond model that already holds 1/(R_A + R_B)
+  // passes R_A R_B/(R_A + R_B) without a division of its own when both factors are 1.
+  template <int D>
+  static Coeffs pair_from(const Params& p, double series_ab) {
+    const double kn = (D == 2 ? 2.0 : 4.0) * p.modulus * series_ab;
     return {kn, kn * (1.0 / p.kn_ks_ratio), p.friction, p.damping_ratio};
   }
   template <int D>

@@ -63,7 +63,9 @@ struct ParallelBond {
     const double kn = p.modulus * inv_sum;           // Tang (3.38)
     const double ks = kn * (1.0 / p.kn_ks_ratio);    // the reciprocal is loop-invariant: hoisted
     const double r = p.radius_multiplier * std::min(ra, rb), inv_r = 1.0 / r;  // Tang (3.40)
-    const Linear::Coeffs lc = Linear::pair<D>(p.contact, ra, rb, fa, fb);  // the grain contact
+    // The grain contact (Linear::pair), sharing 1/(R_A + R_B) when the particles have no stiffness factors.
+    const Linear::Coeffs lc = fa == 1 && fb == 1 ? Linear::pair_from<D>(p.contact, D == 2 ? 0.5 : ra * rb * inv_sum)
+                                                 : Linear::pair<D>(p.contact, ra, rb, fa, fb);
     if constexpr (D == 2) {  // A = 2R̄, I = 2R̄³/3 (t = 1 m), Tang (3.39)
       return {lc, kn * 2 * r, ks * 2 * r, kn * (2.0 / 3.0) * r * r * r, 0.0, 0.5 * inv_r, 1.5 * inv_r * inv_r, 0.0};
     } else {  // A = πR̄², I = πR̄⁴/4, J = πR̄⁴/2
