@@ -35,18 +35,6 @@ ParallelBondParams params() {
   return p;
 }
 
-// Sample mean within 4 standard errors σ/√n, sample variance within 4 of its own, σ²√(2/n) (normal-like tails).
-void check_moments(const std::vector<double>& s, double mean, double variance) {
-  const double n = static_cast<double>(s.size());
-  double m = 0, v = 0;
-  for (double x : s) m += x;
-  m /= n;
-  for (double x : s) v += (x - m) * (x - m);
-  v /= n - 1;
-  MESSAGE(s.size(), " bonds: mean ", m, " (expected ", mean, "), variance ", v, " (expected ", variance, ")");
-  CHECK(std::abs(m - mean) < 4 * std::sqrt(variance / n));
-  CHECK(std::abs(v - variance) < 4 * variance * std::sqrt(2 / n));
-}
 
 }  // namespace
 
@@ -57,7 +45,7 @@ TEST_CASE("weibull_bond_strengths_have_the_mean_and_variance_of_tang_8_4") {
   const auto s = drawn_tensile_strengths(p, 17);
   REQUIRE(s.size() > 4000);
   const double g1 = std::tgamma(1 + 1 / k), g2 = std::tgamma(1 + 2 / k);
-  check_moments(s, lambda * g1, lambda * lambda * (g2 - g1 * g1));
+  test::check_sample_moments(s, lambda * g1, lambda * lambda * (g2 - g1 * g1), "bonds");
   CHECK(drawn_tensile_strengths(p, 17) == s);  // by seed and pair alone
   CHECK(drawn_tensile_strengths(p, 18) != s);
 }
@@ -66,7 +54,7 @@ TEST_CASE("normal_bond_strengths_have_the_mean_and_variance_of_table_5_1") {
   auto p = params();
   p.tensile_mean = 18e6, p.tensile_std = 2e6;  // Tang Table 5.1 (2D): 9 std from zero, truncation negligible
   const auto s = drawn_tensile_strengths(p, 3);
-  check_moments(s, 18e6, 4e12);
+  test::check_sample_moments(s, 18e6, 4e12, "bonds");
 }
 
 // Tang §8.1.2: moduli as well as strengths are drawn per bond. The drawn moduli have the Weibull moments, and a
@@ -79,7 +67,7 @@ TEST_CASE("weibull_bond_moduli_have_the_moments_of_tang_8_4_and_set_each_bonds_s
   p.modulus = lambda, p.modulus_weibull = k;
   const auto e = drawn_tensile_strengths(p, 23, true);
   const double g1 = std::tgamma(1 + 1 / k), g2 = std::tgamma(1 + 2 / k);
-  check_moments(e, lambda * g1, lambda * lambda * (g2 - g1 * g1));
+  test::check_sample_moments(e, lambda * g1, lambda * lambda * (g2 - g1 * g1), "bonds");
 
   const double r = 1e-3, v = 1e-3;
   auto w = test::held_bonded_pair<2, ParallelBond>(p, r, r, 0.0);

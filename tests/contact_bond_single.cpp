@@ -15,15 +15,7 @@ namespace {
 
 constexpr double kR = 1e-3;
 
-ContactBondParams params(double normal, double shear) {
-  ContactBondParams p;
-  p.contact.modulus = 1e9;
-  p.contact.kn_ks_ratio = 2.0;
-  p.contact.friction = 0.3;
-  p.normal_mean = normal;
-  p.shear_mean = shear;
-  return p;
-}
+ContactBondParams params(double normal, double shear) { return test::glued_bond_params<ContactBondParams>(normal, shear); }
 
 template <int D>
 void tension_break() {

@@ -18,15 +18,7 @@ namespace {
 
 constexpr double kR = 1e-3;
 
-SofteningBondParams params(double normal, double shear) {
-  SofteningBondParams p;
-  p.contact.modulus = 1e9;
-  p.contact.kn_ks_ratio = 2.0;
-  p.contact.friction = 0.3;
-  p.normal_mean = normal;
-  p.shear_mean = shear;
-  return p;
-}
+SofteningBondParams params(double normal, double shear) { return test::glued_bond_params<SofteningBondParams>(normal, shear); }
 
 template <int D>
 const SofteningBond::State<D>& bond_of(const World<D>& w) {

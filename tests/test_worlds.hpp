@@ -1,6 +1,10 @@
 // Small worlds built in code for the physics tests (the scene files are tested separately).
 #pragma once
+#include <doctest/doctest.h>
+
+#include <cmath>
 #include <cstdint>
+#include <vector>
 #include <memory>
 #include <stdexcept>
 
@@ -59,6 +63,33 @@ void start_energy(World<D>& w) {
   double kinetic = 0;
   for (int i = 0; i < w.particles.size(); ++i) kinetic += 0.5 * w.particles.mass[i] * w.particles.v[i].squaredNorm();
   w.energy.initial = kinetic + w.energy.strain;
+}
+
+// Parameters of a bond glued at the contact point (contact or softening bond) for the two-particle tests:
+// E_c = 1 GPa, k_n/k_s = 2, μ = 0.3, the given normal and shear strengths [N].
+template <class Params>
+Params glued_bond_params(double normal, double shear) {
+  Params p;
+  p.contact.modulus = 1e9;
+  p.contact.kn_ks_ratio = 2.0;
+  p.contact.friction = 0.3;
+  p.normal_mean = normal;
+  p.shear_mean = shear;
+  return p;
+}
+
+// A sample drawn from a distribution of the given mean and variance: its mean within 4 standard errors σ/√n,
+// its variance within 4 of its own, σ²√(2/n) (normal-like tails).
+inline void check_sample_moments(const std::vector<double>& s, double mean, double variance, const char* what) {
+  const double n = static_cast<double>(s.size());
+  double m = 0, v = 0;
+  for (double x : s) m += x;
+  m /= n;
+  for (double x : s) v += (x - m) * (x - m);
+  v /= n - 1;
+  MESSAGE(s.size(), " ", what, ": mean ", m, " (expected ", mean, "), variance ", v, " (expected ", variance, ")");
+  CHECK(std::abs(m - mean) < 4 * std::sqrt(variance / n));
+  CHECK(std::abs(v - variance) < 4 * variance * std::sqrt(2 / n));
 }
 
 // Six infinite walls bounding the cube [lo, hi]³, normals inwards.
