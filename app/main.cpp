@@ -1,5 +1,5 @@
 // The `mesocrack` command: run a scene, summarise a run, draw its report.
-// Exit status: 0 success, 2 bad input, 3 file error, 4 unstable run, 1 anything else.
+// Exit status: 0 success, 2 bad input, 3 file error, 4 unstable run, 5 calibration not converged, 1 anything else.
 #include <omp.h>
 #include <unistd.h>
 
@@ -9,7 +9,9 @@
 #include <filesystem>
 #include <iostream>
 
+#include "engine/calibration.hpp"
 #include "engine/errors.hpp"
+#include "engine/realizations.hpp"
 #include "engine/runner.hpp"
 #include "engine/scene.hpp"
 #include "engine/summary.hpp"
@@ -53,6 +55,39 @@ int run(const std::string& scene_file, std::string output, const std::vector<std
   return 0;
 }
 
+// N packings of one scene (seeds seed … seed + N − 1): one output file each, and their statistics as JSON, printed
+// and saved beside them as <stem>_realizations.json.
+int realizations(const std::string& scene_file, const std::string& output, const std::vector<std::string>& sets,
+                 int threads, int n) {
+  if (output.empty()) throw mc::InputError("run --realizations: give the output file with -o OUT.h5 (realization k writes OUT_rk.h5)");
+  if (threads > 0) omp_set_num_threads(threads);
+  const mc::RealizationSet set = mc::run_realizations(scene_file, sets, n, output, stderr);
+  const std::string json = mc::realizations_json(set);
+  const std::filesystem::path p(output);
+  const std::string file = (p.parent_path() / (p.stem().string() + "_realizations.json")).string();
+  std::FILE* f = std::fopen((file + ".tmp").c_str(), "w");
+  if (!f || std::fputs(json.c_str(), f) < 0 || std::fclose(f) != 0) throw mc::IoError(file + ": cannot write");
+  std::filesystem::rename(file + ".tmp", file);
+  std::cout << json;
+  std::fprintf(stderr, "statistics -> %s\n", file.c_str());
+  return 0;
+}
+
+int calibrate(const std::string& scene_file, const std::string& output, const std::vector<std::string>& sets, int threads,
+              const std::string& targets, double tolerance, int max_iterations) {
+  if (threads > 0) omp_set_num_threads(threads);
+  const mc::CalibrationTarget target = mc::parse_targets(targets);
+  mc::CalibrationOptions opt;
+  opt.output = output;
+  opt.tolerance = tolerance;
+  opt.max_iterations = max_iterations;
+  const mc::CalibrationResult r = mc::calibrate(scene_file, sets, target, opt, stderr);
+  std::fprintf(stderr, "%s after %d iterations; calibrated scene -> %s\n", r.converged ? "converged" : "NOT converged",
+               r.iterations, output.c_str());
+  for (const auto& o : r.overrides) std::printf("%s\n", o.c_str());
+  return r.converged ? 0 : 5;
+}
+
 int report(const std::string& file) {
   const std::string cmd = "/usr/bin/python3 " + shell_quote(report_script()) + " " + shell_quote(file);
   const int rc = std::system(cmd.c_str());
@@ -82,13 +117,28 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   std::string scene, output, resume, target;
   std::vector<std::string> sets;
-  int threads = 0;
+  int threads = 0, n_realizations = 1, max_iterations = 12;
+  double tolerance = 0.05;
+  std::string targets;
   auto* run_cmd = app.add_subcommand("run", "run a scene");
   run_cmd->add_option("scene", scene, "scene file (TOML)")->required();
   run_cmd->add_option("-o,--output", output, "output file (HDF5)");
   run_cmd->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
   run_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
   run_cmd->add_option("--resume", resume, "continue this output file from its last checkpoint");
+  run_cmd->add_option("--realizations", n_realizations,
+                      "run N packings (seeds seed..seed+N-1) into OUT_rK.h5 and report mean, std and CV of E, nu, UCS")
+      ->check(CLI::PositiveNumber)->excludes("--resume");
+  auto* calibrate_cmd = app.add_subcommand("calibrate", "find micro-parameters matching target E, nu, UCS (Tang 6.3)");
+  calibrate_cmd->add_option("scene", scene, "scene file (TOML) with one parallel_bond contact entry and [uniaxial]")->required();
+  calibrate_cmd->add_option("--target", targets, "targets, e.g. E=30GPa,nu=0.2,ucs=40MPa")->required();
+  calibrate_cmd->add_option("-o,--output", output, "the calibrated scene (TOML); its runs are written beside it")->required();
+  calibrate_cmd->add_option("--tolerance", tolerance, "relative tolerance on each target (default 0.05)")
+      ->check(CLI::Range(1e-4, 0.5));
+  calibrate_cmd->add_option("--max-iterations", max_iterations, "give up after this many runs (default 12)")
+      ->check(CLI::Range(1, 100));
+  calibrate_cmd->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
+  calibrate_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
   auto* generate_cmd = app.add_subcommand("generate", "build a scene's specimen (e.g. a dense packing) and save it");
   generate_cmd->add_option("scene", scene, "scene file (TOML)")->required();
   generate_cmd->add_option("-o,--output", output, "specimen file (HDF5; scenes load it with kind = \"output\")");
@@ -100,7 +150,9 @@ int main(int argc, char** argv) {
   report_cmd->add_option("output", target, "output file (HDF5)")->required();
   CLI11_PARSE(app, argc, argv);
   try {
+    if (*run_cmd && n_realizations > 1) return realizations(scene, output, sets, threads, n_realizations);
     if (*run_cmd) return run(scene, output, sets, threads, resume);
+    if (*calibrate_cmd) return calibrate(scene, output, sets, threads, targets, tolerance, max_iterations);
     if (*generate_cmd) return generate(scene, output, sets, threads);
     if (*summary_cmd) {
       std::cout << mc::summary_json(target);

@@ -210,6 +210,8 @@ class Run {
       m << "stopped: " << st.spec.quantity;
       if (st.spec.kind == StopSpec::Kind::Below && v < st.spec.value) m << " = " << v << " < " << st.spec.value;
       else if (st.spec.kind == StopSpec::Kind::Above && v > st.spec.value) m << " = " << v << " > " << st.spec.value;
+      else if (st.spec.kind == StopSpec::Kind::MagnitudeAbove && std::abs(v) > st.spec.value)
+        m << " = " << v << ", beyond ±" << st.spec.value;
       else if (st.spec.kind == StopSpec::Kind::PostPeak && st.peak > 0 && v < st.spec.value * st.peak)
         m << " fell to " << v / st.peak << " of its peak " << st.peak;
       else continue;

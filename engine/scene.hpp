@@ -119,7 +119,8 @@ struct ProbeSpec {
 
 struct StopSpec {
   std::string quantity;  // a history name
-  enum class Kind { Below, Above, PostPeak } kind;
+  // MagnitudeAbove: |value| > threshold; not a scene key, `calibrate` uses it to end its elastic runs early.
+  enum class Kind { Below, Above, PostPeak, MagnitudeAbove } kind;
   double value;          // threshold, or the fraction of the peak
   double after_time = 0; // not before this time [s]
 };
@@ -127,7 +128,8 @@ struct StopSpec {
 // Uniaxial compression results (Tang §5.2): from the histories named here, `summary` gives E (secant between
 // 25 % and 50 % of the peak), ν, UCS, the strain at the peak, the crack-initiation stress and crack counts.
 struct UniaxialSpec {
-  std::string stress, axial_strain, lateral_strain;  // history names; empty: no analysis
+  std::string stress, axial_strain;          // history names; empty: no analysis
+  std::vector<std::string> lateral_strain;   // their mean is the lateral strain (3D: the two lateral axes)
 };
 
 struct SummarySpec {
@@ -153,6 +155,7 @@ struct Scene {
   bool crack_log = false;      // [bonds] crack_log: every break (and first yield) written to /cracks
   std::optional<std::vector<double>> gravity;
   double local_damping = 0;
+  double density_scaling = 1;  // inertial mass factor for quasi-static runs (PFC density scaling); 1: off
   double skin = 0;  // 0: 0.1 R_min
   TimestepControl timestep;
   bool energy = false;

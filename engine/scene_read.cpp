@@ -274,6 +274,10 @@ void read_physics(const Table& root, Scene& s) {
   if (auto t = root.optional_table("physics")) {
     if (t->has("gravity")) s.gravity = vec(*t, "gravity", Unit::Acceleration, d);
     s.local_damping = t->number("local_damping", Unit::None, Range::open_fraction(), 0.0);
+    s.density_scaling = t->number("density_scaling", Unit::None, Range::at_least(1.0), 1.0);
+    if (s.density_scaling != 1.0 && s.gravity)
+      t->fail("density_scaling", "scales the inertial mass, which gravity would then pull with too: density scaling is "
+                                 "for quasi-static runs without gravity (leave it at 1 or drop gravity)");
     s.energy = t->boolean("energy", false);
     s.skin = t->number("skin", Unit::Length, Range::positive(), 0.0);
     s.domain_lo = opt_vec(*t, "domain_lo", Unit::Length, d);
@@ -442,7 +446,9 @@ void read_uniaxial(const Table& root, Scene& s) {
   if (auto t = root.optional_table("uniaxial")) {
     s.uniaxial.stress = t->string("stress");
     s.uniaxial.axial_strain = t->string("axial_strain");
-    s.uniaxial.lateral_strain = t->string("lateral_strain");
+    std::istringstream names(t->string("lateral_strain"));
+    for (std::string n; names >> n;) s.uniaxial.lateral_strain.push_back(n);
+    if (s.uniaxial.lateral_strain.empty()) t->fail("lateral_strain", "give one or more history names, separated by spaces");
     t->finish();
   }
 }
@@ -460,9 +466,10 @@ void check_names(const Table& root, const Scene& s, const std::vector<std::strin
     if (!known(s.summaries[i].of)) sums[i].fail("of", "not a history of this scene; recorded: " + list);
   if (!s.uniaxial.stress.empty()) {
     const Table u = root.table("uniaxial");
-    for (const auto& [key, name] : {std::pair<std::string, std::string>{"stress", s.uniaxial.stress},
-                                    {"axial_strain", s.uniaxial.axial_strain}, {"lateral_strain", s.uniaxial.lateral_strain}})
-      if (!known(name)) u.fail(key, "not a history of this scene; recorded: " + list);
+    std::vector<std::pair<std::string, std::string>> named{{"stress", s.uniaxial.stress}, {"axial_strain", s.uniaxial.axial_strain}};
+    for (const auto& n : s.uniaxial.lateral_strain) named.push_back({"lateral_strain", n});
+    for (const auto& [key, name] : named)
+      if (!known(name)) u.fail(key, "'" + name + "' is not a history of this scene; recorded: " + list);
     if (s.bond_tolerance < 0) u.fail("stress", "the crack-initiation stress needs bonds: declare [bonds]");
   }
 }

@@ -76,17 +76,23 @@ double reduce(SummarySpec::Reduce r, const std::vector<double>& t, const std::ve
 // −Δε_lateral/Δε_axial over the same stretch; UCS is the peak; the crack-initiation stress is the stress when the
 // cracks reach 1 % of their count at the peak. Compression is positive for the stress and the axial strain
 // (whatever signs the histories carry), the lateral strain keeps its sign (expansion positive).
-std::string uniaxial_json(const UniaxialSpec& u, std::map<std::string, std::vector<double>>& h) {
-  std::vector<double> s = h[u.stress], ea = h[u.axial_strain], el = h[u.lateral_strain];
+UniaxialResult uniaxial_result(const UniaxialSpec& u, std::map<std::string, std::vector<double>>& h) {
+  UniaxialResult r;
+  std::vector<double> s = h[u.stress], ea = h[u.axial_strain], el(s.size(), 0.0);
+  for (const auto& name : u.lateral_strain) {
+    const std::vector<double>& y = h[name];
+    el.resize(std::min(el.size(), y.size()));
+    for (std::size_t k = 0; k < el.size(); ++k) el[k] += y[k] / static_cast<double>(u.lateral_strain.size());
+  }
   const std::vector<double>& ct = h["cracks.tensile"];
   const std::vector<double>& cs = h["cracks.shear"];
   const std::size_t n = std::min({s.size(), ea.size(), el.size(), ct.size(), cs.size()});
-  if (n < 3) return "null";
+  if (n < 3) return r;
   for (std::size_t k = 0; k < n; ++k) s[k] = std::abs(s[k]), ea[k] = std::abs(ea[k]);
   std::size_t peak = 0;
   for (std::size_t k = 0; k < n; ++k)
     if (s[k] > s[peak]) peak = k;
-  const double ucs = s[peak];
+  r.ucs = s[peak];
   // The first pre-peak crossing of a stress level, interpolated: returns the fractional row.
   auto crossing = [&](double level) {
     for (std::size_t k = 1; k <= peak; ++k)
@@ -99,34 +105,58 @@ std::string uniaxial_json(const UniaxialSpec& u, std::map<std::string, std::vect
     const double f = row - static_cast<double>(k);
     return k + 1 < n ? y[k] + f * (y[k + 1] - y[k]) : y[k];
   };
-  const double r25 = crossing(0.25 * ucs), r50 = crossing(0.5 * ucs);
-  const double modulus = 0.25 * ucs / (at(ea, r50) - at(ea, r25));
-  const double poisson = (at(el, r50) - at(el, r25)) / (at(ea, r50) - at(ea, r25));
-  const double cracks_at_peak = ct[peak] + cs[peak];
-  double initiation = kNaN;
+  const double r25 = crossing(0.25 * r.ucs), r50 = crossing(0.5 * r.ucs);
+  r.modulus = 0.25 * r.ucs / (at(ea, r50) - at(ea, r25));
+  r.poisson = (at(el, r50) - at(el, r25)) / (at(ea, r50) - at(ea, r25));
+  r.strain_at_peak = ea[peak];
+  r.cracks_at_peak = ct[peak] + cs[peak];
   for (std::size_t k = 0; k <= peak; ++k)
-    if (ct[k] + cs[k] >= std::max(1.0, 0.01 * cracks_at_peak)) {
-      initiation = s[k];
+    if (ct[k] + cs[k] >= std::max(1.0, 0.01 * r.cracks_at_peak)) {
+      r.initiation_stress = s[k];
       break;
     }
+  r.cracks_tensile = ct[n - 1];
+  r.cracks_shear = cs[n - 1];
+  return r;
+}
+
+namespace {
+
+std::string uniaxial_json(const UniaxialResult& r) {
+  if (!std::isfinite(r.ucs)) return "null";
   std::ostringstream o;
-  o << "{\n    \"E\": " << num(modulus) << ",\n    \"E_definition\": \"secant between 25 % and 50 % of the peak stress\""
-    << ",\n    \"nu\": " << num(poisson) << ",\n    \"ucs\": " << num(ucs) << ",\n    \"strain_at_peak\": " << num(ea[peak])
-    << ",\n    \"crack_initiation_stress\": " << num(initiation)
-    << ",\n    \"crack_initiation_ratio\": " << num(initiation / ucs)
-    << ",\n    \"cracks_at_peak\": " << num(cracks_at_peak)
-    << ",\n    \"cracks_tensile\": " << num(ct[n - 1]) << ",\n    \"cracks_shear\": " << num(cs[n - 1]) << "\n  }";
+  o << "{\n    \"E\": " << num(r.modulus) << ",\n    \"E_definition\": \"secant between 25 % and 50 % of the peak stress\""
+    << ",\n    \"nu\": " << num(r.poisson) << ",\n    \"ucs\": " << num(r.ucs) << ",\n    \"strain_at_peak\": " << num(r.strain_at_peak)
+    << ",\n    \"crack_initiation_stress\": " << num(r.initiation_stress)
+    << ",\n    \"crack_initiation_ratio\": " << num(r.initiation_stress / r.ucs)
+    << ",\n    \"cracks_at_peak\": " << num(r.cracks_at_peak)
+    << ",\n    \"cracks_tensile\": " << num(r.cracks_tensile) << ",\n    \"cracks_shear\": " << num(r.cracks_shear) << "\n  }";
   return o.str();
+}
+
+// The scene stored in a mesocrack output file, and its histories.
+Scene stored_scene(const H5File& f, const std::string& output_file, std::map<std::string, std::vector<double>>& h) {
+  if (!f.has_attr("/", "format") || f.attr_string("/", "format") != "mesocrack-1")
+    throw IoError(output_file + ": not a mesocrack output file (no format attribute 'mesocrack-1')");
+  if (f.exists("/history"))
+    for (const auto& n : f.list("/history")) h[n] = f.read_doubles("/history/" + n);
+  return read_scene(TomlDoc::parse_text(f.read_string("/scene"), output_file + ":/scene"), output_file);
+}
+
+}  // namespace
+
+UniaxialResult uniaxial_result(const std::string& output_file) {
+  const H5File f(output_file, H5File::Mode::ReadOnly);
+  std::map<std::string, std::vector<double>> h;
+  const Scene scene = stored_scene(f, output_file, h);
+  if (scene.uniaxial.stress.empty()) throw InputError(output_file + ": the scene declares no [uniaxial] analysis");
+  return uniaxial_result(scene.uniaxial, h);
 }
 
 std::string summary_json(const std::string& output_file) {
   const H5File f(output_file, H5File::Mode::ReadOnly);
-  if (!f.has_attr("/", "format") || f.attr_string("/", "format") != "mesocrack-1")
-    throw IoError(output_file + ": not a mesocrack output file (no format attribute 'mesocrack-1')");
-  const Scene scene = read_scene(TomlDoc::parse_text(f.read_string("/scene"), output_file + ":/scene"), output_file);
   std::map<std::string, std::vector<double>> h;
-  if (f.exists("/history"))
-    for (const auto& n : f.list("/history")) h[n] = f.read_doubles("/history/" + n);
+  const Scene scene = stored_scene(f, output_file, h);
   const auto& t = h["time"];
   std::ostringstream o;
   o << "{\n  \"file\": " << quote(output_file) << ",\n  \"title\": " << quote(scene.title)
@@ -134,14 +164,15 @@ std::string summary_json(const std::string& output_file) {
     << ",\n  \"status_message\": " << quote(f.attr_string("/", "status_message"))
     << ",\n  \"particles\": " << f.rows("/specimen/radius")
     << ",\n  \"steps\": " << num(h["step"].empty() ? 0.0 : h["step"].back())
-    << ",\n  \"time\": " << num(t.empty() ? 0.0 : t.back()) << ",\n  \"history_rows\": " << t.size();
+    << ",\n  \"time\": " << num(t.empty() ? 0.0 : t.back()) << ",\n  \"history_rows\": " << t.size()
+    << ",\n  \"density_scaling\": " << num(scene.density_scaling);  // 1: off; else the inertia was scaled by it
   o << ",\n  \"results\": {";
   for (std::size_t i = 0; i < scene.summaries.size(); ++i) {
     const SummarySpec& s = scene.summaries[i];
     o << (i ? "," : "") << "\n    " << quote(s.name) << ": " << num(reduce(s.reduce, t, h[s.of]));
   }
   o << (scene.summaries.empty() ? "}" : "\n  }");
-  if (!scene.uniaxial.stress.empty()) o << ",\n  \"uniaxial\": " << uniaxial_json(scene.uniaxial, h);
+  if (!scene.uniaxial.stress.empty()) o << ",\n  \"uniaxial\": " << uniaxial_json(uniaxial_result(scene.uniaxial, h));
   o << ",\n  \"final\": {";
   bool first = true;
   for (const auto& [name, y] : h) {

@@ -1,0 +1,202 @@
+#include "engine/calibration.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "engine/errors.hpp"
+#include "engine/runner.hpp"
+#include "engine/scene.hpp"
+#include "engine/toml_reader.hpp"
+
+namespace mc {
+
+CalibrationTarget parse_targets(const std::string& text) {
+  // Each "name=value" becomes a TOML line, so units and ranges are checked by the scene reader's own rules.
+  std::string toml;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos)
+      throw InputError("--target '" + item + "': give name=value, e.g. E=30GPa,nu=0.2,ucs=40MPa");
+    auto trim = [](std::string s) {
+      s.erase(0, s.find_first_not_of(" \t"));
+      s.erase(s.find_last_not_of(" \t") + 1);
+      return s;
+    };
+    const std::string key = trim(item.substr(0, eq)), value = trim(item.substr(eq + 1));
+    const bool number = !value.empty() && value.find_first_not_of("0123456789.eE+-") == std::string::npos;
+    toml += key + " = " + (number ? value : "\"" + value + "\"") + "\n";
+  }
+  try {
+    const TomlDoc doc = TomlDoc::parse_text(toml, "--target");
+    const Table t = doc.root();
+    CalibrationTarget c;
+    c.modulus = t.number("E", Unit::Pressure, Range::positive(), kNaN);
+    c.poisson = t.number("nu", Unit::None, Range{0.0, 0.5, true, true}, kNaN);
+    c.ucs = t.number("ucs", Unit::Pressure, Range::positive(), kNaN);
+    t.finish();
+    if (std::isnan(c.modulus) && std::isnan(c.poisson) && std::isnan(c.ucs))
+      throw InputError("--target '" + text + "': name at least one of E, nu, ucs");
+    if (std::isnan(c.modulus) != std::isnan(c.poisson))
+      throw InputError("--target '" + text + "': give E and nu together (both depend on E_c and k_n/k_s, Tang §6.3)");
+    return c;
+  } catch (const InputError& e) {
+    throw InputError(std::string(e.what()) + " (allowed targets: E [Pa], nu in (0, 0.5), ucs [Pa])");
+  }
+}
+
+namespace {
+
+// The micro-parameters being calibrated, as factors on the scene's own values.
+struct Knobs {
+  double modulus = 1;    // E_c and Ē_c, both times this
+  double ratio = 0;      // k_n/k_s of the grains (the bonds' ratio keeps its proportion to it)
+  double strength = 1;   // every bond strength (means and spreads) times this
+};
+
+// What the scene's parallel-bond entry holds.
+struct Entry {
+  int index = -1;
+  double modulus = 0, bond_modulus = 0, ratio = 1, bond_ratio = 1;
+  std::vector<std::pair<std::string, double>> strengths;  // key → value [Pa]
+};
+
+Entry find_entry(const std::string& scene_file, const std::vector<std::string>& overrides) {
+  const TomlDoc doc = TomlDoc::load(scene_file, overrides);
+  const std::vector<Table> contacts = doc.root().tables("contacts");
+  Entry e;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Table& t = contacts[i];
+    if (t.string("model", "") != "parallel_bond") continue;
+    if (e.index >= 0)
+      t.fail("model", "calibrate works on one parallel-bonded phase pair; this scene has several [[contacts]] with "
+                      "model = \"parallel_bond\" (calibrate each material in its own scene)");
+    e.index = static_cast<int>(i);
+    e.modulus = t.number("modulus", Unit::Pressure, Range::positive());
+    e.bond_modulus = t.number("bond_modulus", Unit::Pressure, Range::positive());
+    e.ratio = t.number("kn_ks_ratio", Unit::None, Range::positive(), 1.0);
+    e.bond_ratio = t.number("bond_kn_ks_ratio", Unit::None, Range::positive(), 1.0);
+    for (const char* k : {"bond_tensile_strength", "bond_tensile_strength_std", "bond_shear_strength", "bond_shear_strength_std"})
+      if (t.has(k)) e.strengths.push_back({k, t.number(k, Unit::Pressure, Range::non_negative())});
+  }
+  if (e.index < 0)
+    throw InputError(scene_file + ": calibrate needs a [[contacts]] entry with model = \"parallel_bond\" (Tang §6.3 "
+                                  "calibrates a parallel-bonded material)");
+  return e;
+}
+
+std::string set(const Entry& e, const std::string& key, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.8g", v);
+  return "contacts[" + std::to_string(e.index) + "]." + key + "=" + b;
+}
+
+std::vector<std::string> knob_overrides(const Entry& e, const Knobs& k, double strength) {
+  std::vector<std::string> o{set(e, "modulus", e.modulus * k.modulus), set(e, "bond_modulus", e.bond_modulus * k.modulus),
+                             set(e, "kn_ks_ratio", k.ratio), set(e, "bond_kn_ks_ratio", e.bond_ratio / e.ratio * k.ratio)};
+  for (const auto& [key, v] : e.strengths) o.push_back(set(e, key, v * strength));
+  return o;
+}
+
+// E/E_c as a function of k_n/k_s, Tang (6.2) for 2D and (6.3) for 3D: used only to predict how a change of the
+// ratio moves E, so that E_c can be corrected for it in the same iteration.
+double modulus_shape(int dimension, double ratio) {
+  return dimension == 2 ? 1.57 - 0.42 * std::log(ratio) : 1.36 - 0.39 * std::log(ratio);
+}
+
+double rel(double value, double target) { return std::abs(value / target - 1.0); }
+
+}  // namespace
+
+CalibrationResult calibrate(const std::string& scene_file, const std::vector<std::string>& overrides,
+                            const CalibrationTarget& target, const CalibrationOptions& options, std::FILE* log) {
+  if (options.output.empty()) throw InputError("calibrate: give the calibrated scene's file with -o CALIBRATED.toml");
+  const Entry entry = find_entry(scene_file, overrides);
+  const Scene base = read_scene(TomlDoc::load(scene_file, overrides), scene_file);
+  if (base.uniaxial.stress.empty())
+    throw InputError(scene_file + ": calibrate needs a [uniaxial] table: it matches the E, ν and UCS it reports");
+  const bool elastic_targets = !std::isnan(target.modulus);
+  const bool strength_target = !std::isnan(target.ucs);
+  Knobs k;
+  k.ratio = entry.ratio;
+  // The elastic runs stop at half the target's elastic strain at the peak: far enough for the secant between
+  // 25 % and 50 % of their last stress, and a fraction of a full test's steps.
+  const double elastic_stop = strength_target && elastic_targets ? 0.5 * target.ucs / target.modulus : 5e-4;
+  const double strong = 1e3;  // bond strengths times this cannot break in the elastic runs
+  double slope = 0.11;        // dν/d ln(k_n/k_s), Tang (6.2) and (6.3); replaced by what the runs measure
+  double prev_lnr = kNaN, prev_nu = kNaN;
+  bool elastic = elastic_targets;
+  const std::filesystem::path out(options.output);
+  CalibrationResult res;
+  std::fprintf(log, "%3s %-8s %10s %7s %9s | %9s %7s %9s | %s\n", "it", "run", "E_c [GPa]", "kn/ks", "strength", "E [GPa]",
+               "nu", "UCS [MPa]", "wall [s]");
+  Knobs ran = k;  // what the last run used: the calibrated scene gets these, never untested values
+  for (int it = 1; it <= options.max_iterations; ++it) {
+    ran = k;
+    std::vector<std::string> o = overrides;
+    const std::vector<std::string> knobs = knob_overrides(entry, k, elastic ? k.strength * strong : k.strength);
+    o.insert(o.end(), knobs.begin(), knobs.end());
+    Scene scene = read_scene(TomlDoc::load(scene_file, o), scene_file);
+    if (elastic) scene.stops = {StopSpec{scene.uniaxial.axial_strain, StopSpec::Kind::MagnitudeAbove, elastic_stop, 0.0}};
+    RunOptions ro;
+    ro.output = (out.parent_path() / (out.stem().string() + "_it" + std::to_string(it) + ".h5")).string();
+    const RunResult rr = run_scene(scene, ro);
+    const UniaxialResult u = uniaxial_result(ro.output);
+    res.iterations = it;
+    std::fprintf(log, "%3d %-8s %10.4g %7.4g %9.4g | %9.4g %7.4g %9s | %.1f\n", it, elastic ? "elastic" : "full",
+                 entry.modulus * k.modulus * 1e-9, k.ratio, k.strength, u.modulus * 1e-9, u.poisson,
+                 elastic ? "-" : std::to_string(u.ucs * 1e-6).substr(0, 8).c_str(), rr.wall_seconds);
+    std::fflush(log);
+    if (!std::isfinite(u.modulus) || !std::isfinite(u.poisson) || (!elastic && !std::isfinite(u.ucs)))
+      throw InputError(ro.output + ": the uniaxial test gave no E, ν or UCS (" + rr.status +
+                       "); check that the scene loads the specimen to its peak");
+    const bool e_ok = !elastic_targets || (rel(u.modulus, target.modulus) <= options.tolerance &&
+                                           rel(u.poisson, target.poisson) <= options.tolerance);
+    if (!elastic) res.last = u;
+    if (elastic && e_ok && strength_target) {  // the stiffnesses are found: now the strengths, in full tests
+      elastic = false;
+      continue;
+    }
+    const bool s_ok = !strength_target || (!elastic && rel(u.ucs, target.ucs) <= options.tolerance);
+    if (e_ok && s_ok) {
+      if (elastic) res.last = u;
+      res.converged = true;
+      break;
+    }
+    if (!e_ok) {
+      // ν through k_n/k_s on its logarithmic law (6.2)/(6.3), with the slope the last two runs measured when
+      // they tell one; E through E_c (linear, 6.1), corrected for what the new ratio does to E/E_c.
+      const double lnr = std::log(k.ratio);
+      if (std::isfinite(prev_lnr) && std::abs(lnr - prev_lnr) > 1e-3) {
+        const double measured = (u.poisson - prev_nu) / (lnr - prev_lnr);
+        if (measured > 0.02 && measured < 0.5) slope = measured;
+      }
+      prev_lnr = lnr, prev_nu = u.poisson;
+      const double ratio = std::clamp(std::exp(lnr + (target.poisson - u.poisson) / slope), 0.25, 20.0);
+      if (ratio == k.ratio)
+        throw InputError("calibrate: ν = " + std::to_string(target.poisson) + " is out of reach for this packing: "
+                         "k_n/k_s at its bound " + std::to_string(ratio) + " gives ν = " + std::to_string(u.poisson));
+      k.modulus *= target.modulus / u.modulus * modulus_shape(base.dimension, k.ratio) / modulus_shape(base.dimension, ratio);
+      k.ratio = ratio;
+    }
+    if (!elastic && strength_target && rel(u.ucs, target.ucs) > options.tolerance)
+      k.strength *= target.ucs / u.ucs;  // UCS in proportion to the bond strengths at fixed strength ratio
+  }
+  res.overrides = knob_overrides(entry, ran, ran.strength);
+  std::vector<std::string> all = overrides;
+  all.insert(all.end(), res.overrides.begin(), res.overrides.end());
+  const std::string text = TomlDoc::load(scene_file, all).text();
+  const std::string tmp = options.output + ".tmp";
+  {
+    std::ofstream f(tmp);
+    f << text;
+    if (!f) throw IoError(tmp + ": cannot write the calibrated scene");
+  }
+  std::filesystem::rename(tmp, options.output);
+  return res;
+}
+
+}  // namespace mc

@@ -1,0 +1,107 @@
+#include "engine/realizations.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "engine/errors.hpp"
+#include "engine/runner.hpp"
+#include "engine/scene.hpp"
+#include "engine/toml_reader.hpp"
+
+namespace mc {
+
+Statistic statistic(const std::vector<double>& x) {
+  Statistic s;
+  if (x.empty()) return s;
+  double sum = 0;
+  for (double v : x) sum += v;
+  s.mean = sum / static_cast<double>(x.size());
+  if (x.size() < 2) return s;
+  double ss = 0;
+  for (double v : x) ss += (v - s.mean) * (v - s.mean);
+  s.std = std::sqrt(ss / static_cast<double>(x.size() - 1));
+  s.cv = s.std / std::abs(s.mean);
+  return s;
+}
+
+std::string realization_file(const std::string& output, int k) {
+  const std::filesystem::path p(output);
+  return (p.parent_path() / (p.stem().string() + "_r" + std::to_string(k) + p.extension().string())).string();
+}
+
+RealizationSet run_realizations(const std::string& scene_file, const std::vector<std::string>& overrides, int n,
+                                const std::string& output, std::FILE* log) {
+  if (n < 1) throw InputError("--realizations " + std::to_string(n) + ": give 1 or more");
+  // Read and validate once, before any output exists.
+  const Scene base = read_scene(TomlDoc::load(scene_file, overrides), scene_file);
+  if (base.uniaxial.stress.empty())
+    throw InputError(scene_file + ": --realizations needs a [uniaxial] table: it compares E, ν and UCS across packings");
+  RealizationSet set;
+  std::fprintf(log, "%4s %12s %10s %8s %10s %10s %9s\n", "k", "seed", "E [GPa]", "nu", "UCS [MPa]", "init/UCS", "wall [s]");
+  for (int k = 0; k < n; ++k) {
+    std::vector<std::string> o = overrides;
+    const std::uint64_t seed = base.seed + static_cast<std::uint64_t>(k);
+    o.push_back("seed=" + std::to_string(seed));
+    const Scene scene = read_scene(TomlDoc::load(scene_file, o), scene_file);
+    RunOptions opt;
+    opt.output = realization_file(output, k);
+    const RunResult r = run_scene(scene, opt);
+    const UniaxialResult u = uniaxial_result(opt.output);
+    set.seeds.push_back(seed);
+    set.files.push_back(opt.output);
+    set.results.push_back(u);
+    set.wall_seconds.push_back(r.wall_seconds);
+    std::fprintf(log, "%4d %12llu %10.4g %8.4g %10.4g %10.3g %9.1f\n", k, static_cast<unsigned long long>(seed),
+                 u.modulus * 1e-9, u.poisson, u.ucs * 1e-6, u.initiation_stress / u.ucs, r.wall_seconds);
+    std::fflush(log);
+  }
+  return set;
+}
+
+namespace {
+
+std::string num(double x) {
+  if (!std::isfinite(x)) return "null";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.10g", x);
+  return b;
+}
+
+}  // namespace
+
+std::string realizations_json(const RealizationSet& set) {
+  struct Column {
+    const char* name;
+    double (*get)(const UniaxialResult&);
+  };
+  const Column cols[] = {
+      {"E", [](const UniaxialResult& u) { return u.modulus; }},
+      {"nu", [](const UniaxialResult& u) { return u.poisson; }},
+      {"ucs", [](const UniaxialResult& u) { return u.ucs; }},
+      {"strain_at_peak", [](const UniaxialResult& u) { return u.strain_at_peak; }},
+      {"crack_initiation_ratio", [](const UniaxialResult& u) { return u.initiation_stress / u.ucs; }},
+  };
+  std::ostringstream o;
+  o << "{\n  \"realizations\": [";
+  for (std::size_t k = 0; k < set.results.size(); ++k) {
+    o << (k ? "," : "") << "\n    {\"file\": \"" << set.files[k] << "\", \"seed\": " << set.seeds[k]
+      << ", \"wall_seconds\": " << num(set.wall_seconds[k]);
+    for (const Column& c : cols) o << ", \"" << c.name << "\": " << num(c.get(set.results[k]));
+    o << "}";
+  }
+  o << "\n  ],\n  \"statistics\": {";
+  bool first = true;
+  for (const Column& c : cols) {
+    std::vector<double> x;
+    for (const auto& u : set.results) x.push_back(c.get(u));
+    const Statistic s = statistic(x);
+    o << (first ? "" : ",") << "\n    \"" << c.name << "\": {\"mean\": " << num(s.mean) << ", \"std\": " << num(s.std)
+      << ", \"cv\": " << num(s.cv) << "}";
+    first = false;
+  }
+  o << "\n  }\n}\n";
+  return o.str();
+}
+
+}  // namespace mc
