@@ -1,0 +1,305 @@
+#!/usr/bin/python3
+"""What accuracy costs in time, for the virtual uniaxial compression test (Tang 2013 ch. 5).
+
+Sweeps, each run single-threaded through the real `mesocrack run` on the reference scenes
+(scenes/uniaxial_2d.toml, scenes/uniaxial_3d.toml) with --set overrides:
+  rate        strain rate 0.01-100 /s (Tang §5.3): UCS and E versus rate beside the CEB dynamic increase factor (5.6)
+  resolution  L/R = W / R_mean with the specimen fixed and R_min varied (Tang §5.4.1, Case II), >= 5 seeds each:
+              mean and coefficient of variation
+  timestep    the safety factor on the critical step (Tang 3.24)
+  density     PFC density scaling (inertia times F, declared in [physics])
+Each point records E, nu, UCS and the CPU seconds of its run (user + system of the child: the cost on one core,
+robust to whatever else the machine is doing). The error of a point is measured against the finest/slowest
+point of its sweep; for the resolution sweep it is the error a single specimen makes, sqrt(bias^2 + CV^2).
+
+Output (in --out): results.csv (one row per run), accuracy.md (the tables), accuracy_vs_time.png (error versus
+CPU seconds, all sweeps), rate_dif.png (DIF versus strain rate with CEB 5.6), resolution.png (mean and CV
+versus L/R).
+
+  benchmarks/uniaxial_accuracy.py                 # quick sets (about an hour of CPU; --jobs 2 halves the wait)
+  benchmarks/uniaxial_accuracy.py --full          # Tang's full ranges (2D L/R to 240, 3D to 77): many hours
+  benchmarks/uniaxial_accuracy.py --only rate --dims 2
+"""
+import argparse
+import concurrent.futures as cf
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+RATIO = 1.66                          # R_max / R_min, Table 5.1
+MEAN = (1 + RATIO) / 2                # R_mean / R_min
+EPS_PEAK = 1.5e-3                     # about the axial strain at the peak (Tang Fig. 5.3): sets ramps and durations
+
+
+def mm(x):
+    return f'"{x * 1e3:.6g} mm"'
+
+
+def geometry_2d(width, height, r_min, rate):
+    """Overrides of scenes/uniaxial_2d.toml for a width x height specimen, R_min, strain rate (5.5)."""
+    v = rate * height / 2                     # each platen: the two close at rate * height
+    ramp = 2e-4 / rate                        # 2 ms at 0.1 /s, as the reference; shorter in proportion above
+    return [
+        f"specimen.hi=[{mm(width)}, {mm(height)}]", f'specimen.radius_min={mm(r_min)}',
+        f"walls[0].a=[{mm(-0.2 * width)}, 0]", f"walls[0].b=[{mm(1.2 * width)}, 0]",
+        f"walls[1].a=[{mm(-0.2 * width)}, {mm(height)}]", f"walls[1].b=[{mm(1.2 * width)}, {mm(height)}]",
+        f"walls[0].inside=[{mm(width / 2)}, {mm(height / 2)}]", f"walls[1].inside=[{mm(width / 2)}, {mm(height / 2)}]",
+        f"walls[0].area={mm(width)}", f"walls[1].area={mm(width)}",
+        f"walls[0].velocity=[0, {v:.6g}]", f"walls[1].velocity=[0, {-v:.6g}]",
+        f"walls[0].ramp_time={ramp:.6g}", f"walls[1].ramp_time={ramp:.6g}", f"run.stop[0].after_time={ramp:.6g}",
+        f"run.duration={0.05 / rate:.6g}",
+        f"measure[0].centre=[{mm(width / 2)}, {mm(height / 2)}]", f"measure[0].radius={mm(0.4 * width)}",
+        "output.frame_every=0", "output.history_every=50",
+    ]
+
+
+def geometry_3d(side, r_min, rate):
+    """Overrides of scenes/uniaxial_3d.toml for a cube of this side."""
+    v = rate * side / 2
+    ramp = 2e-4 / rate
+    c = mm(side / 2)
+    return [
+        f"specimen.hi=[{mm(side)}, {mm(side)}, {mm(side)}]", f"specimen.radius_min={mm(r_min)}",
+        f"walls[0].centre=[{c}, {c}, 0]", f"walls[1].centre=[{c}, {c}, {mm(side)}]",
+        f"walls[0].size=[{mm(1.4 * side)}, {mm(1.4 * side)}]", f"walls[1].size=[{mm(1.4 * side)}, {mm(1.4 * side)}]",
+        f"walls[0].area={side * side:.6g}", f"walls[1].area={side * side:.6g}",
+        f"walls[0].velocity=[0, 0, {v:.6g}]", f"walls[1].velocity=[0, 0, {-v:.6g}]",
+        f"walls[0].ramp_time={ramp:.6g}", f"walls[1].ramp_time={ramp:.6g}", f"run.stop[0].after_time={ramp:.6g}",
+        f"run.duration={0.05 / rate:.6g}",
+        f"measure[0].centre=[{c}, {c}, {c}]", f"measure[0].radius={mm(0.4 * side)}",
+        "output.frame_every=0", "output.history_every=50",
+    ]
+
+
+def geometry(dim, lr, rate, size):
+    """Case II of Tang §5.4.1: the specimen keeps its size, R_min follows L/R = W / R_mean."""
+    r_min = size / (lr * MEAN)
+    return geometry_2d(size, 2 * size, r_min, rate) if dim == 2 else geometry_3d(size, r_min, rate)
+
+
+def plan(full, dims, only):
+    """(study, dim, label, x, seed, overrides) for every run."""
+    runs = []
+    for dim in dims:
+        size = 0.1                                    # W = 100 mm (2D: 100 x 200 mm), 3D: 100 mm cube
+        if full:
+            lrs = [20, 40, 60, 80, 120, 160, 240] if dim == 2 else [10, 20, 31, 39, 51, 62, 77]
+            rates = [0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100]
+            lr_rate = 120 if dim == 2 else 38
+            seeds = 5
+        else:
+            lrs = [20, 30, 40, 60, 80, 120] if dim == 2 else [10, 15, 20, 25]
+            rates = [0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100]
+            lr_rate = 40 if dim == 2 else 15
+            seeds = 5
+        lr_other = lr_rate                             # timestep and density sweeps at the rate sweep's L/R
+        if "rate" in only:
+            for r in rates:
+                runs.append(("rate", dim, f"{r:g} /s", r, 1, geometry(dim, lr_rate, r, size)))
+        if "resolution" in only:
+            for lr in lrs:
+                for s in range(1, seeds + 1):
+                    runs.append(("resolution", dim, f"L/R {lr}", lr, s, geometry(dim, lr, 0.1, size) + [f"seed={s}"]))
+        if "timestep" in only:
+            for f in [0.1, 0.2, 0.4, 0.6, 0.8, 0.95]:
+                runs.append(("timestep", dim, f"safety {f:g}", f, 1,
+                             geometry(dim, lr_other, 0.1, size) + [f"timestep.safety={f:g}"]))
+        if "density" in only:
+            for f in [1, 10, 100, 1000, 10000]:
+                runs.append(("density", dim, f"F {f:g}", f, 1,
+                             geometry(dim, lr_other, 0.1, size) + [f"physics.density_scaling={f:g}"]))
+    return runs
+
+
+def run_one(exe, out, key, dim, overrides):
+    scene = ROOT / "scenes" / f"uniaxial_{dim}d.toml"
+    h5 = out / "runs" / f"{key}.h5"
+    cmd = [exe, "run", str(scene), "-o", str(h5), "--threads", "1"]
+    for o in overrides:
+        cmd += ["--set", o]
+    t0 = time.monotonic()
+    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env={**os.environ, "OMP_NUM_THREADS": "1"})
+    _, status, usage = os.wait4(p.pid, 0)
+    err = p.stderr.read().decode()
+    p.returncode = os.waitstatus_to_exitcode(status)
+    wall = time.monotonic() - t0
+    if p.returncode != 0:
+        raise RuntimeError(f"{key}: exit {p.returncode}: {err[-2000:]}")
+    s = json.loads(subprocess.run([exe, "summary", str(h5)], capture_output=True, check=True, text=True).stdout)
+    u = s["uniaxial"] or {}
+    for f in h5.parent.glob(h5.stem + "*"):        # keep the disk small: the numbers are in results.csv
+        f.unlink()
+    return {"E": u.get("E"), "nu": u.get("nu"), "ucs": u.get("ucs"), "particles": s["particles"], "steps": s["steps"],
+            "cpu_s": usage.ru_utime + usage.ru_stime, "wall_s": wall}
+
+
+def mean_cv(xs):
+    xs = [x for x in xs if x is not None]
+    m = sum(xs) / len(xs)
+    sd = math.sqrt(sum((x - m) ** 2 for x in xs) / (len(xs) - 1)) if len(xs) > 1 else 0.0
+    return m, sd / abs(m)
+
+
+def ceb_dif(rate, f_cs_mpa):
+    """CEB dynamic increase factor of compressive strength, Tang (5.6), static rate 30e-6 /s, f_co = 10 MPa."""
+    alpha = 1 / (5 + 9 * f_cs_mpa / 10)
+    gamma = 10 ** (6.156 * alpha - 2)
+    return (rate / 30e-6) ** (1.026 * alpha) if rate <= 30 else gamma * rate ** (1 / 3)
+
+
+def analyse(rows, out):
+    """Tables (markdown) and plots from results rows."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    lines = []
+    points = []   # (study, dim, label, cpu_s, err_E, err_ucs) for the accuracy-versus-time plot
+    by = {}
+    for r in rows:
+        by.setdefault((r["study"], r["dim"]), []).append(r)
+    for (study, dim), rs in sorted(by.items()):
+        groups = {}
+        for r in rs:
+            groups.setdefault(r["x"], []).append(r)
+        xs = sorted(groups)
+        if study == "rate":
+            ref_x = min(xs)
+        elif study == "resolution":
+            ref_x = max(xs)
+        elif study == "timestep":
+            ref_x = min(xs)
+        else:
+            ref_x = min(xs)
+        ref = {q: mean_cv([g[q] for g in groups[ref_x]])[0] for q in ("E", "nu", "ucs")}
+        lines.append(f"\n### {study}, {dim}D (reference: {groups[ref_x][0]['label']})\n")
+        lines.append("| setting | particles | runs | E [GPa] | CV E | nu | CV nu | UCS [MPa] | CV UCS | err E | err nu | err UCS | CPU s / run |")
+        lines.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+        for x in xs:
+            g = groups[x]
+            (e, cve), (nu, cvn), (u, cvu) = (mean_cv([r[q] for r in g]) for q in ("E", "nu", "ucs"))
+            cpu = sum(r["cpu_s"] for r in g) / len(g)
+            # a single run's expected error: the bias of the mean and the scatter of one draw
+            err = {q: math.hypot(m / ref[q] - 1, cv) for q, m, cv in (("E", e, cve), ("nu", nu, cvn), ("ucs", u, cvu))}
+            lines.append(f"| {g[0]['label']} | {int(g[0]['particles'])} | {len(g)} | {e * 1e-9:.2f} | {cve:.1%} | {nu:.3f} | "
+                         f"{cvn:.1%} | {u * 1e-6:.2f} | {cvu:.1%} | {err['E']:.1%} | {err['nu']:.1%} | {err['ucs']:.1%} | {cpu:.1f} |")
+            if x != ref_x:
+                points.append((study, dim, g[0]["label"], cpu, err["E"], err["ucs"]))
+    md = out / "accuracy.md"
+    md.write_text("# What accuracy costs in time (uniaxial compression)\n" + "\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5))
+    marks = {"rate": "o", "resolution": "s", "timestep": "^", "density": "D"}
+    for ax, k, name in ((axes[0], 4, "E"), (axes[1], 5, "UCS")):
+        for study in marks:
+            for dim, color in ((2, "tab:blue"), (3, "tab:red")):
+                p = [q for q in points if q[0] == study and q[1] == dim]
+                if p:
+                    ax.loglog([q[3] for q in p], [max(q[k], 1e-4) for q in p], marks[study], color=color,
+                              label=f"{study} {dim}D", alpha=0.8)
+        for level in (0.01, 0.05):
+            ax.axhline(level, color="grey", lw=0.6, ls="--")
+        ax.set_xlabel("CPU seconds per run (one core)")
+        ax.set_ylabel(f"error of {name} against the finest / slowest run")
+        ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out / "accuracy_vs_time.png", dpi=110)
+
+    for dim in (2, 3):
+        rs = by.get(("rate", dim))
+        if not rs:
+            continue
+        rs = sorted(rs, key=lambda r: r["x"])
+        base = rs[0]
+        f_cs = base["ucs"] * 1e-6
+        fig, ax = plt.subplots(figsize=(6, 4.5))
+        rates = [r["x"] for r in rs]
+        ax.semilogx(rates, [r["ucs"] / base["ucs"] for r in rs], "o-", label="UCS / UCS(0.01 /s), mesocrack")
+        ax.semilogx(rates, [r["E"] / base["E"] for r in rs], "s--", label="E / E(0.01 /s), mesocrack")
+        fine = [10 ** (k / 20) for k in range(-40, 41)]
+        ax.semilogx(fine, [ceb_dif(r, f_cs) / ceb_dif(rates[0], f_cs) for r in fine], "k-", lw=1,
+                    label="CEB DIF (5.6), normalised at 0.01 /s")
+        ax.set_xlabel("strain rate [1/s]")
+        ax.set_ylabel("increase factor")
+        ax.set_title(f"Rate dependence, {dim}D")
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(out / f"rate_dif_{dim}d.png", dpi=110)
+
+    for dim in (2, 3):
+        rs = by.get(("resolution", dim))
+        if not rs:
+            continue
+        groups = {}
+        for r in rs:
+            groups.setdefault(r["x"], []).append(r)
+        xs = sorted(groups)
+        fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
+        for q, scale, unit in (("E", 1e-9, "E [GPa]"), ("ucs", 1e-6, "UCS [MPa]")):
+            ax = axes[0] if q == "E" else axes[1]
+            ms = [mean_cv([r[q] for r in groups[x]]) for x in xs]
+            ax.errorbar(xs, [m * scale for m, _ in ms], yerr=[m * cv * scale for m, cv in ms], fmt="o-", capsize=3)
+            ax.set_xlabel("L/R")
+            ax.set_ylabel(unit + " (mean ± std over seeds)")
+        fig.suptitle(f"Resolution, {dim}D (Tang Figs. 5.9-5.12)")
+        fig.tight_layout()
+        fig.savefig(out / f"resolution_{dim}d.png", dpi=110)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--mesocrack", default=str(ROOT / "build" / "mesocrack"))
+    ap.add_argument("--out", default=str(ROOT / "out" / "accuracy"))
+    ap.add_argument("--jobs", type=int, default=1, help="runs at once (each on one thread)")
+    ap.add_argument("--full", action="store_true", help="Tang's full ranges (hours)")
+    ap.add_argument("--dims", default="2,3")
+    ap.add_argument("--only", default="rate,resolution,timestep,density")
+    ap.add_argument("--analyse", action="store_true", help="only redraw tables and plots from results.csv")
+    a = ap.parse_args()
+    out = Path(a.out)
+    (out / "runs").mkdir(parents=True, exist_ok=True)
+    csv_path = out / "results.csv"
+    fields = ["study", "dim", "label", "x", "seed", "E", "nu", "ucs", "particles", "steps", "cpu_s", "wall_s"]
+    done = {}
+    if csv_path.exists():
+        with open(csv_path) as f:
+            for r in csv.DictReader(f):
+                for k in fields[3:]:
+                    r[k] = float(r[k]) if r[k] not in ("", "None") else None
+                r["dim"] = int(r["dim"])
+                done[(r["study"], r["dim"], r["label"], int(r["seed"]))] = r
+    if not a.analyse:
+        only = set(a.only.split(","))
+        dims = [int(d) for d in a.dims.split(",")]
+        todo = [p for p in plan(a.full, dims, only) if (p[0], p[1], p[2], p[4]) not in done]
+        # the longest first, so the pool ends together
+        print(f"{len(todo)} runs to do ({len(done)} already in {csv_path})", flush=True)
+        new = not csv_path.exists()
+        with open(csv_path, "a", newline="") as f, cf.ThreadPoolExecutor(a.jobs) as pool:
+            w = csv.DictWriter(f, fieldnames=fields)
+            if new:
+                w.writeheader()
+            futs = {}
+            for study, dim, label, x, seed, ov in todo:
+                key = f"{study}_{dim}d_{label.replace(' ', '').replace('/', '')}_s{seed}"
+                futs[pool.submit(run_one, a.mesocrack, out, key, dim, ov)] = (study, dim, label, x, seed)
+            for fut in cf.as_completed(futs):
+                study, dim, label, x, seed = futs[fut]
+                r = {"study": study, "dim": dim, "label": label, "x": x, "seed": seed, **fut.result()}
+                w.writerow(r)
+                f.flush()
+                done[(study, dim, label, seed)] = r
+                print(f"{study:10s} {dim}D {label:14s} seed {seed}: E {r['E'] * 1e-9:.2f} GPa, nu {r['nu']:.3f}, "
+                      f"UCS {r['ucs'] * 1e-6:.2f} MPa, {r['cpu_s']:.1f} CPU s", flush=True)
+    analyse(list(done.values()), out)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
