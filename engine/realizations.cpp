@@ -59,17 +59,6 @@ RealizationSet run_realizations(const std::string& scene_file, const std::vector
   return set;
 }
 
-namespace {
-
-std::string num(double x) {
-  if (!std::isfinite(x)) return "null";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.10g", x);
-  return b;
-}
-
-}  // namespace
-
 std::string realizations_json(const RealizationSet& set) {
   struct Column {
     const char* name;
@@ -86,8 +75,8 @@ std::string realizations_json(const RealizationSet& set) {
   o << "{\n  \"realizations\": [";
   for (std::size_t k = 0; k < set.results.size(); ++k) {
     o << (k ? "," : "") << "\n    {\"file\": \"" << set.files[k] << "\", \"seed\": " << set.seeds[k]
-      << ", \"wall_seconds\": " << num(set.wall_seconds[k]);
-    for (const Column& c : cols) o << ", \"" << c.name << "\": " << num(c.get(set.results[k]));
+      << ", \"wall_seconds\": " << json_number(set.wall_seconds[k]);
+    for (const Column& c : cols) o << ", \"" << c.name << "\": " << json_number(c.get(set.results[k]));
     o << "}";
   }
   o << "\n  ],\n  \"statistics\": {";
@@ -96,8 +85,8 @@ std::string realizations_json(const RealizationSet& set) {
     std::vector<double> x;
     for (const auto& u : set.results) x.push_back(c.get(u));
     const Statistic s = statistic(x);
-    o << (first ? "" : ",") << "\n    \"" << c.name << "\": {\"mean\": " << num(s.mean) << ", \"std\": " << num(s.std)
-      << ", \"cv\": " << num(s.cv) << "}";
+    o << (first ? "" : ",") << "\n    \"" << c.name << "\": {\"mean\": " << json_number(s.mean) << ", \"std\": " << json_number(s.std)
+      << ", \"cv\": " << json_number(s.cv) << "}";
     first = false;
   }
   o << "\n  }\n}\n";

@@ -15,12 +15,7 @@ namespace mc {
 
 namespace {
 
-std::string num(double x) {
-  if (!std::isfinite(x)) return "null";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.10g", x);
-  return b;
-}
+std::string num(double x) { return json_number(x); }
 
 std::string quote(const std::string& s) {
   std::string o = "\"";
@@ -71,6 +66,13 @@ double reduce(SummarySpec::Reduce r, const std::vector<double>& t, const std::ve
 }
 
 }  // namespace
+
+std::string json_number(double x) {
+  if (!std::isfinite(x)) return "null";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.10g", x);
+  return b;
+}
 
 // Tang §5.2: the pre-peak curve σ(ε_axial) gives E as the secant between 25 % and 50 % of the peak and ν as
 // −Δε_lateral/Δε_axial over the same stretch; UCS is the peak; the crack-initiation stress is the stress when the

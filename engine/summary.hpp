@@ -26,5 +26,7 @@ UniaxialResult uniaxial_result(const UniaxialSpec& u, std::map<std::string, std:
 UniaxialResult uniaxial_result(const std::string& output_file);
 
 std::string summary_json(const std::string& output_file);
+// A number for JSON: 10 significant digits, null when not finite.
+std::string json_number(double x);
 
 }  // namespace mc
