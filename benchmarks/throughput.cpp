@@ -1,8 +1,8 @@
 // Throughput benchmark of the engine's stepping loop (World::step), printed as markdown tables.
 //
 //  a) shared: the specimen of ../shared/benchmark (README there), on which Yade, ESyS-Particle and LAMMPS were
-//     timed; our figures beside theirs: unbonded linear contacts, and parallel bonds beside them (the peers'
-//     6-DOF bonds).
+//     timed; our figures beside theirs: unbonded linear contacts, parallel bonds beside them (the peers'
+//     6-DOF bonds), and the Concrete Particle Model (beside Yade's CPM figures).
 //  b) scaling: dense random 2D and 3D assemblies from 1e3 to 1e6 particles; the cost per particle-step must
 //     stay flat (O(N)).
 //  c) effects: the cost of each optional effect (gravity, local damping, contact dashpots, energy tracing)
@@ -11,7 +11,7 @@
 // Only the stepping loop is timed (std::chrono::steady_clock); each timing is repeated (default 3) on a fresh
 // world and the best is kept. Ratios are always taken within one run: the machine is shared and noisy.
 //
-//   throughput [--quick] [--only shared|bonded|scaling|effects] [--specimen-dir DIR] [--reps N]
+//   throughput [--quick] [--only shared|bonded|cpm|scaling|effects] [--specimen-dir DIR] [--reps N]
 #include <omp.h>
 #include <unistd.h>
 
@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "contact_models/cpm.hpp"
 #include "contact_models/linear.hpp"
 #include "engine/errors.hpp"
 #include "engine/parallel.hpp"
@@ -54,6 +55,7 @@ struct Options {
   bool quick = false;
   bool shared = true, scaling = true, effects = true;
   bool unbonded = true;  // the shared specimen also without bonds (--only bonded: with bonds only)
+  bool parallel = true, cpm = true;  // its parallel-bonded and CPM runs (--only bonded / cpm: that one alone)
   std::string specimen_dir = MESOCRACK_SOURCE_DIR "/../shared/benchmark";
   int reps = 3;
   bool reps_given = false;
@@ -117,7 +119,22 @@ struct Material {
   double friction = 0.5;
   double damping = 0.0;    // ζ of the contact dashpots
   bool bonded = false;     // parallel bonds (E̅_c = E_c, k̄_n/k̄_s = k_n/k_s, λ̄ = 1, unbreakable here) beside the contacts
+  bool cpm = false;        // instead, CPM contacts (k_N = E_c), cohesive where d ≤ 1.05 (R_i + R_j)
 };
+
+// The CPM of the shared run: k_N = E_c, k_T/k_N = 0.2, the document's inelastic parameters, but ε_0 = 1e-3 so that
+// no contact damages in the timed window (the README: no bond breaks there), as in the parallel-bond run; cohesive
+// contacts on the README's bond pairs, R_I = 1.05.
+CpmParams shared_cpm_params(double modulus) {
+  CpmParams p;
+  p.modulus = modulus;
+  p.crack_onset_strain = 1e-3;
+  p.relative_ductility = 30;
+  p.cohesion = 3.5e6;
+  p.tan_friction = 0.8;
+  p.interaction_radius = 1.05;
+  return p;
+}
 
 template <int D>
 World<D> make_world(const std::vector<Vec<D>>& x, const std::vector<double>& r, const Material& mat) {
@@ -127,7 +144,9 @@ World<D> make_world(const std::vector<Vec<D>>& x, const std::vector<double>& r, 
   lp.kn_ks_ratio = mat.kn_ks;
   lp.friction = mat.friction;
   lp.damping_ratio = mat.damping;
-  if (mat.bonded) {
+  if (mat.cpm) {
+    w.sets.push_back(std::make_unique<ContactSet<Cpm, D>>(shared_cpm_params(mat.modulus)));
+  } else if (mat.bonded) {
     ParallelBondParams bp;
     bp.contact = lp;
     bp.modulus = mat.modulus;
@@ -274,7 +293,8 @@ Timing shared_once(const SphereList<3>& s, const Material& mat, double dt_fixed,
   w.timestep.fixed = dt_fixed;
   w.init();
   // README: bonds on every pair with centre distance ≤ 1.05 (r_i + r_j), i.e. gap ≤ 0.1 r for equal radii.
-  if (mat.bonded) w.install_bonds(0.1, 1);
+  // CPM: cohesive contacts within R_I = 1.05, the same pairs.
+  if (mat.bonded || mat.cpm) w.install_bonds(0.1, 1);
   // Loading (README): tag 1 held, tag 2 moved down at constant velocity so that the strain along z is 1e-4
   // after 2010 steps. The velocity follows from the step actually used.
   const double v = 1e-4 * height / (2010.0 * w.dt);
@@ -342,10 +362,11 @@ SharedRun run_shared(const std::string& path, const std::string& name, const Mat
   return run;
 }
 
-void section_shared(const Options& opt, bool bonded) {
+void section_shared(const Options& opt, bool bonded, bool cpm = false) {
   Material mat;  // E_c = 30 GPa, ρ = 2600, kn/ks = 1, μ = 0.5, no dashpots
-  mat.bonded = bonded;
-  const char* model = bonded ? "parallel bonds + linear contacts" : "unbonded linear contacts";
+  mat.bonded = bonded && !cpm;
+  mat.cpm = cpm;
+  const char* model = cpm ? "CPM (cohesive within R_I = 1.05)" : bonded ? "parallel bonds + linear contacts" : "unbonded linear contacts";
   const int steps = opt.quick ? 200 : 2000;
   std::vector<SharedRun> runs;
   const std::vector<std::string> names = opt.quick ? std::vector<std::string>{"n10k"}
@@ -357,7 +378,14 @@ void section_shared(const Options& opt, bool bonded) {
   }
 
   std::printf("## a) The shared specimen (../shared/benchmark): %s\n\n", model);
-  if (bonded)
+  if (cpm)
+    std::printf("Model: **Concrete Particle Model** (`ContactSet<Cpm,3>`, Šmilauer; the peers' line to compare is "
+                "Yade, CPM): cohesive contacts on every pair with d <= 1.05 (R_i + R_j) (R_I = 1.05, the README's bond "
+                "pairs), k_N = E_c below, k_T/k_N = 0.2, c_T0 = 3.5 MPa, tan φ = 0.8, ε_f/ε_0 = 30, ε_0 = 1e-3 (no "
+                "damage in the window), compressive hardening and the logarithmic surface on; no linear contacts: the "
+                "keys below other than the modulus and density do not apply. Bond-steps/s = cohesive contacts x "
+                "steps/s.\n\n");
+  else if (bonded)
     std::printf("Model: **parallel bonds** (`ContactSet<ParallelBond,3>`, 6-DOF beams, Tang 3.37-3.41) on every pair "
                 "with d <= 1.05 (R_i + R_j), bond modulus = contact modulus, k̄_n/k̄_s = k_n/k_s, λ̄ = 1, in parallel "
                 "with the linear contacts below. Bond-steps/s = bonds x steps/s.\n\n");
@@ -420,7 +448,7 @@ void section_shared(const Options& opt, bool bonded) {
   std::printf("| **mesocrack, %s (this run)** | **%s** | **%s** | **%s** | **%s** |\n\n", model,
               sci(ours(0)).c_str(), sci(ours(1)).c_str(), sci(ours(2)).c_str(), sci(ours(3)).c_str());
   std::printf("Ratio ours / peer (> 1: mesocrack faster; %s):\n\n",
-              bonded ? "both sides bonded" : "ours without bonds here");
+              cpm ? "the CPM line is like with like" : bonded ? "both sides bonded" : "ours without bonds here");
   if (bonded)
     for (const auto& r : runs)
       for (int ti = 0; ti < 2; ++ti)
@@ -642,7 +670,7 @@ void section_effects(const Options& opt) {
 
 [[noreturn]] void usage(const std::string& why) {
   std::fprintf(stderr,
-               "%s\nusage: throughput [--quick] [--only shared|bonded|scaling|effects] [--specimen-dir DIR] [--reps N]\n",
+               "%s\nusage: throughput [--quick] [--only shared|bonded|cpm|scaling|effects] [--specimen-dir DIR] [--reps N]\n",
                why.c_str());
   std::exit(2);
 }
@@ -659,10 +687,10 @@ Options parse(int argc, char** argv) {
       o.quick = true;
     } else if (a == "--only") {
       const std::string v = value();
-      if (v != "shared" && v != "bonded" && v != "scaling" && v != "effects")
-        usage("--only '" + v + "': allowed shared, bonded, scaling, effects");
-      o.shared = v == "shared" || v == "bonded", o.scaling = v == "scaling", o.effects = v == "effects";
-      o.unbonded = v != "bonded";
+      if (v != "shared" && v != "bonded" && v != "cpm" && v != "scaling" && v != "effects")
+        usage("--only '" + v + "': allowed shared, bonded, cpm, scaling, effects");
+      o.shared = v == "shared" || v == "bonded" || v == "cpm", o.scaling = v == "scaling", o.effects = v == "effects";
+      o.unbonded = v == "shared", o.parallel = v != "cpm", o.cpm = v != "bonded";
     } else if (a == "--specimen-dir") {
       o.specimen_dir = value();
     } else if (a == "--reps") {
@@ -715,7 +743,8 @@ int main(int argc, char** argv) {
   };
   try {
     if (opt.shared && opt.unbonded) section([&] { section_shared(opt, false); });
-    if (opt.shared) section([&] { section_shared(opt, true); });
+    if (opt.shared && opt.parallel) section([&] { section_shared(opt, true); });
+    if (opt.shared && opt.cpm) section([&] { section_shared(opt, true, true); });
     if (opt.scaling) section([&] { section_scaling(opt); });
     if (opt.effects) section([&] { section_effects(opt); });
   } catch (const std::exception& e) {

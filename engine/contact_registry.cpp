@@ -13,6 +13,7 @@ const std::vector<std::pair<std::string, Reader>>& registry() {
       {"parallel_bond", parallel_bond_model},
       {"contact_bond", contact_bond_model},
       {"softening_bond", softening_bond_model},
+      {"cpm", cpm_model},
   };
   return r;
 }

@@ -11,7 +11,7 @@ namespace mc {
 
 template <class Model>
 ModelSpec model_spec(const typename Model::Params& p) {
-  return {Model::name, requires { Model::bondable; }, requires { Model::yields; }, [p] { return std::unique_ptr<ContactSetBase<2>>(new ContactSet<Model, 2>(p)); },
+  return {Model::name, requires { Model::bondable; }, requires { Model::yields; }, requires { Model::only_3d; }, [p] { return std::unique_ptr<ContactSetBase<2>>(new ContactSet<Model, 2>(p)); },
           [p] { return std::unique_ptr<ContactSetBase<3>>(new ContactSet<Model, 3>(p)); }};
 }
 
@@ -20,5 +20,6 @@ ModelSpec hertz_mindlin_model(const Table& t);
 ModelSpec parallel_bond_model(const Table& t);
 ModelSpec contact_bond_model(const Table& t);
 ModelSpec softening_bond_model(const Table& t);
+ModelSpec cpm_model(const Table& t);
 
 }  // namespace mc

@@ -90,6 +90,9 @@ class ContactSetBase {
   // Bonds the given pairs (sorted, all present in the list); returns how many were bonded. Models without
   // bonds bond nothing.
   virtual std::size_t install_bonds(const Particles<D>& p, const std::vector<Pair>& pairs, std::uint64_t seed) = 0;
+  // R_I > 0: the model bonds the pairs with centre distance ≤ R_I (R_A + R_B) (the CPM interaction radius)
+  // instead of those within the gap tolerance; 0: the gap tolerance applies.
+  virtual double interaction_radius() const = 0;
   virtual double strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const = 0;
   // Bonds that broke or first yielded in the last forces() call, in pair order (the same on any thread count).
   virtual const std::vector<PairEvent<D>>& events() const = 0;
@@ -237,6 +240,11 @@ class ContactSet final : public ContactSetBase<D> {
       (void)p, (void)bond_pairs, (void)seed;
       return 0;
     }
+  }
+
+  double interaction_radius() const override {
+    if constexpr (requires { Model::interaction_radius(params_); }) return Model::interaction_radius(params_);
+    else return 0.0;
   }
 
   double damping_ratio() const override {

@@ -1,6 +1,10 @@
 #include "engine/history.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "engine/errors.hpp"
 
 namespace mc {
 
@@ -24,6 +28,86 @@ template <int D>
 void Observers<D>::every_step(const World<D>& w, const Scene& s) {
   for (std::size_t r = 0; r < regions.size(); ++r)
     if (s.regions[r].strain) strain[r].update(w);
+}
+
+// Šmilauer, "Simulation setup" (uniaxial tension/compression): the supports at both ends strain the specimen
+// along `axis`. Axial force: the mean of the two supports' reactions, F = ½(R⁺ − R⁻); stress F/A with A the
+// bounding box's cross-section (or the scene's); strain and length from the supports' mean positions; lateral
+// strain: the slope of the regression of Δx on x (and Δy on y, averaged) over the particles of the middle half
+// of the specimen's length, away from the boundary effects at the supports. Signs: positive in the loading sense
+// (the lateral strain: expansion positive).
+template <int D, class Add>
+void add_uniaxial(const Scene& s, const World<D>* w, Add& add) {
+  const UniaxialSpec& u = s.uniaxial;
+  const int ax = u.axis;
+  const double sense = u.tension ? 1.0 : -1.0;
+  struct Setup {
+    std::vector<int> lo, hi, inner;  // support members, inner particles
+    std::vector<Vec<D>> x0;          // all particles at the start
+    double length0 = 0, area = 0;
+  };
+  auto st = std::make_shared<Setup>();
+  auto mean_axial = [ax](const std::vector<int>& m, const std::vector<Vec<D>>& x) {
+    double z = 0;
+    for (int i : m) z += x[i][ax];
+    return z / static_cast<double>(m.size());
+  };
+  if (w) {
+    const auto& p = w->particles;
+    st->lo = w->groups[u.supports[0]], st->hi = w->groups[u.supports[1]];
+    if (st->lo.empty() || st->hi.empty())
+      throw InputError(s.file + ": [uniaxial] supports: group '" + s.groups[u.supports[st->lo.empty() ? 0 : 1]].name +
+                       "' selects no particle");
+    st->x0 = p.x;
+    const double zlo = mean_axial(st->lo, p.x), zhi = mean_axial(st->hi, p.x);
+    st->length0 = zhi - zlo;
+    if (!(st->length0 > 0))
+      throw InputError(s.file + ": [uniaxial] supports: the first group must lie at the negative end of the " +
+                       std::string(1, char('x' + ax)) + " axis, the second at the positive end");
+    Vec<D> lo = Vec<D>::Constant(kInf), hi = Vec<D>::Constant(-kInf);
+    for (int i = 0; i < p.size(); ++i) {
+      lo = lo.cwiseMin(p.x[i] - Vec<D>::Constant(p.radius[i]));
+      hi = hi.cwiseMax(p.x[i] + Vec<D>::Constant(p.radius[i]));
+      if (std::abs(p.x[i][ax] - 0.5 * (zlo + zhi)) < 0.25 * st->length0) st->inner.push_back(i);
+    }
+    st->area = u.area;
+    if (st->area == 0) {
+      st->area = 1;
+      for (int k = 0; k < D; ++k)
+        if (k != ax) st->area *= hi[k] - lo[k];
+    }
+  }
+  add("uniaxial.stress", "Pa", [w, st, ax, sense] {
+    double rp = 0, rm = 0;  // reactions along the axis: what holds each support on its motion
+    for (int i : st->hi) rp -= w->particles.f[i][ax];
+    for (int i : st->lo) rm -= w->particles.f[i][ax];
+    return sense * 0.5 * (rp - rm) / st->area;
+  });
+  add("uniaxial.length", "m", [w, st, ax, mean_axial] {
+    return mean_axial(st->hi, w->particles.x) - mean_axial(st->lo, w->particles.x);
+  });
+  add("uniaxial.strain", "-", [w, st, ax, sense, mean_axial] {
+    const double l = mean_axial(st->hi, w->particles.x) - mean_axial(st->lo, w->particles.x);
+    return sense * (l - st->length0) / st->length0;
+  });
+  add("uniaxial.lateral_strain", "-", [w, st, ax] {
+    double sum = 0;
+    int n = 0;
+    for (int k = 0; k < D; ++k) {
+      if (k == ax) continue;
+      double m0 = 0, md = 0;
+      for (int i : st->inner) m0 += st->x0[i][k], md += w->particles.x[i][k] - st->x0[i][k];
+      m0 /= static_cast<double>(st->inner.size()), md /= static_cast<double>(st->inner.size());
+      double sxy = 0, sxx = 0;
+      for (int i : st->inner) {
+        const double a = st->x0[i][k] - m0, b = w->particles.x[i][k] - st->x0[i][k] - md;
+        sxy += a * b, sxx += a * a;
+      }
+      sum += sxx > 0 ? sxy / sxx : 0.0;
+      ++n;
+    }
+    return sum / n;
+  });
 }
 
 template <int D>
@@ -86,6 +170,7 @@ std::vector<Series> make_series(const Scene& s, const World<D>* w, const Observe
         return u / static_cast<double>(m.size());
       });
   }
+  if (s.uniaxial.supports[0] >= 0) add_uniaxial<D>(s, w, add);
   for (const WallStrainSpec& g : s.wall_strains) {
     // Engineering strain between two walls along the first one's normal, tension positive.
     const int a = g.walls[0], b = g.walls[1];

@@ -22,6 +22,7 @@ struct ModelSpec {
   std::string name;
   bool bonds = false;   // the model bonds pairs (and so breaks them: cracks)
   bool yields = false;  // its bonds yield before they break (softening): first yields are logged too
+  bool only_3d = false; // a law for spheres only (cpm): a 2D scene naming it is refused
   std::function<std::unique_ptr<ContactSetBase<2>>()> make2;
   std::function<std::unique_ptr<ContactSetBase<3>>()> make3;
 };
@@ -125,11 +126,21 @@ struct StopSpec {
   double after_time = 0; // not before this time [s]
 };
 
-// Uniaxial compression results (Tang §5.2): from the histories named here, `summary` gives E (secant between
-// 25 % and 50 % of the peak), ν, UCS, the strain at the peak, the crack-initiation stress and crack counts.
+// Uniaxial compression or tension results (Tang §5.2; Šmilauer, "Simulation setup"): from the histories named
+// here, `summary` gives E (secant between 25 % and 50 % of the peak), ν, the strength (UCS = f_c, or f_t), the
+// strain at the peak, the crack-initiation stress and crack counts, and in tension G_f.
 struct UniaxialSpec {
   std::string stress, axial_strain;          // history names; empty: no analysis
   std::vector<std::string> lateral_strain;   // their mean is the lateral strain (3D: the two lateral axes)
+  bool tension = false;                      // loading = "tension"
+  // Straining by two support groups (supports = ["bottom", "top"]) along `axis`: the scene then records
+  // uniaxial.stress (the mean of both supports' axial reactions over `area`), uniaxial.strain (their mean
+  // displacements over their initial distance), uniaxial.length (that distance) and uniaxial.lateral_strain
+  // (regression of the inner particles' lateral displacements on their positions), each positive in the
+  // loading sense but the lateral strain (expansion positive), and the analysis reads them.
+  std::array<int, 2> supports = {-1, -1};    // indices into Scene::groups; −1: not used
+  int axis = 2;
+  double area = 0;                           // [m²] (3D) or [m] (2D); 0: the specimen's bounding box
 };
 
 struct SummarySpec {

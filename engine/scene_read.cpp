@@ -63,6 +63,10 @@ void read_contacts(const Table& root, Scene& s) {
     c.phase_a = static_cast<int>(std::find(names.begin(), names.end(), pa) - names.begin());
     c.phase_b = static_cast<int>(std::find(names.begin(), names.end(), pb) - names.begin());
     c.model = read_contact_model(t, t.choice("model", contact_model_names()));
+    if (c.model.only_3d && s.dimension == 2)
+      t.fail("model", "the " + c.model.name + " model is a law for spheres (its cross-sections, calibration and "
+                      "interaction radius are 3D): use it with dimension = 3, or a 2D model (linear, hertz_mindlin, "
+                      "parallel_bond, contact_bond, softening_bond)");
     for (const auto& o : s.contacts)
       if ((o.phase_a == c.phase_a && o.phase_b == c.phase_b) || (o.phase_a == c.phase_b && o.phase_b == c.phase_a))
         t.fail("phase_b", "a contact model for this pair of phases is already given");
@@ -444,11 +448,35 @@ void read_output(const Table& root, Scene& s) {
 
 void read_uniaxial(const Table& root, Scene& s) {
   if (auto t = root.optional_table("uniaxial")) {
-    s.uniaxial.stress = t->string("stress");
-    s.uniaxial.axial_strain = t->string("axial_strain");
-    std::istringstream names(t->string("lateral_strain"));
-    for (std::string n; names >> n;) s.uniaxial.lateral_strain.push_back(n);
-    if (s.uniaxial.lateral_strain.empty()) t->fail("lateral_strain", "give one or more history names, separated by spaces");
+    UniaxialSpec& u = s.uniaxial;
+    u.tension = t->choice("loading", {"compression", "tension"}, "compression") == "tension";
+    if (t->has("supports")) {
+      // supports = ["bottom", "top"]: the groups at the negative and the positive end of the strained axis.
+      for (const char* k : {"stress", "axial_strain", "lateral_strain"})
+        if (t->has(k)) t->fail(k, "given together with 'supports', which defines the uniaxial.* histories itself");
+      const std::string names = t->string("supports");
+      std::stringstream ss(names);
+      std::vector<std::string> two;
+      for (std::string n; ss >> n;) two.push_back(n);
+      if (two.size() != 2) t->fail("supports", "give the names of two groups, the negative end first, separated by a space");
+      for (int k = 0; k < 2; ++k) {
+        for (std::size_t g = 0; g < s.groups.size(); ++g)
+          if (s.groups[g].name == two[k]) u.supports[k] = static_cast<int>(g);
+        if (u.supports[k] < 0) t->fail("supports", "'" + two[k] + "' is not the name of a [[groups]] entry");
+      }
+      const std::string axis = t->choice("axis", s.dimension == 2 ? std::vector<std::string>{"x", "y"}
+                                                                  : std::vector<std::string>{"x", "y", "z"},
+                                         s.dimension == 2 ? "y" : "z");
+      u.axis = axis[0] - 'x';
+      u.area = t->number("area", s.dimension == 2 ? Unit::Length : Unit::None, Range::positive(), 0.0);
+      u.stress = "uniaxial.stress", u.axial_strain = "uniaxial.strain", u.lateral_strain = {"uniaxial.lateral_strain"};
+    } else {
+      u.stress = t->string("stress");
+      u.axial_strain = t->string("axial_strain");
+      std::istringstream names(t->string("lateral_strain"));
+      for (std::string n; names >> n;) u.lateral_strain.push_back(n);
+      if (u.lateral_strain.empty()) t->fail("lateral_strain", "give one or more history names, separated by spaces");
+    }
     t->finish();
   }
 }

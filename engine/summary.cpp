@@ -75,7 +75,7 @@ std::string json_number(double x) {
 }
 
 // Tang §5.2: the pre-peak curve σ(ε_axial) gives E as the secant between 25 % and 50 % of the peak and ν as
-// −Δε_lateral/Δε_axial over the same stretch; UCS is the peak; the crack-initiation stress is the stress when the
+// −Δε_lateral/Δε_axial over the same stretch; UCS (f_c, or in tension f_t) is the peak; the crack-initiation stress is the stress when the
 // cracks reach 1 % of their count at the peak. Compression is positive for the stress and the axial strain
 // (whatever signs the histories carry), the lateral strain keeps its sign (expansion positive).
 UniaxialResult uniaxial_result(const UniaxialSpec& u, std::map<std::string, std::vector<double>>& h) {
@@ -109,28 +109,63 @@ UniaxialResult uniaxial_result(const UniaxialSpec& u, std::map<std::string, std:
   };
   const double r25 = crossing(0.25 * r.ucs), r50 = crossing(0.5 * r.ucs);
   r.modulus = 0.25 * r.ucs / (at(ea, r50) - at(ea, r25));
-  r.poisson = (at(el, r50) - at(el, r25)) / (at(ea, r50) - at(ea, r25));
+  // Compression widens the specimen, tension narrows it: ν is the lateral expansion per axial shortening, or
+  // the lateral contraction per axial elongation.
+  r.poisson = (u.tension ? -1.0 : 1.0) * (at(el, r50) - at(el, r25)) / (at(ea, r50) - at(ea, r25));
   r.strain_at_peak = ea[peak];
-  r.cracks_at_peak = ct[peak] + cs[peak];
+  // Cracks: the breaks; in a run without any break but with first yields (a CPM specimen, whose contacts damage
+  // without breaking by default), the first yields, i.e. the contacts that started to damage.
+  const auto yi = h.find("cracks.yield");
+  r.cracks_by_yield = ct[n - 1] + cs[n - 1] == 0 && yi != h.end() && yi->second.size() >= n && yi->second[n - 1] > 0;
+  auto cracks = [&](std::size_t k) { return r.cracks_by_yield ? yi->second[k] : ct[k] + cs[k]; };
+  r.cracks_at_peak = cracks(peak);
   for (std::size_t k = 0; k <= peak; ++k)
-    if (ct[k] + cs[k] >= std::max(1.0, 0.01 * r.cracks_at_peak)) {
+    if (cracks(k) >= std::max(1.0, 0.01 * r.cracks_at_peak)) {
       r.initiation_stress = s[k];
       break;
     }
   r.cracks_tensile = ct[n - 1];
   r.cracks_shear = cs[n - 1];
+  if (u.tension) {
+    // Šmilauer Fig. 19: the conventional G_f, the area under the σ–ε curve up to where the softening branch falls
+    // to 0.2 f_t, times the gauge length (the supports' initial distance): the energy per unit cross-section
+    // of a specimen whose crack localises. NaN when the run stopped before 0.2 f_t.
+    double area = 0;
+    for (std::size_t k = 1; k < n; ++k) {
+      const double s0 = s[k - 1], s1 = s[k];
+      if (k > peak && s1 <= 0.2 * r.ucs) {
+        const double f = s0 > s1 ? (s0 - 0.2 * r.ucs) / (s0 - s1) : 1.0;
+        area += 0.5 * (s0 + (s0 + f * (s1 - s0))) * f * (ea[k] - ea[k - 1]);
+        r.strain_at_02ft = ea[k - 1] + f * (ea[k] - ea[k - 1]);
+        break;
+      }
+      area += 0.5 * (s0 + s1) * (ea[k] - ea[k - 1]);
+    }
+    const auto len = h.find("uniaxial.length");
+    r.gauge_length = len != h.end() && !len->second.empty() ? len->second.front() : kNaN;
+    r.fracture_energy = std::isfinite(r.strain_at_02ft) ? area * r.gauge_length : kNaN;
+  }
   return r;
 }
 
 namespace {
 
-std::string uniaxial_json(const UniaxialResult& r) {
+std::string uniaxial_json(const UniaxialSpec& u, const UniaxialResult& r) {
   if (!std::isfinite(r.ucs)) return "null";
   std::ostringstream o;
-  o << "{\n    \"E\": " << num(r.modulus) << ",\n    \"E_definition\": \"secant between 25 % and 50 % of the peak stress\""
-    << ",\n    \"nu\": " << num(r.poisson) << ",\n    \"ucs\": " << num(r.ucs) << ",\n    \"strain_at_peak\": " << num(r.strain_at_peak)
+  o << "{\n    \"loading\": " << (u.tension ? "\"tension\"" : "\"compression\"");
+  o << ",\n    \"E\": " << num(r.modulus) << ",\n    \"E_definition\": \"secant between 25 % and 50 % of the peak stress\""
+    << ",\n    \"nu\": " << num(r.poisson);
+  if (u.tension)
+    o << ",\n    \"f_t\": " << num(r.ucs) << ",\n    \"G_f\": " << num(r.fracture_energy)
+      << ",\n    \"G_f_definition\": \"area under stress-strain to 0.2 f_t post-peak, times the gauge length\""
+      << ",\n    \"gauge_length\": " << num(r.gauge_length) << ",\n    \"strain_at_0.2_f_t\": " << num(r.strain_at_02ft);
+  else
+    o << ",\n    \"ucs\": " << num(r.ucs) << ",\n    \"f_c\": " << num(r.ucs);
+  o << ",\n    \"strain_at_peak\": " << num(r.strain_at_peak)
     << ",\n    \"crack_initiation_stress\": " << num(r.initiation_stress)
     << ",\n    \"crack_initiation_ratio\": " << num(r.initiation_stress / r.ucs)
+    << ",\n    \"cracks_counted\": " << (r.cracks_by_yield ? "\"first yields\"" : "\"breaks\"")
     << ",\n    \"cracks_at_peak\": " << num(r.cracks_at_peak)
     << ",\n    \"cracks_tensile\": " << num(r.cracks_tensile) << ",\n    \"cracks_shear\": " << num(r.cracks_shear) << "\n  }";
   return o.str();
@@ -174,7 +209,7 @@ std::string summary_json(const std::string& output_file) {
     o << (i ? "," : "") << "\n    " << quote(s.name) << ": " << num(reduce(s.reduce, t, h[s.of]));
   }
   o << (scene.summaries.empty() ? "}" : "\n  }");
-  if (!scene.uniaxial.stress.empty()) o << ",\n  \"uniaxial\": " << uniaxial_json(uniaxial_result(scene.uniaxial, h));
+  if (!scene.uniaxial.stress.empty()) o << ",\n  \"uniaxial\": " << uniaxial_json(scene.uniaxial, uniaxial_result(scene.uniaxial, h));
   o << ",\n  \"final\": {";
   bool first = true;
   for (const auto& [name, y] : h) {

@@ -15,10 +15,13 @@ struct UniaxialSpec;
 struct UniaxialResult {
   double modulus = kNaN;            // E [Pa], secant between 25 % and 50 % of the peak
   double poisson = kNaN;            // ν
-  double ucs = kNaN;                // peak axial stress [Pa]
+  double ucs = kNaN;                // peak axial stress [Pa]: f_c, or in tension f_t
   double strain_at_peak = kNaN;
   double initiation_stress = kNaN;  // when the cracks reach 1 % of their count at the peak [Pa]
   double cracks_at_peak = kNaN, cracks_tensile = kNaN, cracks_shear = kNaN;
+  bool cracks_by_yield = false;     // no break at all: the first yields (damage onsets) were counted instead
+  // In tension (Šmilauer Fig. 19): G_f [J/m²], the gauge length [m] and the strain where the stress fell to 0.2 f_t.
+  double fracture_energy = kNaN, gauge_length = kNaN, strain_at_02ft = kNaN;
 };
 
 // From the histories of a run (name → series) / from its output file.

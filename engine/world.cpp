@@ -110,11 +110,17 @@ std::size_t World<D>::install_bonds(double tolerance, std::uint64_t seed) {
   const auto& p = particles;
   const int nsets = static_cast<int>(sets.size());
   std::vector<std::vector<Pair>> bond(nsets);
-  for (const Pair& pr : candidate_pairs<D>(p.x, p.radius, tolerance * p.max_radius())) {
+  // The search reaches the widest criterion: the gap tolerance, or a model's interaction radius R_I, whose
+  // d ≤ R_I (R_A + R_B) is a gap ≤ (R_I − 1)(R_A + R_B) ≤ 2 (R_I − 1) R_max.
+  double reach = tolerance * p.max_radius();
+  for (const auto& set : sets) reach = std::max(reach, 2.0 * (set->interaction_radius() - 1.0) * p.max_radius());
+  for (const Pair& pr : candidate_pairs<D>(p.x, p.radius, reach * (1 + 1e-12))) {
     const auto [i, j] = pr;
-    const double gap = (p.x[j] - p.x[i]).norm() - p.radius[i] - p.radius[j];
+    const double dist = (p.x[j] - p.x[i]).norm(), sum = p.radius[i] + p.radius[j];
     const int s = model_of[p.phase[i]][p.phase[j]];
-    if (s >= 0 && gap <= tolerance * std::min(p.radius[i], p.radius[j])) bond[s].push_back(pr);
+    if (s < 0) continue;
+    const double ri = sets[s]->interaction_radius();
+    if (ri > 0 ? dist <= ri * sum : dist - sum <= tolerance * std::min(p.radius[i], p.radius[j])) bond[s].push_back(pr);
   }
   std::size_t n = 0;
   for (int s = 0; s < nsets; ++s) {

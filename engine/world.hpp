@@ -68,7 +68,8 @@ class World {
   void init();
   void step();
   // Bonds every pair whose gap is at most tolerance·min(R_A, R_B), with the model of its phase pair (models
-  // without bonds ignore it); strengths drawn per pair from `seed`. Call after init(). Returns the count.
+  // without bonds ignore it); strengths drawn per pair from `seed`. A model with an interaction radius R_I
+  // (cpm) bonds its pairs with centre distance ≤ R_I (R_A + R_B) instead. Call after init(). Returns the count.
   std::size_t install_bonds(double tolerance, std::uint64_t seed);
   // Critical timestep from the current stiffnesses, Tang (3.22)–(3.24), without the safety factor.
   double critical_timestep();
