@@ -9,7 +9,7 @@
 
 #include "contact_models/cpm.hpp"
 #include "preprocess/sphere_list.hpp"
-#include "tests/test_worlds.hpp"
+#include "tests/cpm_pair.hpp"
 
 using namespace mc;
 
@@ -24,12 +24,9 @@ struct Outcome {
 Outcome pull(int threads) {
   omp_set_num_threads(threads);
   const auto list = read_sphere_list<3>(MESOCRACK_SOURCE_DIR "/scenes/specimens/cpm_1x1x2.spheres");
-  CpmParams p;
+  CpmParams p = test::cpm_params();  // the scenes' moduli: a softer, more cohesive concrete
   p.modulus = 24e9;
-  p.crack_onset_strain = 1e-4;
-  p.relative_ductility = 30;
   p.cohesion = 3.5e6;
-  p.tan_friction = 0.8;
   auto w = test::single_model_world<3, Cpm>(p);
   for (int i = 0; i < list.size(); ++i) w.particles.add(list.x[i], list.radius[i], 4800, 0);
   w.local_damping = 0.4;
