@@ -11,11 +11,11 @@
 #include <random>
 #include <vector>
 
+#include "benchmarks/run_timing.hpp"
 #include "engine/dim.hpp"
 
 namespace mc::bench {
 
-using Clock = std::chrono::steady_clock;
 
 // Progress on stderr (the tables go to stdout).
 void progress(const char* fmt, auto... args) {
