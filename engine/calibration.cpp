@@ -146,9 +146,10 @@ CalibrationResult calibrate(const std::string& scene_file, const std::vector<std
     const RunResult rr = run_scene(scene, ro);
     const UniaxialResult u = uniaxial_result(ro.output);
     res.iterations = it;
+    char ucs[32] = "-";  // an elastic run has no peak
+    if (!elastic) std::snprintf(ucs, sizeof ucs, "%.4g", u.ucs * 1e-6);
     std::fprintf(log, "%3d %-8s %10.4g %7.4g %9.4g | %9.4g %7.4g %9s | %.1f\n", it, elastic ? "elastic" : "full",
-                 entry.modulus * k.modulus * 1e-9, k.ratio, k.strength, u.modulus * 1e-9, u.poisson,
-                 elastic ? "-" : std::to_string(u.ucs * 1e-6).substr(0, 8).c_str(), rr.wall_seconds);
+                 entry.modulus * k.modulus * 1e-9, k.ratio, k.strength, u.modulus * 1e-9, u.poisson, ucs, rr.wall_seconds);
     std::fflush(log);
     if (!std::isfinite(u.modulus) || !std::isfinite(u.poisson) || (!elastic && !std::isfinite(u.ucs)))
       throw InputError(ro.output + ": the uniaxial test gave no E, ν or UCS (" + rr.status +
