@@ -34,7 +34,6 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 RATIO = 1.66                          # R_max / R_min, Table 5.1
 MEAN = (1 + RATIO) / 2                # R_mean / R_min
-EPS_PEAK = 1.5e-3                     # about the axial strain at the peak (Tang Fig. 5.3): sets ramps and durations
 
 
 def mm(x):
@@ -95,14 +94,13 @@ def plan(full, dims, only):
         if full:
             lrs = [20, 40, 60, 80, 120, 160, 240] if dim == 2 else [10, 20, 31, 39, 51, 62, 77]
             rates = [0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100]
-            lr_rate = 120 if dim == 2 else 38
+            lr_rate = 120 if dim == 2 else 38   # also the timestep and density sweeps
             seeds = 5
         else:
             lrs = [20, 30, 40, 60, 80, 120] if dim == 2 else [10, 15, 20, 25]
             rates = [0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100]
             lr_rate = 40 if dim == 2 else 15
             seeds = 5
-        lr_other = lr_rate                             # timestep and density sweeps at the rate sweep's L/R
         if "rate" in only:
             for r in rates:
                 runs.append(("rate", dim, f"{r:g} /s", r, 1, geometry(dim, lr_rate, r, size)))
@@ -113,11 +111,11 @@ def plan(full, dims, only):
         if "timestep" in only:
             for f in [0.1, 0.2, 0.4, 0.6, 0.8, 0.95]:
                 runs.append(("timestep", dim, f"safety {f:g}", f, 1,
-                             geometry(dim, lr_other, 0.1, size) + [f"timestep.safety={f:g}"]))
+                             geometry(dim, lr_rate, 0.1, size) + [f"timestep.safety={f:g}"]))
         if "density" in only:
             for f in [1, 10, 100, 1000, 10000]:
                 runs.append(("density", dim, f"F {f:g}", f, 1,
-                             geometry(dim, lr_other, 0.1, size) + [f"physics.density_scaling={f:g}"]))
+                             geometry(dim, lr_rate, 0.1, size) + [f"physics.density_scaling={f:g}"]))
     return runs
 
 
@@ -176,14 +174,7 @@ def analyse(rows, out):
         for r in rs:
             groups.setdefault(r["x"], []).append(r)
         xs = sorted(groups)
-        if study == "rate":
-            ref_x = min(xs)
-        elif study == "resolution":
-            ref_x = max(xs)
-        elif study == "timestep":
-            ref_x = min(xs)
-        else:
-            ref_x = min(xs)
+        ref_x = max(xs) if study == "resolution" else min(xs)  # the finest L/R; the slowest rate, smallest step or F
         ref = {q: mean_cv([g[q] for g in groups[ref_x]])[0] for q in ("E", "nu", "ucs")}
         lines.append(f"\n### {study}, {dim}D (reference: {groups[ref_x][0]['label']})\n")
         lines.append("| setting | particles | runs | E [GPa] | CV E | nu | CV nu | UCS [MPa] | CV UCS | err E | err nu | err UCS | CPU s / run |")
@@ -277,7 +268,11 @@ def main():
     done = {}
     if csv_path.exists():
         with open(csv_path) as f:
-            for r in csv.DictReader(f):
+            reader = csv.DictReader(f)
+            # an older file (fewer columns) can be analysed, not appended to
+            if not a.analyse and reader.fieldnames != fields:
+                sys.exit(f"{csv_path}: its columns {reader.fieldnames} are not this script's {fields}; give another --out")
+            for r in reader:
                 for k in fields[3:]:
                     r[k] = float(r[k]) if r.get(k) not in (None, "", "None") else None
                 r["dim"] = int(r["dim"])

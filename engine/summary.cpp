@@ -15,7 +15,6 @@ namespace mc {
 
 namespace {
 
-std::string num(double x) { return json_number(x); }
 
 std::string quote(const std::string& s) {
   std::string o = "\"";
@@ -154,20 +153,20 @@ std::string uniaxial_json(const UniaxialSpec& u, const UniaxialResult& r) {
   if (!std::isfinite(r.ucs)) return "null";
   std::ostringstream o;
   o << "{\n    \"loading\": " << (u.tension ? "\"tension\"" : "\"compression\"");
-  o << ",\n    \"E\": " << num(r.modulus) << ",\n    \"E_definition\": \"secant between 25 % and 50 % of the peak stress\""
-    << ",\n    \"nu\": " << num(r.poisson);
+  o << ",\n    \"E\": " << json_number(r.modulus) << ",\n    \"E_definition\": \"secant between 25 % and 50 % of the peak stress\""
+    << ",\n    \"nu\": " << json_number(r.poisson);
   if (u.tension)
-    o << ",\n    \"f_t\": " << num(r.ucs) << ",\n    \"G_f\": " << num(r.fracture_energy)
+    o << ",\n    \"f_t\": " << json_number(r.ucs) << ",\n    \"G_f\": " << json_number(r.fracture_energy)
       << ",\n    \"G_f_definition\": \"area under stress-strain to 0.2 f_t post-peak, times the gauge length\""
-      << ",\n    \"gauge_length\": " << num(r.gauge_length) << ",\n    \"strain_at_0.2_f_t\": " << num(r.strain_at_02ft);
+      << ",\n    \"gauge_length\": " << json_number(r.gauge_length) << ",\n    \"strain_at_0.2_f_t\": " << json_number(r.strain_at_02ft);
   else
-    o << ",\n    \"ucs\": " << num(r.ucs) << ",\n    \"f_c\": " << num(r.ucs);
-  o << ",\n    \"strain_at_peak\": " << num(r.strain_at_peak)
-    << ",\n    \"crack_initiation_stress\": " << num(r.initiation_stress)
-    << ",\n    \"crack_initiation_ratio\": " << num(r.initiation_stress / r.ucs)
+    o << ",\n    \"ucs\": " << json_number(r.ucs) << ",\n    \"f_c\": " << json_number(r.ucs);
+  o << ",\n    \"strain_at_peak\": " << json_number(r.strain_at_peak)
+    << ",\n    \"crack_initiation_stress\": " << json_number(r.initiation_stress)
+    << ",\n    \"crack_initiation_ratio\": " << json_number(r.initiation_stress / r.ucs)
     << ",\n    \"cracks_counted\": " << (r.cracks_by_yield ? "\"first yields\"" : "\"breaks\"")
-    << ",\n    \"cracks_at_peak\": " << num(r.cracks_at_peak)
-    << ",\n    \"cracks_tensile\": " << num(r.cracks_tensile) << ",\n    \"cracks_shear\": " << num(r.cracks_shear) << "\n  }";
+    << ",\n    \"cracks_at_peak\": " << json_number(r.cracks_at_peak)
+    << ",\n    \"cracks_tensile\": " << json_number(r.cracks_tensile) << ",\n    \"cracks_shear\": " << json_number(r.cracks_shear) << "\n  }";
   return o.str();
 }
 
@@ -200,20 +199,20 @@ std::string summary_json(const std::string& output_file) {
     << ",\n  \"dimension\": " << scene.dimension << ",\n  \"status\": " << quote(f.attr_string("/", "status"))
     << ",\n  \"status_message\": " << quote(f.attr_string("/", "status_message"))
     << ",\n  \"particles\": " << f.rows("/specimen/radius")
-    << ",\n  \"steps\": " << num(h["step"].empty() ? 0.0 : h["step"].back())
-    << ",\n  \"time\": " << num(t.empty() ? 0.0 : t.back()) << ",\n  \"history_rows\": " << t.size()
-    << ",\n  \"density_scaling\": " << num(scene.density_scaling);  // 1: off; else the inertia was scaled by it
+    << ",\n  \"steps\": " << json_number(h["step"].empty() ? 0.0 : h["step"].back())
+    << ",\n  \"time\": " << json_number(t.empty() ? 0.0 : t.back()) << ",\n  \"history_rows\": " << t.size()
+    << ",\n  \"density_scaling\": " << json_number(scene.density_scaling);  // 1: off; else the inertia was scaled by it
   o << ",\n  \"results\": {";
   for (std::size_t i = 0; i < scene.summaries.size(); ++i) {
     const SummarySpec& s = scene.summaries[i];
-    o << (i ? "," : "") << "\n    " << quote(s.name) << ": " << num(reduce(s.reduce, t, h[s.of]));
+    o << (i ? "," : "") << "\n    " << quote(s.name) << ": " << json_number(reduce(s.reduce, t, h[s.of]));
   }
   o << (scene.summaries.empty() ? "}" : "\n  }");
   if (!scene.uniaxial.stress.empty()) o << ",\n  \"uniaxial\": " << uniaxial_json(scene.uniaxial, uniaxial_result(scene.uniaxial, h));
   o << ",\n  \"final\": {";
   bool first = true;
   for (const auto& [name, y] : h) {
-    o << (first ? "" : ",") << "\n    " << quote(name) << ": " << num(y.empty() ? kNaN : y.back());
+    o << (first ? "" : ",") << "\n    " << quote(name) << ": " << json_number(y.empty() ? kNaN : y.back());
     first = false;
   }
   o << (first ? "}" : "\n  }") << "\n}\n";
