@@ -9,13 +9,13 @@
 #include <filesystem>
 #include <iostream>
 
-#include "engine/calibration.hpp"
+#include "studies/calibration.hpp"
 #include "engine/errors.hpp"
-#include "engine/realizations.hpp"
-#include "engine/runner.hpp"
-#include "engine/scene.hpp"
-#include "engine/summary.hpp"
-#include "engine/toml_reader.hpp"
+#include "studies/realizations.hpp"
+#include "studies/runner.hpp"
+#include "scene/scene.hpp"
+#include "studies/summary.hpp"
+#include "scene/toml_reader.hpp"
 
 namespace {
 

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "engine/runner.hpp"
-#include "engine/scene.hpp"
-#include "engine/toml_reader.hpp"
+#include "studies/runner.hpp"
+#include "scene/scene.hpp"
+#include "scene/toml_reader.hpp"
 
 namespace {
 

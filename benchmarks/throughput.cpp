@@ -38,7 +38,7 @@
 #include "engine/world.hpp"
 #include "contact_models/parallel_bond.hpp"
 #include "preprocess/spatial_order.hpp"
-#include "preprocess/sphere_list.hpp"
+#include "io/sphere_list.hpp"
 #include "benchmarks/dense_assembly.hpp"
 #include "benchmarks/run_timing.hpp"
 

@@ -7,6 +7,7 @@
 
 #include "contact_models/linear.hpp"
 #include "engine/contact_geometry.hpp"
+#include "engine/contact_set.hpp"
 
 namespace mc {
 
@@ -120,5 +121,9 @@ struct ContactBond {
   template <int D>
   static bool persistent(const State<D>& s) { return bonded(s); }
 };
+
+// Compiled in contact_bond.cpp.
+extern template class ContactSet<ContactBond, 2>;
+extern template class ContactSet<ContactBond, 3>;
 
 }  // namespace mc

@@ -15,8 +15,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "contact_models/linear.hpp"  // WallMaterial
+#include "contact_models/linear.hpp"  // Linear::series: a wall's springs in series with the ball's
 #include "engine/contact_geometry.hpp"
+#include "engine/contact_set.hpp"
 
 namespace mc {
 
@@ -260,5 +261,9 @@ struct Cpm {
     return 0.5 * c.kt * s.eps_t.squaredNorm() * c.area * c.length;
   }
 };
+
+// Compiled in cpm.cpp.
+extern template class ContactSet<Cpm, 2>;
+extern template class ContactSet<Cpm, 3>;
 
 }  // namespace mc

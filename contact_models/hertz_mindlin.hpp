@@ -3,8 +3,8 @@
 #pragma once
 #include <cmath>
 
-#include "contact_models/linear.hpp"  // WallMaterial (a wall brings only its friction here, Tang 3.32–3.34)
 #include "engine/contact_geometry.hpp"
+#include "engine/contact_set.hpp"
 
 namespace mc {
 
@@ -100,5 +100,9 @@ struct HertzMindlin {
   template <int D>
   static bool persistent(const State<D>&) { return false; }
 };
+
+// Compiled in hertz_mindlin.cpp.
+extern template class ContactSet<HertzMindlin, 2>;
+extern template class ContactSet<HertzMindlin, 3>;
 
 }  // namespace mc

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "engine/contact_geometry.hpp"
+#include "engine/contact_set.hpp"
 
 namespace mc {
 
@@ -14,13 +15,6 @@ struct LinearParams {
   double kn_ks_ratio = 1.0;   // k_n / k_s [-]
   double friction = 0.0;      // μ [-], Tang (3.36)
   double damping_ratio = 0.0; // ζ [-], fraction of critical damping of normal and shear dashpots
-};
-
-// What a wall brings to a ball–wall contact: its own springs (in series with the ball's) and friction.
-struct WallMaterial {
-  double kn = kNaN;           // N/m
-  double ks = kNaN;           // N/m
-  double friction = 0.0;      // μ [-]
 };
 
 struct Linear {
@@ -117,5 +111,9 @@ struct Linear {
   template <int D>
   static bool persistent(const State<D>&) { return false; }
 };
+
+// Compiled in linear.cpp.
+extern template class ContactSet<Linear, 2>;
+extern template class ContactSet<Linear, 3>;
 
 }  // namespace mc

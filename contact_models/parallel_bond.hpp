@@ -8,6 +8,7 @@
 
 #include "contact_models/linear.hpp"
 #include "engine/contact_geometry.hpp"
+#include "engine/contact_set.hpp"
 
 namespace mc {
 
@@ -186,5 +187,9 @@ struct ParallelBond {
   template <int D>
   static bool persistent(const State<D>& s) { return bonded(s); }
 };
+
+// Compiled in parallel_bond.cpp.
+extern template class ContactSet<ParallelBond, 2>;
+extern template class ContactSet<ParallelBond, 3>;
 
 }  // namespace mc

@@ -11,6 +11,7 @@
 #include "contact_models/contact_bond.hpp"
 #include "contact_models/linear.hpp"
 #include "engine/contact_geometry.hpp"
+#include "engine/contact_set.hpp"
 
 namespace mc {
 
@@ -160,5 +161,9 @@ struct SofteningBond : ContactBond {
     return strain + 0.5 * ((fn_t - fn) * g.n + (fs_t - fs)).dot(g.v_rel) * g.dt;
   }
 };
+
+// Compiled in softening_bond.cpp.
+extern template class ContactSet<SofteningBond, 2>;
+extern template class ContactSet<SofteningBond, 3>;
 
 }  // namespace mc

@@ -22,6 +22,13 @@ struct ContactGeometry {
   double m_eff() const { return m_a > 0 ? m_a * m_b / (m_a + m_b) : m_b; }
 };
 
+// What a wall brings to a ball–wall contact: its own springs (in series with the ball's) and friction.
+struct WallMaterial {
+  double kn = kNaN;           // N/m
+  double ks = kNaN;           // N/m
+  double friction = 0.0;      // μ [-]
+};
+
 // Force on B (A receives −force). `moment` is a moment on B carried by the model itself (bond bending and
 // twisting); A receives −moment. Moments of `force` about the particle centres are added by the engine.
 template <int D>

@@ -13,7 +13,9 @@
 
 #include "engine/cell_grid.hpp"
 #include "engine/parallel.hpp"
+#include "engine/random.hpp"
 #include "engine/contact_geometry.hpp"
+#include "engine/contact_model.hpp"
 #include "engine/particles.hpp"
 #include "engine/wall.hpp"
 
@@ -37,36 +39,6 @@ struct SlotStiffness {
   std::vector<double> kt, kra, krb;
 };
 
-
-// Random numbers for one pair, from the seed and the pair alone (splitmix64): a bond's strengths do not depend
-// on the order in which bonds are installed, nor on the thread count.
-struct PairRandom {
-  std::uint64_t state;
-  PairRandom(std::uint64_t seed, const Pair& p)
-      : state(seed ^ (static_cast<std::uint64_t>(p[0]) * 0x9e3779b97f4a7c15ull) ^
-              (static_cast<std::uint64_t>(p[1]) * 0xc2b2ae3d27d4eb4full)) {}
-  double uniform() {  // in (0, 1)
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    z ^= z >> 31;
-    return (static_cast<double>(z >> 11) + 0.5) * 0x1.0p-53;
-  }
-  // Normal(mean, std) truncated to positive values by redrawing (Box–Muller).
-  double operator()(double mean, double std) {
-    if (std == 0) return mean;
-    for (;;) {
-      const double x = mean + std * std::sqrt(-2.0 * std::log(uniform())) * std::cos(2.0 * M_PI * uniform());
-      if (x > 0) return x;
-    }
-  }
-  // With a Weibull shape k > 0: Weibull(scale λ = a, shape k), Tang (8.4), by inverse transform; else
-  // Normal(a, b) truncated to positive values.
-  double operator()(double a, double b, double weibull_shape) {
-    if (weibull_shape > 0) return a * std::pow(-std::log(uniform()), 1.0 / weibull_shape);
-    return (*this)(a, b);
-  }
-};
 
 template <int D>
 class ContactSetBase {
@@ -151,6 +123,7 @@ inline ContactGeometry<D> wall_geometry(const Particles<D>& p, const Wall<D>& w,
 }
 
 template <class Model, int D>
+  requires ContactModel<Model, D>
 class ContactSet final : public ContactSetBase<D> {
  public:
   using State = typename Model::template State<D>;
@@ -216,7 +189,7 @@ class ContactSet final : public ContactSetBase<D> {
   }
 
   std::size_t bond_count() const override {
-    if constexpr (requires { Model::bondable; }) {
+    if constexpr (BondModel<Model, D>) {
       return std::count_if(states_.begin(), states_.end(), [](const State& s) { return Model::template bonded<D>(s); });
     } else {
       return 0;
@@ -224,7 +197,7 @@ class ContactSet final : public ContactSetBase<D> {
   }
 
   std::size_t install_bonds(const Particles<D>& p, const std::vector<Pair>& bond_pairs, std::uint64_t seed) override {
-    if constexpr (requires { Model::bondable; }) {
+    if constexpr (BondModel<Model, D>) {
       std::size_t n = 0;
       for (const Pair& pr : bond_pairs) {
         const auto it = std::lower_bound(pairs_.begin(), pairs_.end(), pr);

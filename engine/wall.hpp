@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "contact_models/linear.hpp"  // WallMaterial
+#include "engine/contact_geometry.hpp"  // WallMaterial
 #include "engine/dim.hpp"
 
 namespace mc {

@@ -1,8 +1,9 @@
-// A small seeded random stream for the preprocessor: splitmix64 (a Weyl sequence through a 64-bit mixing
-// function). Integer arithmetic only, so a seed gives the same numbers on every platform, compiler and standard
-// library (std::uniform_real_distribution does not). Tang (4.3) uses a Lehmer generator; any good stream will do.
+// A small seeded random stream for the preprocessor, on the engine's splitmix64 (engine/random.hpp): the same
+// numbers on every platform. Tang (4.3) uses a Lehmer generator; any good stream will do.
 #pragma once
 #include <cstdint>
+
+#include "engine/random.hpp"
 
 namespace mc {
 
@@ -10,12 +11,7 @@ class RandomStream {
  public:
   explicit RandomStream(std::uint64_t seed) : s_(seed) {}
 
-  std::uint64_t next() {
-    std::uint64_t z = (s_ += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-  }
+  std::uint64_t next() { return splitmix64(s_); }
   // Uniform in [0, 1), 53 random bits.
   double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
   // Uniform in [a, b): Tang (4.4), X' = a + (b − a) X.

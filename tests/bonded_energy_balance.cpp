@@ -30,7 +30,7 @@ struct Outcome {
 template <int D, class Model>
 Outcome pull_to_failure(const typename Model::Params& prm, double r, double speed, int steps) {
   auto w = test::single_model_world<D, Model>(prm);
-  test::Rng rng{21};
+  RandomStream rng(21);
   std::vector<int> top;
   const double dx = 2 * r, dy = std::sqrt(3.0) * r, height = 20e-3;
   const int nx = static_cast<int>(10e-3 / dx), ny = static_cast<int>(height / dy), nz = D == 3 ? nx : 1;
@@ -42,7 +42,7 @@ Outcome pull_to_failure(const typename Model::Params& prm, double r, double spee
         x[1] = j * dy;
         if constexpr (D == 3) x[2] = k * dx;
         const int n = w.particles.size();
-        w.particles.add(x, r * (1 - 0.15 * rng()), 2600, 0);
+        w.particles.add(x, r * (1 - 0.15 * rng.uniform()), 2600, 0);
         if (j < 2 || j >= ny - 2) {
           w.particles.fix[n] = 0xff;
           if (j >= ny - 2) w.particles.v[n][1] = speed, top.push_back(n);

@@ -25,7 +25,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/h5_file.hpp"
+#include "io/h5_file.hpp"
 
 extern char** environ;
 

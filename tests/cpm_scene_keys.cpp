@@ -5,8 +5,8 @@
 #include <string>
 
 #include "engine/errors.hpp"
-#include "engine/scene.hpp"
-#include "engine/toml_reader.hpp"
+#include "scene/scene.hpp"
+#include "scene/toml_reader.hpp"
 
 using namespace mc;
 

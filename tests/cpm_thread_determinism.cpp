@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "contact_models/cpm.hpp"
-#include "preprocess/sphere_list.hpp"
+#include "io/sphere_list.hpp"
 #include "tests/cpm_pair.hpp"
 
 using namespace mc;

@@ -12,7 +12,6 @@ using namespace mc;
 
 namespace {
 
-using test::Rng;
 
 // Simple cubic lattice of n³ spheres of radius r at spacing 2 r (1 − c), in a box of six fixed planes. Each
 // contact between spheres starts with the overlap 2 r c; with walls as stiff as a sphere (series stiffness
@@ -44,9 +43,9 @@ TEST_CASE("undamped_elastic_assembly_conserves_energy") {
   auto w = cubic_box(prm, 10, 5, r, c);  // 125 spheres
   // Perturb every position by up to ±0.05 of the overlap in each direction, at rest: the lattice then vibrates
   // in all its modes (translation and, through the shear springs, rotation) without any contact opening.
-  Rng rng{12345};
+  RandomStream rng(12345);
   for (auto& x : w.particles.x)
-    for (int d = 0; d < 3; ++d) x[d] += (rng() - 0.5) * 0.1 * (2 * r * c);
+    for (int d = 0; d < 3; ++d) x[d] += (rng.uniform() - 0.5) * 0.1 * (2 * r * c);
   w.trace_energy = true;
   w.init();
   // Before the first step: kinetic ½ m v(−Δt/2)·v(+Δt/2) is 0 (at rest), the strain is that of x(0).
@@ -101,14 +100,14 @@ TEST_CASE("damped_wall_loaded_assembly_energy_balance_closes") {
   auto w = test::single_model_world<3, Linear>(prm);
   // 108 spheres of radii 0.9–1.0 r on the sites of a face-centred cubic lattice for radius r: a loose packing,
   // no contact at the start, in a box of six planes.
-  Rng rng{2024};
+  RandomStream rng(2024);
   const int n = 3;
   const double a = 2 * std::sqrt(2.0) * r;
   const Vec<3> basis[4] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       for (int k = 0; k < n; ++k)
-        for (const auto& b : basis) w.particles.add(a * (Vec<3>(i, j, k) + b), r * (0.9 + 0.1 * rng()), 2600, 0);
+        for (const auto& b : basis) w.particles.add(a * (Vec<3>(i, j, k) + b), r * (0.9 + 0.1 * rng.uniform()), 2600, 0);
   const double lo = -r, hi = (n - 0.5) * a + r;
   WallMaterial wm;
   wm.kn = wm.ks = Linear::ball_kn<3>(prm, r);

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "engine/errors.hpp"
-#include "engine/h5_file.hpp"
+#include "io/h5_file.hpp"
 
 using mc::H5File;
 using Dims = std::vector<hsize_t>;

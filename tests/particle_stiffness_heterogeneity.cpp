@@ -6,9 +6,9 @@
 
 #include <cmath>
 
-#include "engine/build_world.hpp"
-#include "engine/scene.hpp"
-#include "engine/toml_reader.hpp"
+#include "scene/build_world.hpp"
+#include "scene/scene.hpp"
+#include "scene/toml_reader.hpp"
 #include "tests/test_worlds.hpp"
 
 using namespace mc;

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "engine/errors.hpp"
-#include "engine/toml_reader.hpp"
+#include "scene/toml_reader.hpp"
 
 using mc::InputError;
 using mc::Range;

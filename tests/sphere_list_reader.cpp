@@ -10,7 +10,7 @@
 #include <string>
 
 #include "engine/errors.hpp"
-#include "preprocess/sphere_list.hpp"
+#include "io/sphere_list.hpp"
 
 namespace {
 

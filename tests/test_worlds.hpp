@@ -11,20 +11,9 @@
 #include "contact_models/hertz_mindlin.hpp"
 #include "contact_models/linear.hpp"
 #include "engine/world.hpp"
+#include "preprocess/random_stream.hpp"  // RandomStream: deterministic numbers for the test packings
 
 namespace mc::test {
-
-// Deterministic uniform numbers in [0, 1) (splitmix64): the same on every platform and standard library.
-struct Rng {
-  std::uint64_t s;
-  double operator()() {
-    std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * 0x1.0p-53;
-  }
-};
 
 // A world whose single phase 0 interacts through one model; the domain is wide open.
 template <int D, class Model>

@@ -16,7 +16,6 @@ using namespace mc;
 
 namespace {
 
-using test::Rng;
 
 // 4356 spheres of radii 0.95–1.05 r on a face-centred cubic lattice of 11 × 11 × 9 cells compressed by 0.5 %
 // (most neighbours overlap, some do not touch), in a box of six planes; the top and one side wall move in.
@@ -33,11 +32,11 @@ World<3> compressed_packing() {
   const double a = 2 * std::sqrt(2.0) * r * (1 - c);
   const Vec<3> basis[4] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
   const int n[3] = {11, 11, 9};
-  Rng rng{4242};
+  RandomStream rng(4242);
   for (int i = 0; i < n[0]; ++i)
     for (int j = 0; j < n[1]; ++j)
       for (int k = 0; k < n[2]; ++k)
-        for (const auto& b : basis) w.particles.add(a * (Vec<3>(i, j, k) + b), r * (0.95 + 0.1 * rng()), 2600, 0);
+        for (const auto& b : basis) w.particles.add(a * (Vec<3>(i, j, k) + b), r * (0.95 + 0.1 * rng.uniform()), 2600, 0);
   WallMaterial wm;
   wm.kn = Linear::ball_kn<3>(prm, r);
   wm.ks = wm.kn / prm.kn_ks_ratio;

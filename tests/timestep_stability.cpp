@@ -15,7 +15,6 @@ using namespace mc;
 
 namespace {
 
-using test::Rng;
 
 // Six fixed planes around [lo, hi]³, as stiff as a sphere, with friction μ.
 void box_walls(World<3>& w, const LinearParams& prm, double r, double lo, double hi) {
@@ -62,12 +61,12 @@ World<3> perturbed_cubic(int n, double mu) {
   auto w = test::single_model_world<3, Linear>(prm);
   const double r = 1e-3, c = 1e-3;
   const double a = 2 * r * (1 - c);
-  Rng rng{12345};
+  RandomStream rng(12345);
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       for (int k = 0; k < n; ++k) {
         Vec<3> x = a * Vec<3>(i, j, k);
-        for (int d = 0; d < 3; ++d) x[d] += (rng() - 0.5) * 0.1 * (2 * r * c);
+        for (int d = 0; d < 3; ++d) x[d] += (rng.uniform() - 0.5) * 0.1 * (2 * r * c);
         w.particles.add(x, r, 2600, 0);
       }
   box_walls(w, prm, r, -r * (1 - 2 * c), (n - 1) * a + r * (1 - 2 * c));

@@ -1,16 +1,16 @@
-#include "engine/build_world.hpp"
+#include "scene/build_world.hpp"
 
 #include <algorithm>
 #include <sstream>
 
 #include "engine/errors.hpp"
-#include "engine/h5_file.hpp"
+#include "io/h5_file.hpp"
 #include "preprocess/dense_packing.hpp"
 #include "preprocess/aggregate_placement.hpp"
 #include "preprocess/random_box.hpp"
 #include "preprocess/regular_packing.hpp"
 #include "preprocess/spatial_order.hpp"
-#include "preprocess/sphere_list.hpp"
+#include "io/sphere_list.hpp"
 
 namespace mc {
 

@@ -6,8 +6,10 @@
 #include <sstream>
 
 #include "engine/errors.hpp"
-#include "engine/scene.hpp"
-#include "engine/toml_reader.hpp"
+#include "scene/histories.hpp"
+#include "scene/model_registry.hpp"
+#include "scene/scene.hpp"
+#include "scene/toml_reader.hpp"
 
 namespace mc {
 
@@ -62,11 +64,7 @@ void read_contacts(const Table& root, Scene& s) {
     const std::string pa = t.choice("phase_a", names), pb = t.choice("phase_b", names, pa);
     c.phase_a = static_cast<int>(std::find(names.begin(), names.end(), pa) - names.begin());
     c.phase_b = static_cast<int>(std::find(names.begin(), names.end(), pb) - names.begin());
-    c.model = read_contact_model(t, t.choice("model", contact_model_names()));
-    if (c.model.only_3d && s.dimension == 2)
-      t.fail("model", "the " + c.model.name + " model is a law for spheres (its cross-sections, calibration and "
-                      "interaction radius are 3D): use it with dimension = 3, or a 2D model (linear, hertz_mindlin, "
-                      "parallel_bond, contact_bond, softening_bond)");
+    c.model = read_contact_model(t, t.choice("model", contact_model_names()), s.dimension);
     for (const auto& o : s.contacts)
       if ((o.phase_a == c.phase_a && o.phase_b == c.phase_b) || (o.phase_a == c.phase_b && o.phase_b == c.phase_a))
         t.fail("phase_b", "a contact model for this pair of phases is already given");
@@ -503,8 +501,6 @@ void check_names(const Table& root, const Scene& s, const std::vector<std::strin
 }
 
 }  // namespace
-
-std::vector<std::string> history_names(const Scene& s);  // engine/history.cpp
 
 Scene read_scene(const TomlDoc& doc, const std::string& file) {
   Scene s;

@@ -1,4 +1,4 @@
-#include "engine/summary.hpp"
+#include "studies/summary.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <sstream>
 
 #include "engine/errors.hpp"
-#include "engine/h5_file.hpp"
-#include "engine/scene.hpp"
-#include "engine/toml_reader.hpp"
+#include "io/h5_file.hpp"
+#include "scene/scene.hpp"
+#include "scene/toml_reader.hpp"
 
 namespace mc {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "engine/measure.hpp"
-#include "engine/scene.hpp"
+#include "scene/scene.hpp"
 #include "engine/world.hpp"
 
 namespace mc {

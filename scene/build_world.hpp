@@ -1,7 +1,7 @@
 // Scene → World: the specimen (inline, sphere list, earlier output, or generated), phases and the contact
 // model table, walls, boundary groups and the declared physics.
 #pragma once
-#include "engine/scene.hpp"
+#include "scene/scene.hpp"
 #include "engine/world.hpp"
 
 namespace mc {

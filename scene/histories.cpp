@@ -1,4 +1,4 @@
-#include "engine/history.hpp"
+#include "scene/histories.hpp"
 
 #include <algorithm>
 #include <cmath>

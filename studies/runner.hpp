@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/scene.hpp"
+#include "scene/scene.hpp"
 
 namespace mc {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "engine/archive.hpp"
-#include "engine/h5_file.hpp"
+#include "io/h5_file.hpp"
 
 namespace mc {
 

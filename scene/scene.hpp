@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "contact_models/linear.hpp"  // WallMaterial
 #include "engine/world.hpp"
 
 namespace mc {
@@ -22,7 +21,6 @@ struct ModelSpec {
   std::string name;
   bool bonds = false;   // the model bonds pairs (and so breaks them: cracks)
   bool yields = false;  // its bonds yield before they break (softening): first yields are logged too
-  bool only_3d = false; // a law for spheres only (cpm): a 2D scene naming it is refused
   std::function<std::unique_ptr<ContactSetBase<2>>()> make2;
   std::function<std::unique_ptr<ContactSetBase<3>>()> make3;
 };
@@ -187,9 +185,5 @@ struct Scene {
 
 // Reads and validates a scene; throws InputError naming the file, key, value and what is allowed.
 Scene read_scene(const TomlDoc& doc, const std::string& file);
-
-// The contact models a scene may name: each reads and validates its own parameters (contact_models/*.cpp).
-ModelSpec read_contact_model(const class Table& t, const std::string& name);
-const std::vector<std::string>& contact_model_names();
 
 }  // namespace mc

@@ -1,13 +1,13 @@
-#include "engine/realizations.hpp"
+#include "studies/realizations.hpp"
 
 #include <cmath>
 #include <filesystem>
 #include <sstream>
 
 #include "engine/errors.hpp"
-#include "engine/runner.hpp"
-#include "engine/scene.hpp"
-#include "engine/toml_reader.hpp"
+#include "studies/runner.hpp"
+#include "scene/scene.hpp"
+#include "scene/toml_reader.hpp"
 
 namespace mc {
 

@@ -1,4 +1,4 @@
-#include "preprocess/sphere_list.hpp"
+#include "io/sphere_list.hpp"
 
 #include <cerrno>
 #include <charconv>

@@ -1,4 +1,4 @@
-#include "engine/run_output.hpp"
+#include "io/run_output.hpp"
 
 #include <filesystem>
 #include <fstream>

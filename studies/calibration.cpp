@@ -1,4 +1,4 @@
-#include "engine/calibration.hpp"
+#include "studies/calibration.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <sstream>
 
 #include "engine/errors.hpp"
-#include "engine/runner.hpp"
-#include "engine/scene.hpp"
-#include "engine/toml_reader.hpp"
+#include "studies/runner.hpp"
+#include "scene/scene.hpp"
+#include "scene/toml_reader.hpp"
 
 namespace mc {
 

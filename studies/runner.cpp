@@ -1,4 +1,4 @@
-#include "engine/runner.hpp"
+#include "studies/runner.hpp"
 
 #include <omp.h>
 #include <unistd.h>
@@ -9,10 +9,10 @@
 #include <cstdio>
 #include <sstream>
 
-#include "engine/build_world.hpp"
+#include "scene/build_world.hpp"
 #include "engine/errors.hpp"
-#include "engine/history.hpp"
-#include "engine/run_output.hpp"
+#include "scene/histories.hpp"
+#include "io/run_output.hpp"
 
 namespace mc {
 

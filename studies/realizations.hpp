@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/summary.hpp"
+#include "studies/summary.hpp"
 
 namespace mc {
 

@@ -1,4 +1,4 @@
-#include "engine/toml_reader.hpp"
+#include "scene/toml_reader.hpp"
 
 #include <algorithm>
 #include <cerrno>
