@@ -11,6 +11,11 @@ struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A fixed timestep above the critical one estimated from the current stiffnesses: bad input, found by the engine.
+struct TimestepError : InputError {
+  using InputError::InputError;
+};
+
 // A file that cannot be read or written (path and reason in the message).
 struct IoError : std::runtime_error {
   using std::runtime_error::runtime_error;

@@ -185,10 +185,9 @@ void World<D>::refresh_timestep() {
   if (timestep.fixed > 0) {
     if (timestep.fixed > dt_critical) {
       std::ostringstream m;
-      m << "timestep.fixed = " << timestep.fixed << " s is above the critical timestep " << dt_critical
-        << " s estimated from the current stiffnesses (Tang 3.24) at step " << step_count
-        << "; use a value below it, or leave timestep.fixed unset to let the engine choose";
-      throw InputError(m.str());
+      m << "the fixed timestep " << timestep.fixed << " s is above the critical timestep " << dt_critical
+        << " s estimated from the current stiffnesses (Tang 3.24) at step " << step_count;
+      throw TimestepError(m.str());
     }
     dt = timestep.fixed;
   } else {

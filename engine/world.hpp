@@ -41,12 +41,6 @@ template <int D>
 class World {
  public:
   Particles<D> particles;
-  std::vector<std::int64_t> ids;  // the specimen's own particle ids (a sphere list's first column), per index
-  std::vector<std::vector<int>> groups;  // members of the scene's [[groups]], in its order
-  std::vector<std::pair<std::string, double>> specimen_facts;  // what generating the specimen measured
-  // Aggregate outlines in the picture plane (2D: x–y; 3D: the section through the specimen's middle along y,
-  // as (x, z)), for drawing.
-  std::vector<std::vector<std::array<double, 2>>> outlines;
   std::vector<Wall<D>> walls;
   std::vector<std::unique_ptr<ContactSetBase<D>>> sets;
   std::vector<std::vector<int>> model_of;   // [phase_a][phase_b] → index in sets; −1: no interaction
@@ -64,7 +58,8 @@ class World {
   std::int64_t rebuilds = 0;
   EnergyTrace energy;
 
-  // Call once the particles, walls and sets are in place (and after loading a checkpoint).
+  // Call once the particles, walls and sets are in place (and after loading a checkpoint). Throws TimestepError
+  // when a fixed timestep is above the critical one (so can step(), when the stiffnesses grow).
   void init();
   void step();
   // Bonds every pair whose gap is at most tolerance·min(R_A, R_B), with the model of its phase pair (models

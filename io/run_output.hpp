@@ -7,19 +7,10 @@
 #include <vector>
 
 #include "engine/archive.hpp"
+#include "engine/system.hpp"  // SpecimenData, CrackRows
 #include "io/h5_file.hpp"
 
 namespace mc {
-
-struct SpecimenData {
-  int dimension;
-  std::vector<double> x, radius;  // x: N·D
-  std::vector<std::int32_t> phase;
-  std::vector<std::string> phase_names;
-  std::vector<std::int64_t> id;   // the specimen's own ids (particles may be renumbered for locality)
-  std::vector<std::pair<std::string, double>> facts;  // attributes of /specimen (a generated packing's porosity …)
-  std::vector<std::vector<std::array<double, 2>>> outlines;  // aggregate outlines in the picture plane
-};
 
 class RunOutput {
  public:
@@ -36,11 +27,6 @@ class RunOutput {
   std::int64_t frame_rows() const;
 
   // The crack log: one row per bond break or first yield (layout in README.md, "Output").
-  struct CrackRows {
-    std::vector<std::int64_t> step, mode, kind, phase_a, phase_b, model, id_a, id_b;
-    std::vector<double> time, position, normal;  // position, normal: D per row
-    std::size_t size() const { return step.size(); }
-  };
   void create_crack_log(int dimension, const std::vector<std::string>& models);
   void append_cracks(const CrackRows& rows);
   std::int64_t crack_rows() const;

@@ -14,6 +14,7 @@
 
 namespace mc {
 
+class Analysis;
 class TomlDoc;
 
 // A contact model with validated parameters, able to make its contact set in either dimension.
@@ -124,23 +125,6 @@ struct StopSpec {
   double after_time = 0; // not before this time [s]
 };
 
-// Uniaxial compression or tension results (Tang §5.2; Šmilauer, "Simulation setup"): from the histories named
-// here, `summary` gives E (secant between 25 % and 50 % of the peak), ν, the strength (UCS = f_c, or f_t), the
-// strain at the peak, the crack-initiation stress and crack counts, and in tension G_f.
-struct UniaxialSpec {
-  std::string stress, axial_strain;          // history names; empty: no analysis
-  std::vector<std::string> lateral_strain;   // their mean is the lateral strain (3D: the two lateral axes)
-  bool tension = false;                      // loading = "tension"
-  // Straining by two support groups (supports = ["bottom", "top"]) along `axis`: the scene then records
-  // uniaxial.stress (the mean of both supports' axial reactions over `area`), uniaxial.strain (their mean
-  // displacements over their initial distance), uniaxial.length (that distance) and uniaxial.lateral_strain
-  // (regression of the inner particles' lateral displacements on their positions), each positive in the
-  // loading sense but the lateral strain (expansion positive), and the analysis reads them.
-  std::array<int, 2> supports = {-1, -1};    // indices into Scene::groups; −1: not used
-  int axis = 2;
-  double area = 0;                           // [m²] (3D) or [m] (2D); 0: the specimen's bounding box
-};
-
 struct SummarySpec {
   std::string name, of;
   enum class Reduce { Max, Min, Final, Initial, TimeOfMax, DurationPositive, FinalOverInitial, MeanFinal10 } reduce;
@@ -177,10 +161,18 @@ struct Scene {
   double duration = 0;     // stop at this simulated time (0: no limit)
   std::vector<StopSpec> stops;
   std::vector<SummarySpec> summaries;
-  UniaxialSpec uniaxial;
+  std::vector<std::shared_ptr<const Analysis>> analyses;  // [uniaxial] … (scene/analysis.hpp), in registry order
   std::string xy_plots;    // "x:y;x2:y2" drawn by report
 
   std::int64_t history_every = 100, frame_every = 0, checkpoint_every = 0, guard_every = 100;
+
+  // The analysis of type A the scene declares, or null.
+  template <class A>
+  const A* analysis() const {
+    for (const auto& a : analyses)
+      if (const auto* p = dynamic_cast<const A*>(a.get())) return p;
+    return nullptr;
+  }
 };
 
 // Reads and validates a scene; throws InputError naming the file, key, value and what is allowed.

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "engine/errors.hpp"
+#include "scene/analysis.hpp"
 #include "scene/histories.hpp"
 #include "scene/model_registry.hpp"
 #include "scene/scene.hpp"
@@ -444,41 +445,6 @@ void read_output(const Table& root, Scene& s) {
   }
 }
 
-void read_uniaxial(const Table& root, Scene& s) {
-  if (auto t = root.optional_table("uniaxial")) {
-    UniaxialSpec& u = s.uniaxial;
-    u.tension = t->choice("loading", {"compression", "tension"}, "compression") == "tension";
-    if (t->has("supports")) {
-      // supports = ["bottom", "top"]: the groups at the negative and the positive end of the strained axis.
-      for (const char* k : {"stress", "axial_strain", "lateral_strain"})
-        if (t->has(k)) t->fail(k, "given together with 'supports', which defines the uniaxial.* histories itself");
-      const std::string names = t->string("supports");
-      std::stringstream ss(names);
-      std::vector<std::string> two;
-      for (std::string n; ss >> n;) two.push_back(n);
-      if (two.size() != 2) t->fail("supports", "give the names of two groups, the negative end first, separated by a space");
-      for (int k = 0; k < 2; ++k) {
-        for (std::size_t g = 0; g < s.groups.size(); ++g)
-          if (s.groups[g].name == two[k]) u.supports[k] = static_cast<int>(g);
-        if (u.supports[k] < 0) t->fail("supports", "'" + two[k] + "' is not the name of a [[groups]] entry");
-      }
-      const std::string axis = t->choice("axis", s.dimension == 2 ? std::vector<std::string>{"x", "y"}
-                                                                  : std::vector<std::string>{"x", "y", "z"},
-                                         s.dimension == 2 ? "y" : "z");
-      u.axis = axis[0] - 'x';
-      u.area = t->number("area", s.dimension == 2 ? Unit::Length : Unit::None, Range::positive(), 0.0);
-      u.stress = "uniaxial.stress", u.axial_strain = "uniaxial.strain", u.lateral_strain = {"uniaxial.lateral_strain"};
-    } else {
-      u.stress = t->string("stress");
-      u.axial_strain = t->string("axial_strain");
-      std::istringstream names(t->string("lateral_strain"));
-      for (std::string n; names >> n;) u.lateral_strain.push_back(n);
-      if (u.lateral_strain.empty()) t->fail("lateral_strain", "give one or more history names, separated by spaces");
-    }
-    t->finish();
-  }
-}
-
 // Names used by stop conditions and summaries must be histories the scene records.
 void check_names(const Table& root, const Scene& s, const std::vector<std::string>& histories) {
   auto known = [&](const std::string& n) { return std::find(histories.begin(), histories.end(), n) != histories.end(); };
@@ -490,14 +456,6 @@ void check_names(const Table& root, const Scene& s, const std::vector<std::strin
   auto sums = root.tables("summary");
   for (std::size_t i = 0; i < s.summaries.size(); ++i)
     if (!known(s.summaries[i].of)) sums[i].fail("of", "not a history of this scene; recorded: " + list);
-  if (!s.uniaxial.stress.empty()) {
-    const Table u = root.table("uniaxial");
-    std::vector<std::pair<std::string, std::string>> named{{"stress", s.uniaxial.stress}, {"axial_strain", s.uniaxial.axial_strain}};
-    for (const auto& n : s.uniaxial.lateral_strain) named.push_back({"lateral_strain", n});
-    for (const auto& [key, name] : named)
-      if (!known(name)) u.fail(key, "'" + name + "' is not a history of this scene; recorded: " + list);
-    if (s.bond_tolerance < 0) u.fail("stress", "the crack-initiation stress needs bonds: declare [bonds]");
-  }
 }
 
 }  // namespace
@@ -521,8 +479,10 @@ Scene read_scene(const TomlDoc& doc, const std::string& file) {
   read_observers(root, s);
   read_run(root, s);
   read_output(root, s);
-  read_uniaxial(root, s);
-  check_names(root, s, history_names(s));
+  read_analyses(root, s);
+  const std::vector<std::string> histories = history_names(s);
+  check_names(root, s, histories);
+  check_analyses(root, s, histories);
   doc.finish_all();
   return s;
 }

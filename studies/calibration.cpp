@@ -116,7 +116,7 @@ CalibrationResult calibrate(const std::string& scene_file, const std::vector<std
   if (options.output.empty()) throw InputError("calibrate: give the calibrated scene's file with -o CALIBRATED.toml");
   const Entry entry = find_entry(scene_file, overrides);
   const Scene base = read_scene(TomlDoc::load(scene_file, overrides), scene_file);
-  if (base.uniaxial.stress.empty())
+  if (!base.analysis<UniaxialAnalysis>())
     throw InputError(scene_file + ": calibrate needs a [uniaxial] table: it matches the E, ν and UCS it reports");
   const bool elastic_targets = !std::isnan(target.modulus);
   const bool strength_target = !std::isnan(target.ucs);
@@ -140,7 +140,7 @@ CalibrationResult calibrate(const std::string& scene_file, const std::vector<std
     const std::vector<std::string> knobs = knob_overrides(entry, k, elastic ? k.strength * strong : k.strength);
     o.insert(o.end(), knobs.begin(), knobs.end());
     Scene scene = read_scene(TomlDoc::load(scene_file, o), scene_file);
-    if (elastic) scene.stops = {StopSpec{scene.uniaxial.axial_strain, StopSpec::Kind::MagnitudeAbove, elastic_stop, 0.0}};
+    if (elastic) scene.stops = {StopSpec{scene.analysis<UniaxialAnalysis>()->axial_strain, StopSpec::Kind::MagnitudeAbove, elastic_stop, 0.0}};
     RunOptions ro;
     ro.output = (out.parent_path() / (out.stem().string() + "_it" + std::to_string(it) + ".h5")).string();
     const RunResult rr = run_scene(scene, ro);

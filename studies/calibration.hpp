@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "studies/summary.hpp"
+#include "studies/stored_run.hpp"  // UniaxialResult
 
 namespace mc {
 

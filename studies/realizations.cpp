@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "engine/errors.hpp"
+#include "scene/json.hpp"
 #include "studies/runner.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
@@ -35,7 +36,7 @@ RealizationSet run_realizations(const std::string& scene_file, const std::vector
   if (n < 1) throw InputError("--realizations " + std::to_string(n) + ": give 1 or more");
   // Read and validate once, before any output exists.
   const Scene base = read_scene(TomlDoc::load(scene_file, overrides), scene_file);
-  if (base.uniaxial.stress.empty())
+  if (!base.analysis<UniaxialAnalysis>())
     throw InputError(scene_file + ": --realizations needs a [uniaxial] table: it compares E, ν and UCS across packings");
   RealizationSet set;
   std::fprintf(log, "%4s %12s %10s %8s %10s %10s %9s\n", "k", "seed", "E [GPa]", "nu", "UCS [MPa]", "init/UCS", "wall [s]");

@@ -1,5 +1,6 @@
-// Runs a scene: builds the world, steps it, records what the scene declares, writes the output file,
-// checkpoints, and stops on the scene's conditions or on an instability.
+// Runs a scene: builds its system (the explicit world, or another solver family behind engine/system.hpp), steps
+// it, records what the scene declares, writes the output file, checkpoints, and stops on the scene's conditions
+// or on an instability.
 #pragma once
 #include <string>
 #include <utility>

@@ -52,7 +52,8 @@ TEST_CASE("particle_stiffness_factors_drawn_per_phase_have_the_weibull_moments_o
       "[mesostructure]\nfraction = 0.3\ngrading = \"ranges\"\nmortar_phase = \"mortar\"\naggregate_phase = \"aggregate\"\n"
       "[[mesostructure.ranges]]\nlo = \"4 mm\"\nhi = \"8 mm\"\nshare = 1\n[run]\nsteps = 1\n";
   const Scene s = read_scene(TomlDoc::parse_text(text, "h.toml"), "h.toml");
-  const World<2> w = build_world<2>(s);
+  SpecimenInfo info;
+  const World<2> w = build_world<2>(s, info);
   std::vector<double> mortar;
   for (int i = 0; i < w.particles.size(); ++i) {
     if (w.particles.phase[i] == 1) CHECK(w.particles.stiffness[i] == 1.0);  // the aggregate declares none

@@ -174,7 +174,7 @@ TEST_CASE("fixed_timestep_above_estimate_is_refused") {
   std::string message;
   try {
     w.init();
-  } catch (const InputError& e) {
+  } catch (const TimestepError& e) {
     message = e.what();
   }
   MESSAGE("fixed 1.5 × estimate: " << message);
@@ -184,7 +184,7 @@ TEST_CASE("fixed_timestep_above_estimate_is_refused") {
     s << x;
     return s.str();
   };
-  CHECK(message.find("timestep.fixed") != std::string::npos);
+  CHECK(message.find("fixed timestep") != std::string::npos);
   CHECK(message.find(shown(1.5 * estimate)) != std::string::npos);
   CHECK(message.find(shown(estimate)) != std::string::npos);
 

@@ -1,0 +1,74 @@
+// What the runner (studies/runner.cpp) needs of a solver family: advance in time, tell where it is, sample the
+// histories its scene declares, describe its specimen and frames, report its cracks, save and restore its state.
+// The explicit particle world implements it (scene/explicit_system.hpp); the rigid-cell model will too. It is
+// dimension-free, so the runner, the output and the studies are written once for every solver and dimension.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "engine/archive.hpp"
+
+namespace mc {
+
+// A named time series the scene records, sampled when a history row is written.
+struct Series {
+  std::string name, unit;
+  std::function<double()> sample;  // empty when only the names are wanted
+};
+
+// The specimen as built, as the output file keeps it (README, "Output file").
+struct SpecimenData {
+  int dimension;
+  std::vector<double> x, radius;  // x: N·D
+  std::vector<std::int32_t> phase;
+  std::vector<std::string> phase_names;
+  std::vector<std::int64_t> id;   // the specimen's own ids (bodies may be renumbered for locality)
+  std::vector<std::pair<std::string, double>> facts;  // what generating it measured (porosity, bonds per phase pair …)
+  std::vector<std::vector<std::array<double, 2>>> outlines;  // aggregate outlines in the picture plane
+};
+
+// Rows of the crack log: one per bond break or first yield (README, "Output file", /cracks).
+struct CrackRows {
+  std::vector<std::int64_t> step, mode, kind, phase_a, phase_b, model, id_a, id_b;
+  std::vector<double> time, position, normal;  // position, normal: D per row
+  std::size_t size() const { return step.size(); }
+};
+
+class System {
+ public:
+  virtual ~System() = default;
+  virtual int dimension() const = 0;
+
+  // A new run: contacts found, bonds installed, the energy origin set. A resumed run calls restore() instead.
+  // Throws InputError when the scene asks for what the state refuses (a fixed timestep above the critical one).
+  virtual void start() = 0;
+  // One step, and what the scene observes every step. Throws InstabilityError when the state refuses to go on.
+  virtual void step() = 0;
+  virtual std::int64_t step_count() const = 0;
+  virtual double time() const = 0;
+  virtual double timestep() const = 0;
+  // Throws InstabilityError naming the step, the body and the likely cause.
+  virtual void check_stability() const = 0;
+
+  // The scene's histories in its order; the samplers read this system and stay valid while it lives.
+  virtual const std::vector<Series>& histories() const = 0;
+  virtual SpecimenData specimen() const = 0;
+  // Positions, velocities and forces of every body, N·D values each: one frame of the output.
+  virtual void frame(std::vector<double>& x, std::vector<double>& v, std::vector<double>& force) const = 0;
+
+  // The crack log: the models that write to it (empty: the scene keeps no log), how many entries it has, and its
+  // entries from `first` on.
+  virtual std::vector<std::string> crack_models() const = 0;
+  virtual std::size_t crack_count() const = 0;
+  virtual CrackRows cracks(std::size_t first) const = 0;
+
+  // The complete dynamic state: restoring it and stepping on gives the same bits as never stopping.
+  virtual void save(Archive& a) const = 0;
+  virtual void restore(const Archive& a) = 0;
+};
+
+}  // namespace mc

@@ -1,0 +1,51 @@
+// Analyses: the kinds of test a scene may declare, each in its own table ([uniaxial]; next [bending], [pullout]).
+// An analysis reads its keys, records the histories it defines, checks that the histories it reads exist, and
+// writes its block of `summary`. Each is a plug-in: scene/analyses/<name>.{hpp,cpp} and one line in the registry
+// (scene/analysis.cpp). It observes bodies and groups only, not a solver's internals, so it serves every solver.
+#pragma once
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/particles.hpp"
+#include "engine/system.hpp"  // Series
+#include "scene/toml_reader.hpp"
+
+namespace mc {
+
+struct Scene;
+
+// A run's histories by name (the output file's /history).
+using Histories = std::map<std::string, std::vector<double>>;
+
+// What an analysis may observe of a running system: its bodies (particles, or rigid cells) and the members of
+// the scene's [[groups]]. Both null when only the names of the histories are wanted.
+template <int D>
+struct Observed {
+  const Particles<D>* bodies = nullptr;
+  const std::vector<std::vector<int>>* groups = nullptr;
+};
+
+class Analysis {
+ public:
+  virtual ~Analysis() = default;
+  // Its table in the scene and its block in `summary`.
+  virtual std::string name() const = 0;
+  // The histories it defines itself, appended to `out` (samplers empty when `o.bodies` is null). Throws InputError
+  // when the specimen does not allow it (a support group at the wrong end).
+  virtual void add_histories(std::vector<Series>& out, const Observed<2>& o) const = 0;
+  virtual void add_histories(std::vector<Series>& out, const Observed<3>& o) const = 0;
+  // Once the whole scene is read: what it reads is recorded and what it needs is declared. Fails through `t`,
+  // its own table, naming the key.
+  virtual void check(const Table& t, const Scene& s, const std::vector<std::string>& histories) const = 0;
+  // Its block of `summary`: a JSON value computed from the run's histories.
+  virtual std::string summary_json(const Histories& h) const = 0;
+};
+
+// Reads every analysis table the scene has (the rest of the scene read already: groups, bonds …).
+void read_analyses(const Table& root, Scene& s);
+// Checks each of them against the scene's histories.
+void check_analyses(const Table& root, const Scene& s, const std::vector<std::string>& histories);
+
+}  // namespace mc

@@ -1,0 +1,155 @@
+#include "scene/explicit_system.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "engine/errors.hpp"
+
+namespace mc {
+
+namespace {
+
+// A fixed timestep the engine refuses, as the scene said it.
+[[noreturn]] void timestep_refused(const Scene& s, const TimestepError& e) {
+  std::ostringstream m;
+  m << s.file << ": key 'timestep.fixed' = " << s.timestep.fixed << " s: " << e.what()
+    << "; use a value below it, or leave timestep.fixed unset to let the engine choose";
+  throw InputError(m.str());
+}
+
+}  // namespace
+
+template <int D>
+ExplicitSystem<D>::ExplicitSystem(const Scene& scene)
+    : scene_(scene), world_(build_world<D>(scene, info_)), obs_(scene) {
+  check_probes();
+  series_ = make_series<D>(scene, &world_, &info_, &obs_);
+}
+
+template <int D>
+void ExplicitSystem<D>::check_probes() const {
+  for (const auto& p : scene_.probes)
+    for (std::int64_t id : p.particles)
+      if (std::find(info_.ids.begin(), info_.ids.end(), id) == info_.ids.end())
+        throw InputError(scene_.file + ": probe '" + p.name + "': particle " + std::to_string(id) +
+                         " does not exist (the specimen has " + std::to_string(world_.particles.size()) +
+                         " particles; probes name them by their specimen ids)");
+}
+
+template <int D>
+void ExplicitSystem<D>::start() {
+  try {
+    world_.init();
+  } catch (const TimestepError& e) {
+    timestep_refused(scene_, e);
+  }
+  if (scene_.bond_tolerance >= 0) install_bonds();
+  if (scene_.energy) {
+    world_.update_energy();
+    world_.energy.initial = world_.energy.kinetic + world_.energy.strain;
+  }
+}
+
+// Bonds, and how many each phase pair got (mortar, aggregate, ITZ …): written with the specimen.
+template <int D>
+void ExplicitSystem<D>::install_bonds() {
+  try {
+    world_.install_bonds(scene_.bond_tolerance, scene_.seed);
+  } catch (const TimestepError& e) {
+    timestep_refused(scene_, e);
+  }
+  for (std::size_t c = 0; c < scene_.contacts.size(); ++c)
+    if (scene_.contacts[c].model.bonds)
+      info_.facts.push_back({"bonds_" + scene_.phases[scene_.contacts[c].phase_a].name + "-" +
+                                 scene_.phases[scene_.contacts[c].phase_b].name,
+                             static_cast<double>(world_.sets[c]->bond_count())});
+}
+
+template <int D>
+void ExplicitSystem<D>::step() {
+  try {
+    world_.step();
+  } catch (const TimestepError& e) {
+    timestep_refused(scene_, e);
+  }
+  if (!scene_.regions.empty()) obs_.every_step(world_, scene_);
+}
+
+template <int D>
+SpecimenData ExplicitSystem<D>::specimen() const {
+  const auto& p = world_.particles;
+  SpecimenData d{D, {}, p.radius, {}, {}, info_.ids, info_.facts, info_.outlines};
+  for (const auto& x : p.x) d.x.insert(d.x.end(), x.data(), x.data() + D);
+  d.phase.assign(p.phase.begin(), p.phase.end());
+  for (const auto& ph : scene_.phases) d.phase_names.push_back(ph.name);
+  return d;
+}
+
+template <int D>
+void ExplicitSystem<D>::frame(std::vector<double>& x, std::vector<double>& v, std::vector<double>& f) const {
+  const auto& p = world_.particles;
+  x.clear(), v.clear(), f.clear();
+  for (int i = 0; i < p.size(); ++i)
+    for (int k = 0; k < D; ++k) x.push_back(p.x[i][k]), v.push_back(p.v[i][k]), f.push_back(p.f[i][k]);
+}
+
+template <int D>
+std::vector<std::string> ExplicitSystem<D>::crack_models() const {
+  std::vector<std::string> models;
+  if (scene_.crack_log)
+    for (const auto& s : world_.sets) models.push_back(s->model());
+  return models;
+}
+
+template <int D>
+CrackRows ExplicitSystem<D>::cracks(std::size_t first) const {
+  CrackRows r;
+  for (std::size_t k = first; k < world_.cracks.size(); ++k) {
+    const Crack<D>& c = world_.cracks[k];
+    r.step.push_back(c.step);
+    r.mode.push_back(static_cast<std::int64_t>(c.mode));
+    r.kind.push_back(static_cast<std::int64_t>(c.kind));
+    r.phase_a.push_back(c.phase_a);
+    r.phase_b.push_back(c.phase_b);
+    r.model.push_back(c.set);
+    r.id_a.push_back(info_.ids[c.a]);
+    r.id_b.push_back(info_.ids[c.b]);
+    r.time.push_back(c.time);
+    r.position.insert(r.position.end(), c.position.data(), c.position.data() + D);
+    r.normal.insert(r.normal.end(), c.normal.data(), c.normal.data() + D);
+  }
+  return r;
+}
+
+// The world's state, and the strains its measurement regions have integrated so far.
+template <int D>
+void ExplicitSystem<D>::save(Archive& a) const {
+  world_.save(a);
+  std::vector<double> strains;
+  for (const auto& si : obs_.strain) strains.insert(strains.end(), si.strain.data(), si.strain.data() + D * D);
+  a.reals["region_strains"] = strains;
+}
+
+template <int D>
+void ExplicitSystem<D>::restore(const Archive& a) {
+  if (a.reals.at("x").size() != static_cast<std::size_t>(world_.particles.size() * D))
+    throw InputError("its checkpoint holds a different specimen than the scene builds; resume with the scene that wrote it");
+  world_.restore(a);
+  const auto& strains = a.reals.at("region_strains");
+  if (strains.size() != obs_.strain.size() * D * D)
+    throw InputError("its checkpoint holds " + std::to_string(strains.size() / (D * D)) + " measurement regions, the "
+                     "scene declares " + std::to_string(obs_.strain.size()) + "; resume with the scene that wrote it");
+  std::size_t k = 0;
+  for (auto& si : obs_.strain)
+    for (int i = 0; i < D * D; ++i) si.strain.data()[i] = strains[k++];
+}
+
+template class ExplicitSystem<2>;
+template class ExplicitSystem<3>;
+
+std::unique_ptr<System> make_system(const Scene& scene) {
+  if (scene.dimension == 2) return std::make_unique<ExplicitSystem<2>>(scene);
+  return std::make_unique<ExplicitSystem<3>>(scene);
+}
+
+}  // namespace mc

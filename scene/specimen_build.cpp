@@ -1,0 +1,168 @@
+#include "scene/specimen_build.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "engine/errors.hpp"
+#include "io/h5_file.hpp"
+#include "io/sphere_list.hpp"
+#include "preprocess/aggregate_placement.hpp"
+#include "preprocess/dense_packing.hpp"
+#include "preprocess/random_box.hpp"
+#include "preprocess/regular_packing.hpp"
+#include "preprocess/spatial_order.hpp"
+
+namespace mc {
+
+namespace {
+
+template <int D>
+void add_inline(const Scene& s, Particles<D>& p, std::vector<int>& tags) {
+  for (const auto& ip : s.specimen.particles) {
+    const int i = p.add(vec_of<D>(ip.x), ip.radius, s.phases[ip.phase].density, ip.phase);
+    p.v[i] = vec_of<D>(ip.v);
+    p.w[i] = rot_of<D>(ip.w);
+    tags.push_back(0);
+  }
+}
+
+template <int D>
+void add_sphere_list(const Scene& s, Particles<D>& p, std::vector<int>& tags, std::vector<std::int64_t>& ids) {
+  const SpecimenSpec& sp = s.specimen;
+  SphereList<D> list;
+  try {
+    list = read_sphere_list<D>(sp.file);
+  } catch (const IoError& e) {  // name the scene and its key, not only the resolved path
+    throw IoError(s.file + ": key 'specimen.file': " + e.what());
+  }
+  for (int i = 0; i < list.size(); ++i) {
+    const int tag = list.tag[i];
+    int phase = 0;
+    if (!sp.tag_phase.empty()) {
+      if (tag < 0 || tag >= static_cast<int>(sp.tag_phase.size())) {
+        std::ostringstream m;
+        m << sp.file << ": particle id " << list.id[i] << " has tag " << tag << ", but specimen.tag_phases names "
+          << sp.tag_phase.size() << " tags (0.." << sp.tag_phase.size() - 1 << ")";
+        throw InputError(m.str());
+      }
+      phase = sp.tag_phase[tag];
+    }
+    p.add(list.x[i], list.radius[i], s.phases[phase].density, phase);
+    tags.push_back(tag);
+    ids.push_back(list.id[i]);
+  }
+}
+
+// The last frame of an earlier run (its final state), at rest.
+template <int D>
+void add_output(const Scene& s, Particles<D>& p, std::vector<int>& tags) {
+  const SpecimenSpec& sp = s.specimen;
+  std::vector<double> radius, x;
+  std::vector<std::int64_t> phase;
+  try {
+    const H5File f(sp.file, H5File::Mode::ReadOnly);
+    radius = f.read_doubles("/specimen/radius");
+    phase = f.read_ints("/specimen/phase");
+    if (f.exists("/frames/x") && f.rows("/frames/x") > 0) {
+      std::vector<hsize_t> dims;
+      const auto all = f.read_doubles("/frames/x", &dims);
+      x.assign(all.end() - static_cast<std::ptrdiff_t>(dims[1]), all.end());
+    } else {
+      x = f.read_doubles("/specimen/x");
+    }
+  } catch (const IoError& e) {  // name the scene and its key, not only the resolved path
+    throw IoError(s.file + ": key 'specimen.file': " + e.what());
+  }
+  if (x.size() != radius.size() * D)
+    throw InputError(sp.file + ": the specimen has dimension other than the scene's (" + std::to_string(D) + ")");
+  for (std::size_t i = 0; i < radius.size(); ++i) {
+    const int ph = static_cast<int>(phase[i]);
+    if (ph < 0 || ph >= static_cast<int>(s.phases.size()))
+      throw InputError(sp.file + ": particle " + std::to_string(i) + " has phase " + std::to_string(ph) +
+                       ", but the scene declares " + std::to_string(s.phases.size()) + " phases");
+    p.add(Vec<D>(Eigen::Map<const Vec<D>>(x.data() + D * i)), radius[i], s.phases[ph].density, ph);
+    tags.push_back(0);
+  }
+}
+
+// PFC material genesis (preprocess/dense_packing.hpp); what it measured goes to the facts.
+template <int D>
+Packing<D> genesis(const Scene& s, std::vector<std::pair<std::string, double>>& facts) {
+  const SpecimenSpec& sp = s.specimen;
+  DensePackingSpec<D> g;
+  g.shape = sp.cylinder ? DensePackingSpec<D>::Shape::Cylinder : DensePackingSpec<D>::Shape::Box;
+  g.lo = vec_of<D>(sp.box_lo), g.hi = vec_of<D>(sp.box_hi);
+  g.radius_min = sp.radius_min, g.radius_ratio = sp.radius_ratio, g.porosity = sp.porosity;
+  g.stress = sp.stress, g.modulus = sp.modulus, g.density = s.phases[sp.phase].density, g.seed = s.seed;
+  PackingReport rep;
+  Packing<D> pk;
+  try {
+    pk = dense_packing<D>(g, &rep);
+  } catch (const InputError& e) {
+    throw InputError(s.file + ": [specimen] kind = \"packing\": " + e.what());
+  }
+  facts = {{"packing_porosity_grown", rep.porosity_grown}, {"packing_porosity_final", rep.porosity_final},
+           {"packing_stress_final", rep.stress_final}, {"packing_floaters", double(rep.floaters)},
+           {"packing_steps", double(rep.steps)}};
+  return pk;
+}
+
+// The generated kinds: random box, PFC genesis, regular lattice (row by row or layer by layer: already local).
+template <int D>
+Packing<D> generated(const Scene& s, std::vector<std::pair<std::string, double>>& facts) {
+  const SpecimenSpec& sp = s.specimen;
+  if (sp.kind == SpecimenSpec::Kind::Packing) return genesis<D>(s, facts);
+  if (sp.kind == SpecimenSpec::Kind::Lattice) {
+    if constexpr (D == 2) return hexagonal_packing(vec_of<2>(sp.box_lo), vec_of<2>(sp.box_hi), sp.radius_min);
+    else return fcc_packing(vec_of<3>(sp.box_lo), vec_of<3>(sp.box_hi), sp.radius_min);
+  }
+  try {
+    return random_box_packing<D>(vec_of<D>(sp.box_lo), vec_of<D>(sp.box_hi), sp.count, sp.radius_min, sp.radius_max, s.seed);
+  } catch (const InputError& e) {
+    throw InputError(s.file + ": key 'specimen.count' = " + std::to_string(sp.count) + ": " + e.what());
+  }
+}
+
+// Renumbers the particles along a Morton curve (cache locality); tags and ids travel with them.
+template <int D>
+void spatial_sort(Particles<D>& p, std::vector<int>& tags, std::vector<std::int64_t>& ids) {
+  const std::vector<int> order = morton_order<D>(p.x);
+  auto permute = [&](auto& v) {
+    auto old = v;
+    for (std::size_t k = 0; k < order.size(); ++k) v[k] = old[order[k]];
+  };
+  permute(p.x), permute(p.v), permute(p.f), permute(p.w), permute(p.m), permute(p.q);
+  permute(p.radius), permute(p.mass), permute(p.inertia), permute(p.phase), permute(p.fix), permute(p.stiffness);
+  permute(tags), permute(ids);
+}
+
+}  // namespace
+
+template <int D>
+void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags, SpecimenInfo& info) {
+  using K = SpecimenSpec::Kind;
+  const SpecimenSpec& sp = s.specimen;
+  if (sp.kind == K::Particles) {
+    add_inline<D>(s, p, tags);
+  } else if (sp.kind == K::SphereList) {
+    add_sphere_list<D>(s, p, tags, info.ids);
+  } else if (sp.kind == K::Output) {
+    add_output<D>(s, p, tags);
+  } else {
+    const Packing<D> pk = generated<D>(s, info.facts);
+    const double density = s.phases[sp.phase].density;
+    for (std::size_t i = 0; i < pk.x.size(); ++i) p.add(pk.x[i], pk.radius[i], density, sp.phase), tags.push_back(0);
+  }
+  if (p.size() == 0) throw InputError(s.file + ": the specimen holds no particle");
+  if (info.ids.empty()) {
+    info.ids.resize(p.size());
+    for (int i = 0; i < p.size(); ++i) info.ids[i] = i;
+  }
+  // Inline particles keep the order the scene gives them, lattices are local already.
+  if (sp.kind == K::SphereList || sp.kind == K::RandomBox || sp.kind == K::Packing) spatial_sort<D>(p, tags, info.ids);
+}
+
+template void add_specimen<2>(const Scene&, Particles<2>&, std::vector<int>&, SpecimenInfo&);
+template void add_specimen<3>(const Scene&, Particles<3>&, std::vector<int>&, SpecimenInfo&);
+
+}  // namespace mc

@@ -1,0 +1,34 @@
+// The particles of a scene's specimen, read, loaded or generated, and the coarse aggregate laid over them
+// (scene/specimen_build.cpp). Used by build_world.
+#pragma once
+#include <vector>
+
+#include "engine/particles.hpp"
+#include "scene/build_world.hpp"
+
+namespace mc {
+
+template <int D>
+Vec<D> vec_of(const std::vector<double>& v) {
+  Vec<D> out;
+  for (int k = 0; k < D; ++k) out[k] = v[k];
+  return out;
+}
+template <int D>
+Rot<D> rot_of(const std::vector<double>& v) {
+  Rot<D> out;
+  for (int k = 0; k < Dim<D>::rot; ++k) out[k] = v[k];
+  return out;
+}
+
+// The specimen's particles, with each one's tag (sphere lists; 0 otherwise); ids and generation facts go to
+// `info`. Sphere lists and generated packings are renumbered along a Morton curve (cache locality).
+template <int D>
+void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags, SpecimenInfo& info);
+
+// Tang §4.2–4.3.1: aggregates laid over the specimen; mortar particles whose centres fall in one become
+// aggregate. The fractions achieved go to info.facts, the outlines to info.outlines.
+template <int D>
+void apply_mesostructure(const Scene& s, Particles<D>& p, SpecimenInfo& info);
+
+}  // namespace mc

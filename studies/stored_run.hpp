@@ -1,0 +1,25 @@
+// A run as its output file keeps it (finished, stopped, or killed mid-way): the scene it ran, re-read and
+// validated, its histories and its status. What `summary`, the realizations and the calibration read.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "scene/analyses/uniaxial.hpp"
+#include "scene/scene.hpp"
+
+namespace mc {
+
+struct StoredRun {
+  Scene scene;
+  Histories histories;
+  std::string status, status_message;
+  std::int64_t particles = 0;
+};
+
+// Throws IoError for a file that is not a mesocrack output file.
+StoredRun read_stored_run(const std::string& output_file);
+
+// The [uniaxial] results of a stored run; InputError when its scene declares no [uniaxial] analysis.
+UniaxialResult uniaxial_result(const std::string& output_file);
+
+}  // namespace mc
