@@ -5,6 +5,7 @@
 #pragma once
 #include <cmath>
 
+#include "contact_models/bond_family.hpp"
 #include "contact_models/linear.hpp"
 #include "engine/contact_geometry.hpp"
 #include "engine/contact_set.hpp"
@@ -52,25 +53,15 @@ struct ContactBond {
     s.shear = normal(p.shear_mean, p.shear_std, p.shear_weibull);
   }
 
-  // Never bonded, or broken: a linear contact with slip.
-  template <int D, bool Energy>
-  [[gnu::always_inline]] static ContactForce<D> unbonded_force(const Linear::Coeffs& c, const ContactGeometry<D>& g,
-                                                                State<D>& s) {
-    Linear::State<D> ls{s.fs};
-    const ContactForce<D> out = Linear::force<D, Energy>(c, g, ls);
-    s.fs = ls.fs;
-    return out;
-  }
-
   template <int D, bool Energy>
   [[gnu::always_inline]] static ContactForce<D> force(const Coeffs& c, const ContactGeometry<D>& g, State<D>& s) {
-    if (!bonded(s)) return unbonded_force<D, Energy>(c, g, s);
+    if (!bonded(s)) return GrainContact::force<D, Energy>(c, g, s);  // never bonded, or broken
     ContactForce<D> out;
-    const double vn = g.v_rel.dot(g.n);
-    const Vec<D> vs = g.v_rel - vn * g.n;
-    const double fn = c.kn * (g.overlap + s.gap0);  // Tang (3.9), negative (tension) allowed while bonded
-    const Vec<D> fs_before = carry_shear<D>(s.fs, g.n, g.spin_n, g.dt);
-    Vec<D> fs = fs_before - c.ks * vs * g.dt;  // Tang (3.5), (3.10), no slip
+    const auto t = GluedTrial<D>::of(c, g, s.fs, s.gap0);
+    const double vn = t.vn, fn = t.fn;
+    const Vec<D>& vs = t.vs;
+    const Vec<D>& fs_before = t.fs_carried;
+    Vec<D> fs = t.fs;
     if (-fn >= s.normal) out.event.mode = CrackMode::Tensile;
     else if (fs.norm() >= s.shear) out.event.mode = CrackMode::Shear;
     if (out.event.mode == CrackMode::None) {
@@ -110,13 +101,13 @@ struct ContactBond {
   }
   template <int D>
   static double strain_energy(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
-    if (!bonded(s)) return Linear::strain_energy<D>(c, g, Linear::State<D>{s.fs});
+    if (!bonded(s)) return GrainContact::strain_energy<D>(c, g, s);
     const double fn = c.kn * (g.overlap + s.gap0);
     return 0.5 * (fn * fn / c.kn + s.fs.squaredNorm() / c.ks);  // Tang (3.80), tension included
   }
   template <int D>
   static double released_energy(const Coeffs& c, const State<D>& s) {
-    return Linear::released_energy<D>(c, Linear::State<D>{s.fs});
+    return GrainContact::released_energy<D>(c, s);
   }
   template <int D>
   static bool persistent(const State<D>& s) { return bonded(s); }

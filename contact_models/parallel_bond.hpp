@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "contact_models/bond_family.hpp"
 #include "contact_models/linear.hpp"
 #include "engine/contact_geometry.hpp"
 #include "engine/contact_set.hpp"
@@ -121,9 +122,7 @@ struct ParallelBond {
 
   template <int D, bool Energy>
   [[gnu::always_inline]] static ContactForce<D> force(const Coeffs& c, const ContactGeometry<D>& g, State<D>& s) {
-    Linear::State<D> ls{s.fs};
-    ContactForce<D> out = Linear::force<D, Energy>(c.contact, g, ls);  // the grain contact, in parallel
-    s.fs = ls.fs;
+    ContactForce<D> out = GrainContact::force<D, Energy>(c.contact, g, s);  // the grain contact, in parallel
     if (!bonded(s)) return out;
     const double dt = g.dt;
     const State<D> before = s;
@@ -156,7 +155,7 @@ struct ParallelBond {
 
   template <int D>
   static ContactStiffness stiffness(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
-    ContactStiffness k = Linear::stiffness<D>(c.contact, g, Linear::State<D>{s.fs});
+    ContactStiffness k = GrainContact::stiffness<D>(c.contact, g, s);
     if (!bonded(s)) return k;
     k.normal += c.kn_a * s.stiffness;
     k.shear += c.ks_a * s.stiffness;
@@ -178,11 +177,11 @@ struct ParallelBond {
   static double strain_energy_bond(const Coeffs& c, const State<D>& s) { return bond_energy<D>(c, s, s); }
   template <int D>
   static double strain_energy(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
-    return Linear::strain_energy<D>(c.contact, g, Linear::State<D>{s.fs}) + (bonded(s) ? strain_energy_bond<D>(c, s) : 0.0);
+    return GrainContact::strain_energy<D>(c.contact, g, s) + (bonded(s) ? strain_energy_bond<D>(c, s) : 0.0);
   }
   template <int D>
   static double released_energy(const Coeffs& c, const State<D>& s) {
-    return Linear::released_energy<D>(c.contact, Linear::State<D>{s.fs});
+    return GrainContact::released_energy<D>(c.contact, s);
   }
   template <int D>
   static bool persistent(const State<D>& s) { return bonded(s); }

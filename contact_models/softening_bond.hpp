@@ -67,12 +67,13 @@ struct SofteningBond : ContactBond {
 
   template <int D, bool Energy>
   [[gnu::always_inline]] static ContactForce<D> force(const Coeffs& c, const ContactGeometry<D>& g, State<D>& s) {
-    if (!bonded(s)) return unbonded_force<D, Energy>(c, g, s);
+    if (!bonded(s)) return GrainContact::force<D, Energy>(c, g, s);  // never bonded, or broken
     ContactForce<D> out;
-    const double vn = g.v_rel.dot(g.n);
-    const Vec<D> vs = g.v_rel - vn * g.n;
-    double fn = c.kn * (g.overlap + s.gap0);  // Tang (3.9), negative (tension) allowed while bonded
-    Vec<D> fs = carry_shear<D>(s.fs, g.n, g.spin_n, g.dt) - c.ks * vs * g.dt;  // Tang (3.5), (3.10)
+    const auto t = GluedTrial<D>::of(c, g, s.fs, s.gap0);
+    const double vn = t.vn;
+    const Vec<D>& vs = t.vs;
+    double fn = t.fn;
+    Vec<D> fs = t.fs;
     const double fs_mag = fs.norm();
     const double up_max = plastic_limit(c, s);
     // Both regimes bound a magnitude m of the trial force by base + h (U_p,max − U_p): the strengths fall
