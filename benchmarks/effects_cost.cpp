@@ -1,5 +1,5 @@
 // What each optional effect costs: the same scene run with and without one declaration, through the full
-// runner (histories, output file and all), on the shared 3D specimen of ../shared/benchmark.
+// runner (histories, output file and all), on the shared 3D specimen (benchmarks/specimens/README.md).
 // Prints the ratio of wall times (with / without); "nothing declared" is run twice to show the noise.
 // Usage: effects_cost [--specimen FILE] [--steps N]
 #include <omp.h>
@@ -63,7 +63,7 @@ double run_once(const std::string& text, const std::vector<std::string>& sets, c
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string specimen = std::string(MESOCRACK_SOURCE_DIR) + "/../shared/benchmark/n10k.spheres";
+  std::string specimen = MESOCRACK_SPECIMEN_DIR "/n10k.spheres";
   long steps = 2000;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];

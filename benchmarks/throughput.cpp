@@ -1,6 +1,6 @@
 // Throughput benchmark of the engine's stepping loop (World::step), printed as markdown tables.
 //
-//  a) shared: the specimen of ../shared/benchmark (README there), on which Yade, ESyS-Particle and LAMMPS were
+//  a) shared: the specimen of benchmarks/specimens/README.md, on which Yade, ESyS-Particle and LAMMPS were
 //     timed; our figures beside theirs: unbonded linear contacts, parallel bonds beside them (the peers'
 //     6-DOF bonds), and the Concrete Particle Model (beside Yade's CPM figures).
 //  b) scaling: dense random 2D and 3D assemblies from 1e3 to 1e6 particles; the cost per particle-step must
@@ -57,7 +57,7 @@ struct Options {
   bool shared = true, scaling = true, effects = true;
   bool unbonded = true;  // the shared specimen also without bonds (--only bonded: with bonds only)
   bool parallel = true, cpm = true;  // its parallel-bonded and CPM runs (--only bonded / cpm: that one alone)
-  std::string specimen_dir = MESOCRACK_SOURCE_DIR "/../shared/benchmark";
+  std::string specimen_dir = MESOCRACK_SPECIMEN_DIR;
   int reps = 3;
   bool reps_given = false;
 };
@@ -136,7 +136,7 @@ struct Peer {
   const char* name;
   double pss[4];  // n10k 1 core, n10k 2 cores, n50k 1 core, n50k 2 cores (particle-steps/s)
 };
-// ../shared/benchmark/README.md, "What the peers did on it".
+// benchmarks/specimens/README.md, "What the peers did on it".
 const Peer kPeers[] = {
     {"ESyS-Particle, RotBond (6-DOF bond)", {1.17e6, 1.40e6, 8.3e5, 1.15e6}},
     {"Yade, CohFrict (6-DOF bond)", {6.0e5, 1.02e6, 4.8e5, 8.1e5}},
@@ -251,7 +251,7 @@ void section_shared(const Options& opt, bool bonded, bool cpm = false) {
     runs.push_back(run_shared(path, name, mat, steps, opt));
   }
 
-  std::printf("## a) The shared specimen (../shared/benchmark): %s\n\n", model);
+  std::printf("## a) The shared specimen (benchmarks/specimens): %s\n\n", model);
   if (cpm)
     std::printf("Model: **Concrete Particle Model** (`ContactSet<Cpm,3>`, Šmilauer; the peers' line to compare is "
                 "Yade, CPM): cohesive contacts on every pair with d <= 1.05 (R_i + R_j) (R_I = 1.05, the README's bond "

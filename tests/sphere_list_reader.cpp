@@ -47,7 +47,7 @@ std::string input_error(const ListDir& d, const std::string& text) {
 }  // namespace
 
 TEST_CASE("sphere list: the shared specimen n10k reads as its README describes") {
-  const auto s = mc::read_sphere_list<3>(MESOCRACK_SOURCE_DIR "/../shared/benchmark/n10k.spheres");
+  const auto s = mc::read_sphere_list<3>(MESOCRACK_SOURCE_DIR "/scenes/specimens/n10k.spheres");
   REQUIRE(s.size() == 10098);
   CHECK(s.radius.size() == 10098);
   CHECK(s.tag.size() == 10098);
