@@ -1,3 +1,5 @@
+// The explicit cycle in PFC order (Tang Fig. 3.2): contact detection, forces per contact model, gather and law
+// of motion, walls; the timestep from the current stiffnesses (Tang 3.21–3.24), bonds, cracks and energy.
 #include "engine/world.hpp"
 
 #include <omp.h>
@@ -417,67 +419,6 @@ void World<D>::update_energy() {
 }
 
 template <int D>
-void World<D>::check_stability() const {
-  const auto& p = particles;
-  const int n = p.size();
-  for (int i = 0; i < n; ++i) {
-    std::ostringstream m;
-    bool finite = p.x[i].allFinite() && p.v[i].allFinite() && p.w[i].allFinite();
-    if (!finite) {
-      m << "unstable at step " << step_count << " (t = " << time << " s): particle " << i
-        << " has a non-finite position or velocity; likely cause: timestep " << dt
-        << " s too large for the contact stiffness (critical estimate " << dt_critical << " s)";
-      throw InstabilityError(m.str());
-    }
-    if (p.v[i].norm() * dt > 0.5 * p.radius[i]) {
-      m << "unstable at step " << step_count << " (t = " << time << " s): particle " << i << " moved "
-        << p.v[i].norm() * dt / p.radius[i] << " of its radius in one step (|v| = " << p.v[i].norm()
-        << " m/s); likely cause: timestep " << dt << " s above the stability limit (critical estimate "
-        << dt_critical << " s), or stiffness too high for it";
-      throw InstabilityError(m.str());
-    }
-    for (int k = 0; k < D; ++k)
-      if (p.x[i][k] < domain_lo[k] || p.x[i][k] > domain_hi[k]) {
-        m << "stopped at step " << step_count << " (t = " << time << " s): particle " << i << " left the domain ("
-          << "coordinate " << k << " = " << p.x[i][k] << " m, domain " << domain_lo[k] << " .. " << domain_hi[k]
-          << " m); likely cause: a gap in the walls, an explosion of the packing, or a domain set too small";
-        throw InstabilityError(m.str());
-      }
-  }
-  for (std::size_t w = 0; w < walls.size(); ++w)
-    if (!walls[w].origin.allFinite() || !walls[w].force.allFinite()) {
-      std::ostringstream m;
-      m << "unstable at step " << step_count << ": wall '" << walls[w].name
-        << "' has a non-finite position or force; likely cause: servo gain or timestep too large";
-      throw InstabilityError(m.str());
-    }
-  if (trace_energy) {
-    // What has come out as motion, friction and damping cannot exceed all the energy ever put in; if it does,
-    // the integration is making energy. The kinetic term alone is not enough: an unstable mode held in check by
-    // friction or by contacts opening never grows without bound (its energy goes to friction), and its
-    // ½ m v(t−Δt/2)·v(t+Δt/2) is even negative when the velocities reverse every step.
-    const double budget = std::abs(energy.initial) + std::abs(energy.body_work) + std::abs(energy.boundary_work);
-    const double out = energy.kinetic + energy.dissipated_contacts + energy.dissipated_local;
-    if (out > 2.0 * budget + 1e-12) {
-      int fastest = 0;  // the particle with the most kinetic energy, to point at
-      double e_max = -1;
-      for (int i = 0; i < n; ++i) {
-        const double e = 0.5 * (p.mass[i] * p.v[i].squaredNorm() + p.inertia[i] * p.w[i].squaredNorm());
-        if (e > e_max) e_max = e, fastest = i;
-      }
-      std::ostringstream m;
-      m << "unstable at step " << step_count << " (t = " << time << " s): kinetic energy " << energy.kinetic
-        << " J plus dissipated " << energy.dissipated_contacts + energy.dissipated_local
-        << " J exceeds twice the energy put in (" << budget << " J)";
-      if (n > 0) m << ", particle " << fastest << " moving fastest (|v| = " << p.v[fastest].norm() << " m/s)";
-      m << "; likely cause: timestep " << dt << " s above the stability limit (critical estimate "
-        << dt_critical << " s)";
-      throw InstabilityError(m.str());
-    }
-  }
-}
-
-template <int D>
 std::size_t World<D>::contact_count() const {
   std::size_t n = 0;
   for (std::size_t s = 0; s < sets.size(); ++s)
@@ -495,113 +436,5 @@ std::size_t World<D>::candidate_count() const {
 
 template class World<2>;
 template class World<3>;
-
-}  // namespace mc
-
-namespace mc {
-
-template <int D>
-void World<D>::save(Archive& a) const {
-  const auto& p = particles;
-  a.put("radius", p.radius);
-  a.put("stiffness", p.stiffness);
-  a.put("mass", p.mass);
-  a.put("inertia", p.inertia);
-  a.bytes["fix"] = p.fix;
-  a.reals["phase"] = std::vector<double>(p.phase.begin(), p.phase.end());
-  a.put("x", p.x);
-  a.put("v", p.v);
-  a.put("f", p.f);
-  a.put("w", p.w);
-  a.put("m", p.m);
-  std::vector<double> q;
-  for (const auto& o : p.q) {
-    if constexpr (D == 2) q.push_back(o);
-    else q.insert(q.end(), {o.w(), o.x(), o.y(), o.z()});
-  }
-  a.reals["q"] = q;
-  a.put("x_at_rebuild", x_at_rebuild_);
-  a.put("wall_at_rebuild", wall_at_rebuild_);
-  std::vector<double> wl;
-  for (const auto& w : walls) {
-    for (const Vec<D>* v : {&w.origin, &w.velocity, &w.displacement, &w.force}) wl.insert(wl.end(), v->data(), v->data() + D);
-    wl.insert(wl.end(), w.moment.data(), w.moment.data() + Dim<D>::rot);
-    wl.push_back(w.contact_kn);
-  }
-  a.reals["walls"] = wl;
-  for (std::size_t s = 0; s < sets.size(); ++s) a.bytes["set" + std::to_string(s)] = sets[s]->save();
-  // The last step's contact forces: the servo gain and the timestep refresh read them before the next force pass.
-  a.put("slot_f", slots_.f);
-  const auto* cb = reinterpret_cast<const std::uint8_t*>(cracks.data());
-  a.bytes["cracks"] = std::vector<std::uint8_t>(cb, cb + cracks.size() * sizeof(Crack<D>));
-  a.reals["scalars"] = {dt, dt_critical, time, static_cast<double>(step_count), static_cast<double>(rebuilds), moved_,
-                        ke_half_, skin};
-  const EnergyTrace& e = energy;
-  a.reals["energy"] = {e.body_work, e.boundary_work, e.dissipated_contacts, e.dissipated_local, e.kinetic, e.strain, e.initial};
-}
-
-template <int D>
-void World<D>::restore(const Archive& a) {
-  auto& p = particles;
-  a.get("radius", p.radius);
-  a.get("stiffness", p.stiffness);
-  a.get("mass", p.mass);
-  a.get("inertia", p.inertia);
-  p.fix = a.bytes.at("fix");
-  const auto& ph = a.reals.at("phase");
-  p.phase.assign(ph.begin(), ph.end());
-  a.get("x", p.x);
-  a.get("v", p.v);
-  a.get("f", p.f);
-  a.get("w", p.w);
-  a.get("m", p.m);
-  const auto& q = a.reals.at("q");
-  for (std::size_t i = 0; i < p.q.size(); ++i) {
-    if constexpr (D == 2) p.q[i] = q[i];
-    else p.q[i] = Eigen::Quaterniond(q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
-  }
-  a.get("x_at_rebuild", x_at_rebuild_);
-  a.get("wall_at_rebuild", wall_at_rebuild_);
-  const auto& wl = a.reals.at("walls");
-  const std::size_t per_wall = 4 * D + Dim<D>::rot + 1;
-  std::size_t nsets = 0;
-  while (a.bytes.count("set" + std::to_string(nsets))) ++nsets;
-  if (wl.size() != walls.size() * per_wall || nsets != sets.size())
-    throw InputError("the checkpoint holds " + std::to_string(wl.size() / per_wall) + " walls and " +
-                     std::to_string(nsets) + " contact models, the scene builds " + std::to_string(walls.size()) +
-                     " and " + std::to_string(sets.size()) + ": resume with the scene that wrote it");
-  std::size_t k = 0;
-  for (auto& w : walls) {
-    for (Vec<D>* v : {&w.origin, &w.velocity, &w.displacement, &w.force})
-      for (int d = 0; d < D; ++d) (*v)[d] = wl[k++];
-    for (int d = 0; d < Dim<D>::rot; ++d) w.moment[d] = wl[k++];
-    w.contact_kn = wl[k++];
-  }
-  for (std::size_t s = 0; s < sets.size(); ++s) sets[s]->load(a.bytes.at("set" + std::to_string(s)));
-  const auto& sc = a.reals.at("scalars");
-  dt = sc[0], dt_critical = sc[1], time = sc[2];
-  step_count = static_cast<std::int64_t>(sc[3]);
-  rebuilds = static_cast<std::int64_t>(sc[4]);
-  moved_ = sc[5], ke_half_ = sc[6], skin = sc[7];
-  const auto& e = a.reals.at("energy");
-  energy = {e[0], e[1], e[2], e[3], e[4], e[5], e[6]};
-  // Slots, offsets and gather lists follow from the restored pair lists; no contact is re-detected, so the
-  // next step sees exactly the lists it would have seen.
-  relink();
-  a.get("slot_f", slots_.f);
-  // The crack log and its counts.
-  const auto& cb = a.bytes.at("cracks");
-  cracks.resize(cb.size() / sizeof(Crack<D>));
-  std::memcpy(static_cast<void*>(cracks.data()), cb.data(), cb.size());
-  const int np = static_cast<int>(model_of.size());
-  crack_counts_.assign(2 * 3 * np * np, 0);
-  for (const auto& c : cracks)
-    ++crack_counts_[((int(c.kind) * 3 + int(c.mode)) * np + std::min(c.phase_a, c.phase_b)) * np + std::max(c.phase_a, c.phase_b)];
-}
-
-template void World<2>::save(Archive&) const;
-template void World<3>::save(Archive&) const;
-template void World<2>::restore(const Archive&);
-template void World<3>::restore(const Archive&);
 
 }  // namespace mc
