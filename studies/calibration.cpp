@@ -109,95 +109,144 @@ double modulus_shape(int dimension, double ratio) {
 
 double rel(double value, double target) { return std::abs(value / target - 1.0); }
 
+// One run of the calibration: what it used, what it gave, how long it took.
+struct Trial {
+  UniaxialResult result;
+  RunResult run;
+  std::string file;
+};
+
+// Tang §6.3 as a loop of runs: elastic runs (bonds made strong) until E and ν match, then full runs until UCS does.
+class Calibration {
+ public:
+  Calibration(const std::string& scene_file, const std::vector<std::string>& overrides, const CalibrationTarget& target,
+              const CalibrationOptions& options, std::FILE* log)
+      : scene_file_(scene_file), overrides_(overrides), target_(target), options_(options), log_(log),
+        entry_(find_entry(scene_file, overrides)), base_(read_scene(TomlDoc::load(scene_file, overrides), scene_file)) {
+    if (!base_.analysis<UniaxialAnalysis>())
+      throw InputError(scene_file + ": calibrate needs a [uniaxial] table: it matches the E, ν and UCS it reports");
+    knobs_.ratio = entry_.ratio;
+    elastic_ = elastic_targets();
+    // The elastic runs stop at half the target's elastic strain at the peak: far enough for the secant between
+    // 25 % and 50 % of their last stress, and a fraction of a full test's steps.
+    elastic_stop_ = strength_target() && elastic_targets() ? 0.5 * target.ucs / target.modulus : 5e-4;
+  }
+
+  CalibrationResult run() {
+    std::fprintf(log_, "%3s %-8s %10s %7s %9s | %9s %7s %9s | %s\n", "it", "run", "E_c [GPa]", "kn/ks", "strength",
+                 "E [GPa]", "nu", "UCS [MPa]", "wall [s]");
+    Knobs ran = knobs_;  // what the last run used: the calibrated scene gets these, never untested values
+    for (int it = 1; it <= options_.max_iterations; ++it) {
+      ran = knobs_;
+      const Trial t = trial(it);
+      const UniaxialResult& u = t.result;
+      res_.iterations = it;
+      const bool e_ok = !elastic_targets() || (rel(u.modulus, target_.modulus) <= options_.tolerance &&
+                                               rel(u.poisson, target_.poisson) <= options_.tolerance);
+      if (!elastic_) res_.last = u;
+      if (elastic_ && e_ok && strength_target()) {  // the stiffnesses are found: now the strengths, in full tests
+        elastic_ = false;
+        continue;
+      }
+      const bool s_ok = !strength_target() || (!elastic_ && rel(u.ucs, target_.ucs) <= options_.tolerance);
+      if (e_ok && s_ok) {
+        if (elastic_) res_.last = u;
+        res_.converged = true;
+        break;
+      }
+      if (!e_ok) adjust_stiffness(u);
+      if (!elastic_ && strength_target() && rel(u.ucs, target_.ucs) > options_.tolerance)
+        knobs_.strength *= target_.ucs / u.ucs;  // UCS in proportion to the bond strengths at fixed strength ratio
+    }
+    res_.overrides = knob_overrides(entry_, ran, ran.strength);
+    write_scene();
+    return res_;
+  }
+
+ private:
+  bool elastic_targets() const { return !std::isnan(target_.modulus); }
+  bool strength_target() const { return !std::isnan(target_.ucs); }
+
+  // Run `it` with the current knobs (an elastic run: bonds 1000× stronger, stopped early), logged as a line.
+  Trial trial(int it) {
+    constexpr double strong = 1e3;  // bond strengths times this cannot break in the elastic runs
+    std::vector<std::string> o = overrides_;
+    const std::vector<std::string> knobs = knob_overrides(entry_, knobs_, elastic_ ? knobs_.strength * strong : knobs_.strength);
+    o.insert(o.end(), knobs.begin(), knobs.end());
+    Scene scene = read_scene(TomlDoc::load(scene_file_, o), scene_file_);
+    if (elastic_)
+      scene.stops = {StopSpec{scene.analysis<UniaxialAnalysis>()->axial_strain, StopSpec::Kind::MagnitudeAbove, elastic_stop_, 0.0}};
+    const std::filesystem::path out(options_.output);
+    RunOptions ro;
+    ro.output = (out.parent_path() / (out.stem().string() + "_it" + std::to_string(it) + ".h5")).string();
+    Trial t{{}, run_scene(scene, ro), ro.output};
+    t.result = uniaxial_result(ro.output);
+    const UniaxialResult& u = t.result;
+    char ucs[32] = "-";  // an elastic run has no peak
+    if (!elastic_) std::snprintf(ucs, sizeof ucs, "%.4g", u.ucs * 1e-6);
+    std::fprintf(log_, "%3d %-8s %10.4g %7.4g %9.4g | %9.4g %7.4g %9s | %.1f\n", it, elastic_ ? "elastic" : "full",
+                 entry_.modulus * knobs_.modulus * 1e-9, knobs_.ratio, knobs_.strength, u.modulus * 1e-9, u.poisson, ucs,
+                 t.run.wall_seconds);
+    std::fflush(log_);
+    if (!std::isfinite(u.modulus) || !std::isfinite(u.poisson) || (!elastic_ && !std::isfinite(u.ucs)))
+      throw InputError(t.file + ": the uniaxial test gave no E, ν or UCS (" + t.run.status +
+                       "); check that the scene loads the specimen to its peak");
+    return t;
+  }
+
+  // ν through k_n/k_s on its logarithmic law (6.2)/(6.3), with the slope the last two runs measured when they tell
+  // one; E through E_c (linear, 6.1), corrected for what the new ratio does to E/E_c.
+  void adjust_stiffness(const UniaxialResult& u) {
+    const double lnr = std::log(knobs_.ratio);
+    if (std::isfinite(prev_lnr_) && std::abs(lnr - prev_lnr_) > 1e-3) {
+      const double measured = (u.poisson - prev_nu_) / (lnr - prev_lnr_);
+      if (measured > 0.02 && measured < 0.5) slope_ = measured;
+    }
+    prev_lnr_ = lnr, prev_nu_ = u.poisson;
+    const double ratio = std::clamp(std::exp(lnr + (target_.poisson - u.poisson) / slope_), 0.25, 20.0);
+    if (ratio == knobs_.ratio)
+      throw InputError("calibrate: ν = " + std::to_string(target_.poisson) + " is out of reach for this packing: "
+                       "k_n/k_s at its bound " + std::to_string(ratio) + " gives ν = " + std::to_string(u.poisson));
+    const int d = base_.dimension;
+    knobs_.modulus *= target_.modulus / u.modulus * modulus_shape(d, knobs_.ratio) / modulus_shape(d, ratio);
+    knobs_.ratio = ratio;
+  }
+
+  // The input scene with the calibrated values (listed in its header comment), written whole or not at all.
+  void write_scene() const {
+    std::vector<std::string> all = overrides_;
+    all.insert(all.end(), res_.overrides.begin(), res_.overrides.end());
+    const std::string text = TomlDoc::load(scene_file_, all).text();
+    const std::string tmp = options_.output + ".tmp";
+    {
+      std::ofstream f(tmp);
+      f << text;
+      if (!f) throw IoError(tmp + ": cannot write the calibrated scene");
+    }
+    std::filesystem::rename(tmp, options_.output);
+  }
+
+  const std::string scene_file_;
+  const std::vector<std::string> overrides_;
+  const CalibrationTarget target_;
+  const CalibrationOptions options_;
+  std::FILE* log_;
+  const Entry entry_;
+  const Scene base_;
+  Knobs knobs_;
+  bool elastic_ = false;
+  double elastic_stop_ = 5e-4;
+  double slope_ = 0.11;  // dν/d ln(k_n/k_s), Tang (6.2) and (6.3); replaced by what the runs measure
+  double prev_lnr_ = kNaN, prev_nu_ = kNaN;
+  CalibrationResult res_;
+};
+
 }  // namespace
 
 CalibrationResult calibrate(const std::string& scene_file, const std::vector<std::string>& overrides,
                             const CalibrationTarget& target, const CalibrationOptions& options, std::FILE* log) {
   if (options.output.empty()) throw InputError("calibrate: give the calibrated scene's file with -o CALIBRATED.toml");
-  const Entry entry = find_entry(scene_file, overrides);
-  const Scene base = read_scene(TomlDoc::load(scene_file, overrides), scene_file);
-  if (!base.analysis<UniaxialAnalysis>())
-    throw InputError(scene_file + ": calibrate needs a [uniaxial] table: it matches the E, ν and UCS it reports");
-  const bool elastic_targets = !std::isnan(target.modulus);
-  const bool strength_target = !std::isnan(target.ucs);
-  Knobs k;
-  k.ratio = entry.ratio;
-  // The elastic runs stop at half the target's elastic strain at the peak: far enough for the secant between
-  // 25 % and 50 % of their last stress, and a fraction of a full test's steps.
-  const double elastic_stop = strength_target && elastic_targets ? 0.5 * target.ucs / target.modulus : 5e-4;
-  const double strong = 1e3;  // bond strengths times this cannot break in the elastic runs
-  double slope = 0.11;        // dν/d ln(k_n/k_s), Tang (6.2) and (6.3); replaced by what the runs measure
-  double prev_lnr = kNaN, prev_nu = kNaN;
-  bool elastic = elastic_targets;
-  const std::filesystem::path out(options.output);
-  CalibrationResult res;
-  std::fprintf(log, "%3s %-8s %10s %7s %9s | %9s %7s %9s | %s\n", "it", "run", "E_c [GPa]", "kn/ks", "strength", "E [GPa]",
-               "nu", "UCS [MPa]", "wall [s]");
-  Knobs ran = k;  // what the last run used: the calibrated scene gets these, never untested values
-  for (int it = 1; it <= options.max_iterations; ++it) {
-    ran = k;
-    std::vector<std::string> o = overrides;
-    const std::vector<std::string> knobs = knob_overrides(entry, k, elastic ? k.strength * strong : k.strength);
-    o.insert(o.end(), knobs.begin(), knobs.end());
-    Scene scene = read_scene(TomlDoc::load(scene_file, o), scene_file);
-    if (elastic) scene.stops = {StopSpec{scene.analysis<UniaxialAnalysis>()->axial_strain, StopSpec::Kind::MagnitudeAbove, elastic_stop, 0.0}};
-    RunOptions ro;
-    ro.output = (out.parent_path() / (out.stem().string() + "_it" + std::to_string(it) + ".h5")).string();
-    const RunResult rr = run_scene(scene, ro);
-    const UniaxialResult u = uniaxial_result(ro.output);
-    res.iterations = it;
-    char ucs[32] = "-";  // an elastic run has no peak
-    if (!elastic) std::snprintf(ucs, sizeof ucs, "%.4g", u.ucs * 1e-6);
-    std::fprintf(log, "%3d %-8s %10.4g %7.4g %9.4g | %9.4g %7.4g %9s | %.1f\n", it, elastic ? "elastic" : "full",
-                 entry.modulus * k.modulus * 1e-9, k.ratio, k.strength, u.modulus * 1e-9, u.poisson, ucs, rr.wall_seconds);
-    std::fflush(log);
-    if (!std::isfinite(u.modulus) || !std::isfinite(u.poisson) || (!elastic && !std::isfinite(u.ucs)))
-      throw InputError(ro.output + ": the uniaxial test gave no E, ν or UCS (" + rr.status +
-                       "); check that the scene loads the specimen to its peak");
-    const bool e_ok = !elastic_targets || (rel(u.modulus, target.modulus) <= options.tolerance &&
-                                           rel(u.poisson, target.poisson) <= options.tolerance);
-    if (!elastic) res.last = u;
-    if (elastic && e_ok && strength_target) {  // the stiffnesses are found: now the strengths, in full tests
-      elastic = false;
-      continue;
-    }
-    const bool s_ok = !strength_target || (!elastic && rel(u.ucs, target.ucs) <= options.tolerance);
-    if (e_ok && s_ok) {
-      if (elastic) res.last = u;
-      res.converged = true;
-      break;
-    }
-    if (!e_ok) {
-      // ν through k_n/k_s on its logarithmic law (6.2)/(6.3), with the slope the last two runs measured when
-      // they tell one; E through E_c (linear, 6.1), corrected for what the new ratio does to E/E_c.
-      const double lnr = std::log(k.ratio);
-      if (std::isfinite(prev_lnr) && std::abs(lnr - prev_lnr) > 1e-3) {
-        const double measured = (u.poisson - prev_nu) / (lnr - prev_lnr);
-        if (measured > 0.02 && measured < 0.5) slope = measured;
-      }
-      prev_lnr = lnr, prev_nu = u.poisson;
-      const double ratio = std::clamp(std::exp(lnr + (target.poisson - u.poisson) / slope), 0.25, 20.0);
-      if (ratio == k.ratio)
-        throw InputError("calibrate: ν = " + std::to_string(target.poisson) + " is out of reach for this packing: "
-                         "k_n/k_s at its bound " + std::to_string(ratio) + " gives ν = " + std::to_string(u.poisson));
-      k.modulus *= target.modulus / u.modulus * modulus_shape(base.dimension, k.ratio) / modulus_shape(base.dimension, ratio);
-      k.ratio = ratio;
-    }
-    if (!elastic && strength_target && rel(u.ucs, target.ucs) > options.tolerance)
-      k.strength *= target.ucs / u.ucs;  // UCS in proportion to the bond strengths at fixed strength ratio
-  }
-  res.overrides = knob_overrides(entry, ran, ran.strength);
-  std::vector<std::string> all = overrides;
-  all.insert(all.end(), res.overrides.begin(), res.overrides.end());
-  const std::string text = TomlDoc::load(scene_file, all).text();
-  const std::string tmp = options.output + ".tmp";
-  {
-    std::ofstream f(tmp);
-    f << text;
-    if (!f) throw IoError(tmp + ": cannot write the calibrated scene");
-  }
-  std::filesystem::rename(tmp, options.output);
-  return res;
+  return Calibration(scene_file, overrides, target, options, log).run();
 }
 
 }  // namespace mc
