@@ -2,51 +2,19 @@
 // checks type, unit and range, so a bad scene fails with one line naming the file, the key (full dotted path,
 // e.g. `walls[2].velocity`), the value and what is allowed. Nothing is clamped, and unknown keys are errors:
 // a misspelt optional key would otherwise be silently replaced by its default.
-// All errors are mc::InputError.
+// All errors are mc::InputError. Units and ranges are in scene/units.hpp, the --set overrides in
+// scene/overrides.hpp.
 #pragma once
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "scene/units.hpp"
+
 namespace mc {
-
-// The physical kind of a number. A plain TOML number is taken as SI; a string such as "30 GPa" or "5 mm/s" is
-// converted to SI, and its unit must belong to the key's kind.
-enum class Unit {
-  None,  // dimensionless: plain numbers, or a percentage "50 %"
-  Length, Time, Mass, Force,
-  Moment,  // N m
-  Pressure, Density, Velocity, Acceleration,
-  Stiffness,  // N/m
-  Energy,
-  Angle,      // rad
-  Rate,       // 1/s
-  Frequency,  // Hz
-  EnergyPerArea,  // J/m2 = N/m: fracture energies
-};
-
-// The allowed interval of a number, in SI. Bounds are inclusive unless marked open.
-struct Range {
-  double lo = -std::numeric_limits<double>::infinity();
-  double hi = std::numeric_limits<double>::infinity();
-  bool lo_open = false;
-  bool hi_open = false;
-
-  static Range any() { return {}; }
-  static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }  // 0 < v
-  static Range non_negative() { return at_least(0.0); }                                           // 0 <= v
-  static Range at_least(double lo) { return {lo, std::numeric_limits<double>::infinity(), false, false}; }
-  static Range closed(double lo, double hi) { return {lo, hi, false, false}; }  // lo <= v <= hi
-  static Range fraction() { return closed(0.0, 1.0); }                          // 0 <= v <= 1
-  static Range open_fraction() { return {0.0, 1.0, false, true}; }             // 0 <= v < 1
-
-  bool contains(double v) const;
-  std::string describe(const std::string& unit = "") const;  // e.g. "0 <= value < 1", "value > 0 Pa"
-};
 
 namespace detail {
 struct TomlState;

@@ -1,0 +1,108 @@
+// The parsed scene document as the reader and the --set overrides share it: toml11 values in file order, and
+// the bookkeeping of which tables were visited and which of their keys were asked for. Internal to
+// scene/toml_reader.cpp and scene/overrides.cpp; the rest of the code sees only Table and TomlDoc.
+#pragma once
+#include <algorithm>
+#include <cstddef>
+#include <deque>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <toml.hpp>
+
+namespace mc::detail {
+
+// toml11 3.7 stores tables in std::unordered_map unless told otherwise and has no ordered map of its own
+// (its docs suggest tsl::ordered_map, which is not installed). This insertion-ordered map keeps the file's
+// key order for keys(), unknown-key reports and the re-serialised text. Lookup is linear: scene tables are small.
+template <class Key, class T, class... Unused>
+class OrderedMap {
+ public:
+  using key_type = Key;
+  using mapped_type = T;
+  using value_type = std::pair<Key, T>;  // not pair<const Key, T>: std::vector needs assignable elements
+  using iterator = typename std::vector<value_type>::iterator;
+  using const_iterator = typename std::vector<value_type>::const_iterator;
+  using size_type = std::size_t;
+
+  iterator begin() { return items_.begin(); }
+  iterator end() { return items_.end(); }
+  const_iterator begin() const { return items_.begin(); }
+  const_iterator end() const { return items_.end(); }
+  size_type size() const { return items_.size(); }
+
+  iterator find(const Key& k) { return std::find_if(begin(), end(), [&](const auto& kv) { return kv.first == k; }); }
+  const_iterator find(const Key& k) const {
+    return std::find_if(begin(), end(), [&](const auto& kv) { return kv.first == k; });
+  }
+  size_type count(const Key& k) const { return find(k) == end() ? 0 : 1; }
+  T& at(const Key& k) { return checked(find(k))->second; }
+  const T& at(const Key& k) const { return checked(find(k))->second; }
+  T& operator[](const Key& k) { return insert(value_type(k, T{})).first->second; }
+
+  std::pair<iterator, bool> insert(const value_type& kv) {
+    const auto it = find(kv.first);
+    if (it != end()) return {it, false};
+    items_.push_back(kv);
+    return {std::prev(end()), true};
+  }
+
+  // Order-insensitive, like the maps toml11 expects: the serialiser writes sub-tables after plain keys.
+  friend bool operator==(const OrderedMap& a, const OrderedMap& b) {
+    return a.size() == b.size() && std::all_of(a.begin(), a.end(), [&](const auto& kv) {
+             const auto it = b.find(kv.first);
+             return it != b.end() && it->second == kv.second;
+           });
+  }
+
+ private:
+  template <class It>
+  It checked(It it) const {
+    if (it == items_.end()) throw std::out_of_range("toml table: no such key");
+    return it;
+  }
+  std::vector<value_type> items_;
+};
+
+using Value = toml::basic_value<toml::preserve_comments, OrderedMap, std::vector>;
+
+// A table the code has looked at, and the keys it asked for there.
+struct Visit {
+  std::string path;
+  const Value* table;
+  std::vector<std::string> known;  // keys the code asked for, in asking order: the "allowed here" list
+};
+
+// The document and its bookkeeping, shared by a TomlDoc and every Table view of it.
+struct TomlState {
+  std::string file;
+  std::string text;
+  Value root;
+  std::vector<std::string> set_paths;  // full key paths given by --set, to say so in messages
+  std::deque<Visit> visits;            // a deque: Table::path() hands out references into it
+
+  std::size_t visit(const std::string& path, const Value& table) {
+    const auto it = std::find_if(visits.begin(), visits.end(), [&](const Visit& v) { return v.path == path; });
+    if (it != visits.end()) return static_cast<std::size_t>(it - visits.begin());
+    visits.push_back({path, &table, {}});
+    return visits.size() - 1;
+  }
+};
+
+// "walls[1]" + "velocity" -> "walls[1].velocity"; a key of the root is its own path.
+inline std::string join_key(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+// "walls" + 1 -> "walls[1]": the path of an array entry.
+inline std::string index_key(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
+
+// TOML text -> Value; throws toml::exception, whose message spans several lines.
+Value parse_toml(const std::string& text, const std::string& name);
+// The same, but a syntax error is an InputError of one line: "name:line: TOML syntax error: ...".
+Value parse_scene_text(const std::string& text, const std::string& name);
+
+}  // namespace mc::detail
