@@ -1,4 +1,4 @@
-// Scene file → Scene. Every key is read through the validated Table accessors (engine/toml_reader.hpp), so
+// Scene file → Scene. Every key is read through the validated Table accessors (scene/toml_reader.hpp), so
 // each error names the file, the key, the value and what is allowed; unknown keys are errors.
 #include <algorithm>
 #include <cmath>
