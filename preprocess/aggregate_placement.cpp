@@ -1,11 +1,14 @@
 #include "preprocess/aggregate_placement.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <limits>
 #include <sstream>
+#include <utility>
 
 #include "engine/errors.hpp"
+#include "preprocess/convex_body.hpp"
+#include "preprocess/status_grid.hpp"
 
 namespace mc {
 
@@ -13,225 +16,6 @@ namespace {
 
 // Relocations by translation after an overlap before a fresh position is drawn.
 constexpr int kShifts = 3;
-
-// A convex shape as the intersection of half-spaces n·x ≤ off (unit outward n), with its vertices and centroid,
-// and in 3D its triangles and its edges (a point, the direction and the normals of the two faces that meet there):
-// what the exact tests of the placement need, built once per orientation and translated per position.
-struct Edge {
-  Vec<3> p, dir, n1, n2, n21;  // n21 = n2 × n1
-};
-
-template <int D>
-struct Body {
-  std::vector<Vec<D>> v, n;
-  std::vector<double> off;
-  std::vector<std::array<int, 3>> tri;
-  std::vector<Edge> e;
-  Vec<D> c, lo, hi;
-};
-
-template <int D>
-void bound(Body<D>& b) {
-  b.lo = b.hi = b.v[0];
-  for (const auto& x : b.v) {
-    b.lo = b.lo.cwiseMin(x);
-    b.hi = b.hi.cwiseMax(x);
-  }
-}
-
-Body<2> make_body(const Polygon& p) {
-  Body<2> b;
-  b.v = p.v;
-  const std::size_t m = p.v.size();
-  for (std::size_t i = 0; i < m; ++i) {
-    const Vec<2> e = p.v[(i + 1) % m] - p.v[i];
-    const Vec<2> n = Vec<2>(e[1], -e[0]).normalized();
-    b.n.push_back(n);
-    b.off.push_back(n.dot(p.v[i]));
-  }
-  b.c = centroid(p);
-  bound(b);
-  return b;
-}
-
-Body<3> make_body(const Polyhedron& p) {
-  Body<3> b;
-  b.v = p.v;
-  b.tri = p.f;
-  const int nv = static_cast<int>(p.v.size());
-  std::vector<int> face_of(static_cast<std::size_t>(nv) * nv, -1);  // directed edge (a, b) → its face
-  for (int f = 0; f < static_cast<int>(p.f.size()); ++f) {
-    const auto& t = p.f[f];
-    const Vec<3> n = (p.v[t[1]] - p.v[t[0]]).cross(p.v[t[2]] - p.v[t[0]]).normalized();
-    b.n.push_back(n);
-    b.off.push_back(n.dot(p.v[t[0]]));
-    for (int k = 0; k < 3; ++k) face_of[t[k] * nv + t[(k + 1) % 3]] = f;
-  }
-  for (int f = 0; f < static_cast<int>(p.f.size()); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int i = p.f[f][k], j = p.f[f][(k + 1) % 3];
-      if (i < j) {
-        const Vec<3> n1 = b.n[f], n2 = b.n[face_of[j * nv + i]];
-        b.e.push_back({p.v[i], p.v[j] - p.v[i], n1, n2, n2.cross(n1)});
-      }
-    }
-  b.c = centroid(p);
-  bound(b);
-  return b;
-}
-
-// `a` translated by c, into `out` (its storage reused).
-template <int D>
-void move_body(const Body<D>& a, const Vec<D>& c, Body<D>& out) {
-  out.v.resize(a.v.size());
-  for (std::size_t i = 0; i < a.v.size(); ++i) out.v[i] = a.v[i] + c;
-  out.n = a.n;
-  out.off.resize(a.off.size());
-  for (std::size_t i = 0; i < a.off.size(); ++i) out.off[i] = a.off[i] + a.n[i].dot(c);
-  out.e = a.e;
-  if constexpr (D == 3)
-    for (auto& e : out.e) e.p += c;
-  out.tri = a.tri;
-  out.c = a.c + c;
-  out.lo = a.lo + c;
-  out.hi = a.hi + c;
-}
-
-template <int D>
-bool inside(const Body<D>& b, const Vec<D>& x) {
-  for (std::size_t i = 0; i < b.n.size(); ++i)
-    if (b.n[i].dot(x) > b.off[i]) return false;
-  return true;
-}
-
-template <int D>
-bool boxes_meet(const Vec<D>& alo, const Vec<D>& ahi, const Vec<D>& blo, const Vec<D>& bhi) {
-  for (int k = 0; k < D; ++k)
-    if (ahi[k] <= blo[k] || bhi[k] <= alo[k]) return false;
-  return true;
-}
-
-template <int D>
-bool face_separates(const Body<D>& a, const Body<D>& b) {
-  for (std::size_t i = 0; i < a.n.size(); ++i) {
-    if (a.n[i].dot(b.c) < a.off[i]) continue;  // b's centroid behind the face: so is part of b
-    bool all_out = true;
-    for (const auto& x : b.v)
-      if (a.n[i].dot(x) < a.off[i]) { all_out = false; break; }
-    if (all_out) return true;
-  }
-  return false;
-}
-
-template <int D>
-bool strictly_inside(const Body<D>& b, const Vec<D>& x) {
-  for (std::size_t i = 0; i < b.n.size(); ++i)
-    if (!(b.n[i].dot(x) < b.off[i])) return false;
-  return true;
-}
-
-// Do edge ea of A and edge eb of B meet on the Gauss map, so that their cross product is a face normal of the
-// Minkowski difference A − B? With a, b the normals of the faces at ea and c, d those at eb negated (B turned to
-// −B): arcs a–b and c–d cross when c, d lie on opposite sides of the plane of a, b, a, b on opposite sides of that
-// of c, d, and they lie in the same hemisphere. (b × a and d × c = n2 × n1 of each edge are kept with it.)
-bool minkowski_face(const Edge& ea, const Edge& eb) {
-  const double cba = -eb.n1.dot(ea.n21), dba = -eb.n2.dot(ea.n21);
-  if (cba * dba >= 0) return false;
-  const double adc = ea.n1.dot(eb.n21), bdc = ea.n2.dot(eb.n21);
-  return adc * bdc < 0 && cba * bdc > 0;
-}
-
-// Separating axis theorem, exact: the faces of A − B are the faces of A, those of −B and, in 3D, the edge pairs
-// that form a face of it; A and B are apart when the origin is outside one of them. Touching shapes are apart.
-template <int D>
-bool separated(const Body<D>& a, const Body<D>& b) {
-  if (!boxes_meet<D>(a.lo, a.hi, b.lo, b.hi)) return true;
-  if (face_separates(a, b) || face_separates(b, a)) return true;
-  if constexpr (D == 3) {
-    for (const auto& x : b.v)  // a vertex strictly inside the other: overlap, no need to look further
-      if (strictly_inside(a, x)) return false;
-    for (const auto& x : a.v)
-      if (strictly_inside(b, x)) return false;
-    for (const auto& ea : a.e)
-      for (const auto& eb : b.e) {
-        if (!minkowski_face(ea, eb)) continue;
-        Vec<3> axis = ea.dir.cross(eb.dir);
-        const double len = axis.norm();
-        if (!(len > 1e-12 * ea.dir.norm() * eb.dir.norm())) continue;  // parallel edges make no face
-        axis /= len;
-        if (axis.dot(ea.p - a.c) < 0) axis = -axis;
-        if (axis.dot(eb.p - ea.p) >= 0) return true;
-      }
-  }
-  return false;
-}
-
-Vec<3> closest_on_triangle(const Vec<3>& p, const Vec<3>& a, const Vec<3>& b, const Vec<3>& c) {
-  // Voronoi regions of the vertices, then the edges, then the inside.
-  const Vec<3> ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec<3> bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const Vec<3> cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-  const double s = 1 / (va + vb + vc);
-  return a + vb * s * ab + vc * s * ac;
-}
-
-// Distance from x to the body (0 inside).
-double distance(const Body<2>& b, const Vec<2>& x) {
-  if (inside(b, x)) return 0;
-  double best = kInf;
-  const std::size_t m = b.v.size();
-  for (std::size_t i = 0; i < m; ++i) {
-    const Vec<2> a = b.v[i], e = b.v[(i + 1) % m] - a;
-    const double t = std::clamp(e.dot(x - a) / e.squaredNorm(), 0.0, 1.0);
-    best = std::min(best, (a + t * e - x).norm());
-  }
-  return best;
-}
-
-double distance(const Body<3>& b, const Vec<3>& x) {
-  if (inside(b, x)) return 0;
-  double best = kInf;
-  for (const auto& t : b.tri) best = std::min(best, (closest_on_triangle(x, b.v[t[0]], b.v[t[1]], b.v[t[2]]) - x).norm());
-  return best;
-}
-
-Polygon box_shape(const AlignedBox<2>& box) {
-  return Polygon{{box.lo, Vec<2>(box.hi[0], box.lo[1]), box.hi, Vec<2>(box.lo[0], box.hi[1])}};
-}
-
-Polyhedron box_shape(const AlignedBox<3>& box) {
-  Polyhedron p;
-  for (int i = 0; i < 8; ++i)
-    p.v.emplace_back(i & 1 ? box.hi[0] : box.lo[0], i & 2 ? box.hi[1] : box.lo[1], i & 4 ? box.hi[2] : box.lo[2]);
-  const Vec<3> mid = 0.5 * (box.lo + box.hi);
-  // Each side (axis k, low or high) as two triangles, turned to face outwards.
-  for (int k = 0; k < 3; ++k)
-    for (int side = 0; side < 2; ++side) {
-      std::array<int, 4> q{};
-      int m = 0;
-      for (int i = 0; i < 8; ++i)
-        if (((i >> k) & 1) == side) q[m++] = i;
-      // q holds the side's corners in bit order: 0, 1, 3, 2 goes round it.
-      for (const auto& t : {std::array<int, 3>{q[0], q[1], q[3]}, std::array<int, 3>{q[0], q[3], q[2]}}) {
-        const Vec<3> n = (p.v[t[1]] - p.v[t[0]]).cross(p.v[t[2]] - p.v[t[0]]);
-        if (n.dot(p.v[t[0]] - mid) > 0) p.f.push_back(t);
-        else p.f.push_back({t[0], t[2], t[1]});
-      }
-    }
-  return p;
-}
 
 template <int D>
 double measure(const Vec<D>& lo, const Vec<D>& hi) {
@@ -284,42 +68,344 @@ void check_spec(const PlacementSpec<D>& s) {
     if (!(b.radius > 0)) throw InputError("aggregate placement: a keep-out ball must have a positive radius");
 }
 
+// What a test found: nothing (placed), a wall (shift back in), or an obstacle to move away from.
+template <int D>
+struct Verdict {
+  enum Kind { ok, wall, obstacle, hopeless } kind = ok;
+  Vec<D> move = Vec<D>::Zero();  // wall: the shift back in; obstacle: its centre
+};
+
+// An aggregate in one orientation. Checks 1 and 2 need only its vertices (about the centroid) and their bounding
+// box lo–hi; the exact body, needed for the rest, is built for the first position that gets that far and then
+// only translated.
+template <int D>
+struct Trial {
+  explicit Trial(ConvexShape<D> turned) : shape(std::move(turned)), lo(shape.v[0]), hi(shape.v[0]) {
+    for (const auto& x : shape.v) {
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+  }
+
+  // The exact body at position c, written into `out`.
+  const Body<D>& body_at(const Vec<D>& c, Body<D>& out) {
+    if (!built) {
+      body = make_body(shape);
+      built = true;
+    }
+    move_body(body, c, out);
+    return out;
+  }
+
+  ConvexShape<D> shape;
+  Vec<D> lo, hi;
+  Body<D> body;
+  bool built = false;
+};
+
+// The take and place of Tang §4.2: the layout being built (status grid, bins, placed aggregates), the free cells
+// positions are drawn from, the exact bodies of the keep-out zones and of the placed aggregates, and the one
+// random stream the whole placement draws from, in a fixed order.
+template <int D>
+class Placer {
+ public:
+  explicit Placer(const PlacementSpec<D>& spec) : spec_(spec), rng_(spec.seed) {
+    out_.lo = spec.lo;
+    out_.hi = spec.hi;
+    domain_ = measure<D>(spec.lo, spec.hi);
+    for (const auto& r : spec.grading.ranges) d_min_ = std::min(d_min_, r.lo);
+    out_.ranges.resize(spec.grading.ranges.size());
+    for (std::size_t k = 0; k < spec.grading.ranges.size(); ++k) {
+      const auto& r = spec.grading.ranges[k];
+      out_.ranges[k].lo = r.lo;
+      out_.ranges[k].hi = r.hi;
+      out_.ranges[k].target_share = r.share;
+      out_.ranges[k].target_fraction = r.share * spec.fraction;
+    }
+    out_.target_fraction = spec.fraction;
+  }
+
+  // Stage 1, the aggregate database: a random shape for each size fill_grading draws, centred on its centroid.
+  std::vector<SizedAggregate> make_database() {
+    return fill_grading(
+        spec_.grading, spec_.fraction * domain_, D,
+        [&](double d) {
+          ConvexShape<D> s = random_shape<D>(d, spec_.shape, rng_);
+          translate(s, Vec<D>(-centroid(s)));
+          made_.push_back(std::move(s));
+          return content(made_.back());
+        },
+        rng_, spec_.size_draw, spec_.fuller_n);
+  }
+
+  // The background grid, Tang (4.6): cells of D_min / cells_per_dmin, rounded per axis to fit the domain.
+  void build_grid() {
+    StatusGrid<D>& grid = out_.grid;
+    grid.lo = spec_.lo;
+    const double h0 = d_min_ / spec_.cells_per_dmin;
+    double cells = 1;
+    for (int k = 0; k < D; ++k) {
+      const double len = spec_.hi[k] - spec_.lo[k];
+      cells *= std::max(1.0, std::ceil(len / h0));
+    }
+    if (cells > 2147483647.0) {
+      std::ostringstream m;
+      m << "aggregate placement: the background grid would have " << cells << " cells (cell D_min/"
+        << spec_.cells_per_dmin << " = " << h0 << "); enlarge D_min or shrink the domain";
+      throw InputError(m.str());
+    }
+    for (int k = 0; k < D; ++k) {
+      const double len = spec_.hi[k] - spec_.lo[k];
+      grid.n[k] = static_cast<int>(std::max(1.0, std::ceil(len / h0)));
+      grid.h[k] = len / grid.n[k];
+    }
+    grid.status.assign(grid.cells(), 0);
+  }
+
+  // Keep-out zones: exact bodies, and the cells whose centres they hold marked, so no position is drawn there.
+  void mark_keep_out() {
+    StatusGrid<D>& grid = out_.grid;
+    for (const auto& b : spec_.keep_out_boxes) keep_bodies_.push_back(make_body(box_shape(b)));
+    const std::int64_t n_cells = grid.cells();
+    for (std::int64_t c = 0; c < n_cells; ++c) {
+      const Vec<D> x = grid.centre(c);
+      bool kept = false;
+      for (const auto& b : keep_bodies_) kept = kept || inside(b, x);
+      for (const auto& b : spec_.keep_out_balls) kept = kept || (x - b.centre).norm() <= b.radius;
+      if (kept) grid.status[c] = StatusGrid<D>::kKeepOut;
+    }
+  }
+
+  // The free cells, for drawing positions: swap-removed as they are taken.
+  void list_free_cells() {
+    const StatusGrid<D>& grid = out_.grid;
+    const std::int64_t n_cells = grid.cells();
+    where_.assign(n_cells, -1);
+    free_cells_.reserve(n_cells);
+    for (std::int64_t c = 0; c < n_cells; ++c)
+      if (grid.status[c] == 0) {
+        where_[c] = static_cast<std::int32_t>(free_cells_.size());
+        free_cells_.push_back(static_cast<std::int32_t>(c));
+      }
+  }
+
+  // Bins of bounding boxes (about 2 D_min, at most 2²⁰ bins), for the exact tests and aggregate_at.
+  void build_bins() {
+    double b = 2 * d_min_, count;
+    do {
+      count = 1;
+      for (int k = 0; k < D; ++k) count *= std::max(1.0, std::floor((spec_.hi[k] - spec_.lo[k]) / b));
+      if (count > (1 << 20)) b *= 1.25;
+    } while (count > (1 << 20));
+    std::int64_t total = 1;
+    for (int k = 0; k < D; ++k) {
+      const double len = spec_.hi[k] - spec_.lo[k];
+      out_.bins_n[k] = static_cast<int>(std::max(1.0, std::floor(len / b)));
+      out_.bin_size[k] = len / out_.bins_n[k];
+      total *= out_.bins_n[k];
+    }
+    out_.bins.assign(total, {});
+  }
+
+  // Stages 2–4 for one aggregate, counted in its size range.
+  void place(const SizedAggregate& sa) {
+    RangeOutcome& ro = out_.ranges[sa.range];
+    if (try_place(sa)) {
+      ++ro.placed;
+      ro.achieved_fraction += sa.content / domain_;
+    } else {
+      ++ro.failed;
+    }
+  }
+
+  // The fractions reached, per range and in all.
+  AggregateLayout<D> outcome() {
+    double total = 0;
+    bool all = true;
+    for (const auto& r : out_.ranges) {
+      total += r.achieved_fraction;
+      all = all && r.failed == 0;
+    }
+    for (auto& r : out_.ranges) r.achieved_share = total > 0 ? r.achieved_fraction / total : 0;
+    out_.achieved_fraction = total;
+    out_.reached = all;
+    return std::move(out_);
+  }
+
+ private:
+  // Up to `attempts` fresh positions (a random point of a random free cell), each with a random orientation;
+  // placed at the first that passes.
+  bool try_place(const SizedAggregate& sa) {
+    ConvexShape<D> local = made_[sa.made];
+    if (sa.scale != 1) scale(local, sa.scale);
+    for (int a = 0; a < spec_.attempts && !free_cells_.empty(); ++a) {
+      const std::int64_t cell = free_cells_[rng_.below(free_cells_.size())];
+      Vec<D> c = out_.grid.centre(cell);
+      for (int k = 0; k < D; ++k) c[k] += rng_.uniform(-0.5, 0.5) * out_.grid.h[k];
+      Trial<D> trial(random_turn<D>(local, rng_));
+      if (try_position(trial, c, sa.size)) {
+        record(trial.shape, c, sa);
+        return true;
+      }
+    }
+    return false;
+  }
+
+  // One fresh position c, tested; after a wall it is shifted back in, after an obstacle relocated by translation
+  // away from it by a random distance up to half the aggregate's size, up to kShifts times.
+  bool try_position(Trial<D>& trial, Vec<D>& c, double size) {
+    for (int shift = 0; shift <= kShifts; ++shift) {
+      ++out_.attempts;
+      const Verdict<D> v = test(trial, c);
+      if (v.kind == Verdict<D>::ok) return true;
+      if (v.kind == Verdict<D>::hopeless) return false;
+      if (v.kind == Verdict<D>::wall) {
+        c += v.move;
+        continue;
+      }
+      Vec<D> away = c - v.move;
+      away = away.norm() > 1e-9 * size ? Vec<D>(away.normalized()) : random_direction<D>(rng_);
+      c += rng_.uniform(0, 0.5) * size * away;
+    }
+    return false;
+  }
+
+  // The five checks of the header, in order; the exact body is built only for positions that pass 1 and 2.
+  Verdict<D> test(Trial<D>& trial, const Vec<D>& c) {
+    if (const Verdict<D> v = inside_domain(trial, c); v.kind != Verdict<D>::ok) return v;
+    if (const std::int32_t s = hit_at_points(trial.shape.v, c)) return obstacle(s);
+    const Body<D>& b = trial.body_at(c, body_);
+    if (const Verdict<D> v = clear_of_keep_out(b); v.kind != Verdict<D>::ok) return v;
+    std::int32_t hit = 0;
+    if (!rasterise(out_.grid, b, covered_, hit)) {  // check 4
+      if (hit > 0) return obstacle(hit);
+      return Verdict<D>{Verdict<D>::obstacle, c + random_direction<D>(rng_)};
+    }
+    if (const int id = clash_with_neighbours(b)) return obstacle(id);
+    return {};
+  }
+
+  Verdict<D> obstacle(int id) const { return Verdict<D>{Verdict<D>::obstacle, out_.aggregates[id - 1].centroid}; }
+
+  // Check 1: inside the domain, or the shift back in by what sticks out (hopeless when wider than the domain).
+  Verdict<D> inside_domain(const Trial<D>& trial, const Vec<D>& c) const {
+    Verdict<D> v;
+    for (int k = 0; k < D; ++k) {
+      const double under = spec_.lo[k] - (trial.lo[k] + c[k]), over = trial.hi[k] + c[k] - spec_.hi[k];
+      if (under > 0 && over > 0) return Verdict<D>{Verdict<D>::hopeless, {}};
+      const double slack = 1e-12 * (spec_.hi[k] - spec_.lo[k]);
+      if (under > 0) v.move[k] = under + slack;
+      if (over > 0) v.move[k] = -over - slack;
+    }
+    if (v.move != Vec<D>::Zero()) v.kind = Verdict<D>::wall;
+    return v;
+  }
+
+  // Check 2, initial determination: the id of a placed aggregate that holds the centroid, a vertex or a midpoint
+  // between them (the status matrix's answer, confirmed exactly); 0 for none.
+  std::int32_t hit_at_points(const std::vector<Vec<D>>& tv, const Vec<D>& c) const {
+    std::int32_t s = held_by(c);
+    for (std::size_t i = 0; i < tv.size() && s == 0; ++i) {
+      s = held_by(Vec<D>(tv[i] + c));
+      if (s == 0) s = held_by(Vec<D>(0.5 * tv[i] + c));
+    }
+    return s;
+  }
+
+  std::int32_t held_by(const Vec<D>& x) const {
+    const std::int32_t s = out_.grid.at(x);
+    return s > 0 && inside(placed_bodies_[s - 1], x) ? s : 0;
+  }
+
+  // Check 3: the keep-out zones, exactly.
+  Verdict<D> clear_of_keep_out(const Body<D>& b) const {
+    for (const auto& k : keep_bodies_)
+      if (!separated(b, k)) return Verdict<D>{Verdict<D>::obstacle, Vec<D>(0.5 * (k.lo + k.hi))};
+    for (const auto& k : spec_.keep_out_balls)
+      if (distance(b, k.centre) < k.radius) return Verdict<D>{Verdict<D>::obstacle, k.centre};
+    return {};
+  }
+
+  // Check 5: exact separating-axis tests against the placed aggregates whose bins the bounding box meets, each
+  // looked at once per test (stamped with its number), so no overlap slips between grid nodes; the id of the
+  // first that overlaps, 0 for none.
+  int clash_with_neighbours(const Body<D>& b) {
+    ++test_no_;
+    int clash = 0;
+    for_bins_of(b.lo, b.hi, [&](const std::vector<int>& ids) {
+      for (int id : ids) {
+        if (clash || stamp_[id - 1] == test_no_) continue;
+        stamp_[id - 1] = test_no_;
+        if (!separated(b, placed_bodies_[id - 1])) clash = id;
+      }
+    });
+    return clash;
+  }
+
+  // f(bin) for each bin that the box lo–hi meets.
+  template <class F>
+  void for_bins_of(const Vec<D>& lo, const Vec<D>& hi, F&& f) {
+    std::array<int, D> b0, b1;
+    for (int k = 0; k < D; ++k) {
+      b0[k] = std::clamp(static_cast<int>(std::floor((lo[k] - spec_.lo[k]) / out_.bin_size[k])), 0, out_.bins_n[k] - 1);
+      b1[k] = std::clamp(static_cast<int>(std::floor((hi[k] - spec_.lo[k]) / out_.bin_size[k])), 0, out_.bins_n[k] - 1);
+    }
+    std::array<int, 3> i{0, 0, 0};
+    const int z0 = D == 3 ? b0[D - 1] : 0, z1 = D == 3 ? b1[D - 1] : 0;
+    for (i[2] = z0; i[2] <= z1; ++i[2])
+      for (i[1] = b0[1]; i[1] <= b1[1]; ++i[1])
+        for (i[0] = b0[0]; i[0] <= b1[0]; ++i[0]) {
+          std::int64_t idx = i[0] + static_cast<std::int64_t>(out_.bins_n[0]) * i[1];
+          if constexpr (D == 3) idx += static_cast<std::int64_t>(out_.bins_n[0]) * out_.bins_n[1] * i[2];
+          f(out_.bins[idx]);
+        }
+  }
+
+  // The aggregate passed at c (body_ holds it there): its id written into the cells it covers (Tang 4.5), which
+  // leave the free cells, and into the bins its bounding box meets.
+  void record(const ConvexShape<D>& turned, const Vec<D>& c, const SizedAggregate& sa) {
+    const int id = static_cast<int>(out_.aggregates.size()) + 1;
+    for (std::int32_t cc : covered_) {
+      out_.grid.status[cc] = id;
+      const std::int32_t w = where_[cc];
+      if (w >= 0) {
+        const std::int32_t last = free_cells_.back();
+        free_cells_[w] = last;
+        where_[last] = w;
+        free_cells_.pop_back();
+        where_[cc] = -1;
+      }
+    }
+    PlacedAggregate<D> pa;
+    pa.shape = turned;
+    translate(pa.shape, c);
+    pa.centroid = c;
+    pa.lo = body_.lo;
+    pa.hi = body_.hi;
+    pa.size = sa.size;
+    pa.content = sa.content;
+    pa.range = sa.range;
+    out_.aggregates.push_back(std::move(pa));
+    placed_bodies_.push_back(body_);
+    stamp_.push_back(0);
+    for_bins_of(body_.lo, body_.hi, [&](std::vector<int>& ids) { ids.push_back(id); });
+  }
+
+  const PlacementSpec<D>& spec_;
+  RandomStream rng_;
+  AggregateLayout<D> out_;
+  double domain_ = 0, d_min_ = kInf;
+  std::vector<ConvexShape<D>> made_;  // the aggregate database, as fill_grading made it
+  std::vector<Body<D>> keep_bodies_;  // the keep-out boxes
+  std::vector<std::int32_t> free_cells_, where_;  // where_[cell]: its index in free_cells_, −1 once taken
+  std::vector<Body<D>> placed_bodies_;  // per aggregate id − 1
+  std::vector<int> stamp_;  // per aggregate: the last check 5 that looked at it
+  int test_no_ = 0;
+  std::vector<std::int32_t> covered_;  // the cells of the last body rasterised
+  Body<D> body_;  // the body of the last position tested
+};
+
 }  // namespace
-
-template <int D>
-std::int64_t StatusGrid<D>::cells() const {
-  std::int64_t c = 1;
-  for (int k = 0; k < D; ++k) c *= n[k];
-  return c;
-}
-
-template <int D>
-std::int64_t StatusGrid<D>::cell_of(const Vec<D>& x) const {
-  std::int64_t idx = 0, stride = 1;
-  for (int k = 0; k < D; ++k) {
-    const double f = std::floor((x[k] - lo[k]) / h[k]);
-    if (!(f >= 0 && f < n[k])) return -1;
-    idx += static_cast<std::int64_t>(f) * stride;
-    stride *= n[k];
-  }
-  return idx;
-}
-
-template <int D>
-Vec<D> StatusGrid<D>::centre(std::int64_t cell) const {
-  Vec<D> x;
-  for (int k = 0; k < D; ++k) {
-    x[k] = lo[k] + (static_cast<double>(cell % n[k]) + 0.5) * h[k];
-    cell /= n[k];
-  }
-  return x;
-}
-
-template <int D>
-std::int32_t StatusGrid<D>::at(const Vec<D>& x) const {
-  const std::int64_t c = cell_of(x);
-  return c < 0 ? 0 : status[c];
-}
 
 template <int D>
 int AggregateLayout<D>::status_at(const Vec<D>& x) const {
@@ -347,315 +433,16 @@ int AggregateLayout<D>::aggregate_at(const Vec<D>& x) const {
 template <int D>
 AggregateLayout<D> place_aggregates(const PlacementSpec<D>& spec) {
   check_spec(spec);
-  RandomStream rng(spec.seed);
-  AggregateLayout<D> out;
-  out.lo = spec.lo;
-  out.hi = spec.hi;
-  const double domain = measure<D>(spec.lo, spec.hi);
-  double d_min = kInf;
-  for (const auto& r : spec.grading.ranges) d_min = std::min(d_min, r.lo);
-
-  // Stage 1: the aggregate database, each shape centred on its centroid.
-  std::vector<ConvexShape<D>> made;
-  const auto sized = fill_grading(
-      spec.grading, spec.fraction * domain, D,
-      [&](double d) {
-        ConvexShape<D> s = random_shape<D>(d, spec.shape, rng);
-        translate(s, Vec<D>(-centroid(s)));
-        made.push_back(std::move(s));
-        return content(made.back());
-      },
-      rng, spec.size_draw, spec.fuller_n);
-
-  // The background grid, Tang (4.6).
-  StatusGrid<D>& grid = out.grid;
-  grid.lo = spec.lo;
-  const double h0 = d_min / spec.cells_per_dmin;
-  double cells = 1;
-  for (int k = 0; k < D; ++k) {
-    const double len = spec.hi[k] - spec.lo[k];
-    cells *= std::max(1.0, std::ceil(len / h0));
-  }
-  if (cells > 2147483647.0) {
-    std::ostringstream m;
-    m << "aggregate placement: the background grid would have " << cells << " cells (cell D_min/"
-      << spec.cells_per_dmin << " = " << h0 << "); enlarge D_min or shrink the domain";
-    throw InputError(m.str());
-  }
-  for (int k = 0; k < D; ++k) {
-    const double len = spec.hi[k] - spec.lo[k];
-    grid.n[k] = static_cast<int>(std::max(1.0, std::ceil(len / h0)));
-    grid.h[k] = len / grid.n[k];
-  }
-  const std::int64_t n_cells = grid.cells();
-  grid.status.assign(n_cells, 0);
-
-  // Keep-out zones: exact bodies, and their cells marked.
-  std::vector<Body<D>> keep_bodies;
-  for (const auto& b : spec.keep_out_boxes) keep_bodies.push_back(make_body(box_shape(b)));
-  for (std::int64_t c = 0; c < n_cells; ++c) {
-    const Vec<D> x = grid.centre(c);
-    bool kept = false;
-    for (const auto& b : keep_bodies) kept = kept || inside(b, x);
-    for (const auto& b : spec.keep_out_balls) kept = kept || (x - b.centre).norm() <= b.radius;
-    if (kept) grid.status[c] = StatusGrid<D>::kKeepOut;
-  }
-  // Free cells, for drawing positions: swap-remove as they are taken.
-  std::vector<std::int32_t> free_cells, where(n_cells, -1);
-  free_cells.reserve(n_cells);
-  for (std::int64_t c = 0; c < n_cells; ++c)
-    if (grid.status[c] == 0) {
-      where[c] = static_cast<std::int32_t>(free_cells.size());
-      free_cells.push_back(static_cast<std::int32_t>(c));
-    }
-
-  // Bins of bounding boxes (about 2 D_min, at most 2²⁰ bins), for the exact tests and aggregate_at.
-  {
-    double b = 2 * d_min, count;
-    do {
-      count = 1;
-      for (int k = 0; k < D; ++k) count *= std::max(1.0, std::floor((spec.hi[k] - spec.lo[k]) / b));
-      if (count > (1 << 20)) b *= 1.25;
-    } while (count > (1 << 20));
-    std::int64_t total = 1;
-    for (int k = 0; k < D; ++k) {
-      const double len = spec.hi[k] - spec.lo[k];
-      out.bins_n[k] = static_cast<int>(std::max(1.0, std::floor(len / b)));
-      out.bin_size[k] = len / out.bins_n[k];
-      total *= out.bins_n[k];
-    }
-    out.bins.assign(total, {});
-  }
-  auto bin_range = [&](const Vec<D>& lo, const Vec<D>& hi, std::array<int, D>& b0, std::array<int, D>& b1) {
-    for (int k = 0; k < D; ++k) {
-      b0[k] = std::clamp(static_cast<int>(std::floor((lo[k] - spec.lo[k]) / out.bin_size[k])), 0, out.bins_n[k] - 1);
-      b1[k] = std::clamp(static_cast<int>(std::floor((hi[k] - spec.lo[k]) / out.bin_size[k])), 0, out.bins_n[k] - 1);
-    }
-  };
-  auto for_bins = [&](const std::array<int, D>& b0, const std::array<int, D>& b1, auto&& f) {
-    std::array<int, 3> i{0, 0, 0};
-    const int z0 = D == 3 ? b0[D - 1] : 0, z1 = D == 3 ? b1[D - 1] : 0;
-    for (i[2] = z0; i[2] <= z1; ++i[2])
-      for (i[1] = b0[1]; i[1] <= b1[1]; ++i[1])
-        for (i[0] = b0[0]; i[0] <= b1[0]; ++i[0]) {
-          std::int64_t idx = i[0] + static_cast<std::int64_t>(out.bins_n[0]) * i[1];
-          if constexpr (D == 3) idx += static_cast<std::int64_t>(out.bins_n[0]) * out.bins_n[1] * i[2];
-          f(out.bins[idx]);
-        }
-  };
-
-  std::vector<Body<D>> placed_bodies;
-  std::vector<int> stamp;  // per aggregate: the last test that looked at it
-  int test_no = 0;
-  std::vector<std::int32_t> covered;
-  Body<D> body;
-
-  // Detailed determination: the cells whose centres the body covers, row by row along x (each row clipped by
-  // every half-space); false at the first taken cell, whose status goes to `hit`.
-  auto rasterise = [&](const Body<D>& b, std::int32_t& hit) {
-    covered.clear();
-    std::array<int, D> c0, c1;
-    for (int k = 0; k < D; ++k) {
-      c0[k] = std::max(0, static_cast<int>(std::ceil((b.lo[k] - grid.lo[k]) / grid.h[k] - 0.5)));
-      c1[k] = std::min(grid.n[k] - 1, static_cast<int>(std::floor((b.hi[k] - grid.lo[k]) / grid.h[k] - 0.5)));
-      if (c1[k] < c0[k]) return true;
-    }
-    std::array<int, 3> j{0, 0, 0};
-    const int z0 = D == 3 ? c0[D - 1] : 0, z1 = D == 3 ? c1[D - 1] : 0;
-    for (j[2] = z0; j[2] <= z1; ++j[2])
-      for (j[1] = c0[1]; j[1] <= c1[1]; ++j[1]) {
-        Vec<D> y;
-        for (int k = 1; k < D; ++k) y[k] = grid.lo[k] + (j[k] + 0.5) * grid.h[k];
-        double xl = -kInf, xu = kInf;
-        for (std::size_t f = 0; f < b.n.size(); ++f) {
-          double rhs = b.off[f];
-          for (int k = 1; k < D; ++k) rhs -= b.n[f][k] * y[k];
-          const double a = b.n[f][0];
-          if (a > 1e-14) xu = std::min(xu, rhs / a);
-          else if (a < -1e-14) xl = std::max(xl, rhs / a);
-          else if (rhs < 0) xu = -kInf;
-        }
-        if (!(xl <= xu)) continue;
-        const int i0 = std::max(c0[0], static_cast<int>(std::ceil((xl - grid.lo[0]) / grid.h[0] - 0.5)));
-        const int i1 = std::min(c1[0], static_cast<int>(std::floor((xu - grid.lo[0]) / grid.h[0] - 0.5)));
-        std::int64_t row = j[1];
-        if constexpr (D == 3) row += static_cast<std::int64_t>(grid.n[1]) * j[2];
-        row *= grid.n[0];
-        for (int i = i0; i <= i1; ++i) {
-          const std::int32_t s = grid.status[row + i];
-          if (s != 0) {
-            hit = s;
-            return false;
-          }
-          covered.push_back(static_cast<std::int32_t>(row + i));
-        }
-      }
-    return true;
-  };
-
-  // What a test found: nothing (placed), a wall (shift back in), or an obstacle to move away from.
-  struct Verdict {
-    enum Kind { ok, wall, obstacle, hopeless } kind = ok;
-    Vec<D> move = Vec<D>::Zero();  // wall: the shift back in; obstacle: its centre
-  };
-  // Checks 1 and 2 need only the vertices (`tv`, about the centroid, bounding box tlo–thi) and the position c;
-  // `body()` gives the exact shape there for the rest, built only for positions that get that far.
-  auto test = [&](const std::vector<Vec<D>>& tv, const Vec<D>& tlo, const Vec<D>& thi, const Vec<D>& c,
-                  auto&& body_at) {
-    Verdict v;
-    // 1. Inside the domain.
-    for (int k = 0; k < D; ++k) {
-      const double under = spec.lo[k] - (tlo[k] + c[k]), over = thi[k] + c[k] - spec.hi[k];
-      if (under > 0 && over > 0) return Verdict{Verdict::hopeless, {}};
-      const double slack = 1e-12 * (spec.hi[k] - spec.lo[k]);
-      if (under > 0) v.move[k] = under + slack;
-      if (over > 0) v.move[k] = -over - slack;
-    }
-    if (v.move != Vec<D>::Zero()) {
-      v.kind = Verdict::wall;
-      return v;
-    }
-    // 2. Initial determination on the characteristic points.
-    auto probe = [&](const Vec<D>& x) {
-      const std::int32_t s = grid.at(x);
-      return s > 0 && inside(placed_bodies[s - 1], x) ? s : 0;
-    };
-    std::int32_t s = probe(c);
-    for (std::size_t i = 0; i < tv.size() && s == 0; ++i) {
-      s = probe(Vec<D>(tv[i] + c));
-      if (s == 0) s = probe(Vec<D>(0.5 * tv[i] + c));
-    }
-    if (s > 0) return Verdict{Verdict::obstacle, out.aggregates[s - 1].centroid};
-    const Body<D>& b = body_at();
-    // 3. Keep-out zones, exactly.
-    for (const auto& k : keep_bodies)
-      if (!separated(b, k)) return Verdict{Verdict::obstacle, Vec<D>(0.5 * (k.lo + k.hi))};
-    for (const auto& k : spec.keep_out_balls)
-      if (distance(b, k.centre) < k.radius) return Verdict{Verdict::obstacle, k.centre};
-    // 4. Detailed determination on the grid.
-    std::int32_t hit = 0;
-    if (!rasterise(b, hit)) {
-      if (hit > 0) return Verdict{Verdict::obstacle, out.aggregates[hit - 1].centroid};
-      return Verdict{Verdict::obstacle, c + random_direction<D>(rng)};
-    }
-    // 5. Exact test against the neighbours.
-    ++test_no;
-    std::array<int, D> b0, b1;
-    bin_range(b.lo, b.hi, b0, b1);
-    int clash = 0;
-    for_bins(b0, b1, [&](const std::vector<int>& ids) {
-      for (int id : ids) {
-        if (clash || stamp[id - 1] == test_no) continue;
-        stamp[id - 1] = test_no;
-        if (!separated(b, placed_bodies[id - 1])) clash = id;
-      }
-    });
-    if (clash) return Verdict{Verdict::obstacle, out.aggregates[clash - 1].centroid};
-    return v;
-  };
-
-  out.ranges.resize(spec.grading.ranges.size());
-  for (std::size_t k = 0; k < spec.grading.ranges.size(); ++k) {
-    const auto& r = spec.grading.ranges[k];
-    out.ranges[k].lo = r.lo;
-    out.ranges[k].hi = r.hi;
-    out.ranges[k].target_share = r.share;
-    out.ranges[k].target_fraction = r.share * spec.fraction;
-  }
-  out.target_fraction = spec.fraction;
-
-  // Stages 2–4: take and place, largest first.
-  for (const SizedAggregate& sa : sized) {
-    ConvexShape<D> local = made[sa.made];
-    if (sa.scale != 1) scale(local, sa.scale);
-    bool placed = false;
-    for (int a = 0; a < spec.attempts && !placed && !free_cells.empty(); ++a) {
-      const std::int64_t cell = free_cells[rng.below(free_cells.size())];
-      Vec<D> c = grid.centre(cell);
-      for (int k = 0; k < D; ++k) c[k] += rng.uniform(-0.5, 0.5) * grid.h[k];
-      const ConvexShape<D> turned = random_turn<D>(local, rng);
-      Vec<D> tlo = turned.v[0], thi = turned.v[0];
-      for (const auto& x : turned.v) {
-        tlo = tlo.cwiseMin(x);
-        thi = thi.cwiseMax(x);
-      }
-      bool built = false;
-      Body<D> shape_body;
-      for (int shift = 0; shift <= kShifts; ++shift) {
-        ++out.attempts;
-        const Verdict v = test(turned.v, tlo, thi, c, [&]() -> const Body<D>& {
-          if (!built) {
-            shape_body = make_body(turned);
-            built = true;
-          }
-          move_body(shape_body, c, body);
-          return body;
-        });
-        if (v.kind == Verdict::ok) {
-          placed = true;
-          break;
-        }
-        if (v.kind == Verdict::hopeless) break;
-        if (v.kind == Verdict::wall) {
-          c += v.move;
-          continue;
-        }
-        // Relocation by translation, away from what was hit.
-        Vec<D> away = c - v.move;
-        away = away.norm() > 1e-9 * sa.size ? Vec<D>(away.normalized()) : random_direction<D>(rng);
-        c += rng.uniform(0, 0.5) * sa.size * away;
-      }
-      if (!placed) continue;
-      const int id = static_cast<int>(out.aggregates.size()) + 1;
-      for (std::int32_t cc : covered) {
-        grid.status[cc] = id;
-        const std::int32_t w = where[cc];
-        if (w >= 0) {
-          const std::int32_t last = free_cells.back();
-          free_cells[w] = last;
-          where[last] = w;
-          free_cells.pop_back();
-          where[cc] = -1;
-        }
-      }
-      PlacedAggregate<D> pa;
-      pa.shape = turned;
-      translate(pa.shape, c);
-      pa.centroid = c;
-      pa.lo = body.lo;
-      pa.hi = body.hi;
-      pa.size = sa.size;
-      pa.content = sa.content;
-      pa.range = sa.range;
-      out.aggregates.push_back(std::move(pa));
-      placed_bodies.push_back(body);
-      stamp.push_back(0);
-      std::array<int, D> b0, b1;
-      bin_range(body.lo, body.hi, b0, b1);
-      for_bins(b0, b1, [&](std::vector<int>& ids) { ids.push_back(id); });
-    }
-    RangeOutcome& ro = out.ranges[sa.range];
-    if (placed) {
-      ++ro.placed;
-      ro.achieved_fraction += sa.content / domain;
-    } else {
-      ++ro.failed;
-    }
-  }
-  double total = 0;
-  bool all = true;
-  for (const auto& r : out.ranges) {
-    total += r.achieved_fraction;
-    all = all && r.failed == 0;
-  }
-  for (auto& r : out.ranges) r.achieved_share = total > 0 ? r.achieved_fraction / total : 0;
-  out.achieved_fraction = total;
-  out.reached = all;
-  return out;
+  Placer<D> placer(spec);
+  const std::vector<SizedAggregate> sized = placer.make_database();  // stage 1
+  placer.build_grid();
+  placer.mark_keep_out();
+  placer.list_free_cells();
+  placer.build_bins();
+  for (const SizedAggregate& sa : sized) placer.place(sa);  // stages 2–4, largest first
+  return placer.outcome();
 }
 
-template struct StatusGrid<2>;
-template struct StatusGrid<3>;
 template struct AggregateLayout<2>;
 template struct AggregateLayout<3>;
 template AggregateLayout<2> place_aggregates<2>(const PlacementSpec<2>&);
