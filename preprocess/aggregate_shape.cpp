@@ -4,21 +4,29 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <utility>
 
 #include "engine/errors.hpp"
+#include "preprocess/shape_growth.hpp"
 
 namespace mc {
 
 namespace {
 
-// The push along the outward normal is this fraction of the largest allowed one: never 0 (a vertex on the old
-// edge, a straight angle) and never all of it (a vertex on the circle and on a neighbouring edge's line at once).
-constexpr double kPushLo = 0.1, kPushHi = 0.9;
-// Tries to split an edge before giving up on it; growth steps in all (far more than any shape needs).
-constexpr int kTriesPerEdge = 32, kMaxSteps = 10000;
+double cross2(const Vec<2>& a, const Vec<2>& b) { return a[0] * b[1] - a[1] * b[0]; }
 
-void check_params(const char* what, double d, const ShapeParams& p) {
+double smallest_angle(const std::vector<Vec<2>>& v) {
+  const std::size_t n = v.size();
+  double smallest = M_PI;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec<2> a = v[(i + n - 1) % n] - v[i], b = v[(i + 1) % n] - v[i];
+    smallest = std::min(smallest, std::acos(std::clamp(a.dot(b) / (a.norm() * b.norm()), -1.0, 1.0)));
+  }
+  return smallest;
+}
+
+}  // namespace
+
+void check_shape_params(const char* what, double d, const ShapeParams& p) {
   std::ostringstream m;
   if (!(d > 0) || !std::isfinite(d)) {
     m << what << ": size d = " << d << " must be positive and finite";
@@ -37,28 +45,6 @@ void check_params(const char* what, double d, const ShapeParams& p) {
   }
 }
 
-double cross2(const Vec<2>& a, const Vec<2>& b) { return a[0] * b[1] - a[1] * b[0]; }
-
-// The largest t ≥ 0 with |a + t u| ≤ r for |a| < r.
-template <int D>
-double to_sphere(const Vec<D>& a, const Vec<D>& u, double r) {
-  const double au = a.dot(u), uu = u.squaredNorm();
-  const double disc = au * au - uu * (a.squaredNorm() - r * r);
-  return disc <= 0 ? 0.0 : (-au + std::sqrt(disc)) / uu;
-}
-
-double smallest_angle(const std::vector<Vec<2>>& v) {
-  const std::size_t n = v.size();
-  double smallest = M_PI;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec<2> a = v[(i + n - 1) % n] - v[i], b = v[(i + 1) % n] - v[i];
-    smallest = std::min(smallest, std::acos(std::clamp(a.dot(b) / (a.norm() * b.norm()), -1.0, 1.0)));
-  }
-  return smallest;
-}
-
-}  // namespace
-
 double signed_area(const Vec<2>& a, const Vec<2>& b, const Vec<2>& p) { return 0.5 * cross2(b - a, p - a); }
 
 double signed_volume(const Vec<3>& a, const Vec<3>& b, const Vec<3>& c, const Vec<3>& p) {
@@ -66,7 +52,7 @@ double signed_volume(const Vec<3>& a, const Vec<3>& b, const Vec<3>& c, const Ve
 }
 
 Polygon random_polygon(double d, const ShapeParams& params, RandomStream& rng) {
-  check_params("random polygon", d, params);
+  check_shape_params("random polygon", d, params);
   const double r = 0.5 * d, l_max = params.l_max * d, l_min = params.l_min * d;
   const double min_angle = params.min_seed_angle * M_PI / 180;
   Polygon p;
@@ -110,124 +96,6 @@ Polygon random_polygon(double d, const ShapeParams& params, RandomStream& rng) {
       grown = true;
     }
     if (!grown) break;  // cannot happen for an edge longer than 2 L_min inside the circle; a guard only
-  }
-  return p;
-}
-
-Polyhedron random_polyhedron(double d, const ShapeParams& params, RandomStream& rng) {
-  check_params("random polyhedron", d, params);
-  const double r = 0.5 * d, l_max = params.l_max * d, l_min = params.l_min * d;
-  Polyhedron p;
-  // Seed octahedron: vertex k near ±axis k/2; face (X, Y, Z) for each octant, ordered to face outwards.
-  for (int tries = 0;; ++tries) {
-    const Eigen::Matrix3d rot = random_rotation(rng);
-    p.v.clear();
-    p.f.clear();
-    for (int k = 0; k < 6; ++k) {
-      Vec<3> u = Vec<3>::Zero();
-      u[k / 2] = k % 2 == 0 ? 1.0 : -1.0;
-      if (tries < 1000) {
-        Vec<3> w;
-        do {
-          w = Vec<3>(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
-        } while (w.squaredNorm() > 1);
-        u += 0.36 * w;  // a tilt of at most atan(0.36) ≈ 20°
-      }
-      p.v.push_back(r * (rot * u.normalized()));
-    }
-    for (int sx = 0; sx < 2; ++sx)
-      for (int sy = 0; sy < 2; ++sy)
-        for (int sz = 0; sz < 2; ++sz) {
-          const int x = sx, y = 2 + sy, z = 4 + sz;
-          if ((sx + sy + sz) % 2 == 0) p.f.push_back({x, y, z});  // octant (+,+,+) and its even-sign kin
-          else p.f.push_back({x, z, y});
-        }
-    if (is_convex(p, 0.02 * r) || tries >= 1000) break;
-  }
-  // Growth, longest edge first. Kept up to date: each face's (unnormalised) outward normal and offset
-  // (n·x ≤ off inside), and the face of each directed edge (a, b) in a cap × cap table.
-  std::vector<Vec<3>> nrm;
-  std::vector<double> off;
-  auto face_plane = [&](int f) {
-    const auto& t = p.f[f];
-    const Vec<3> n = (p.v[t[1]] - p.v[t[0]]).cross(p.v[t[2]] - p.v[t[0]]);
-    if (f >= static_cast<int>(nrm.size())) {
-      nrm.resize(f + 1);
-      off.resize(f + 1);
-    }
-    nrm[f] = n;
-    off[f] = n.dot(p.v[t[0]]);
-  };
-  int cap = 0;
-  std::vector<int> face;
-  auto mark = [&](int f) {
-    for (int k = 0; k < 3; ++k) face[p.f[f][k] * cap + p.f[f][(k + 1) % 3]] = f;
-  };
-  for (int f = 0; f < static_cast<int>(p.f.size()); ++f) face_plane(f);
-  std::vector<std::pair<int, int>> stuck;
-  for (int step = 0; step < kMaxSteps; ++step) {
-    if (static_cast<int>(p.v.size()) + 1 > cap) {
-      cap = std::max(64, 2 * cap);
-      face.assign(static_cast<std::size_t>(cap) * cap, -1);
-      for (int f = 0; f < static_cast<int>(p.f.size()); ++f) mark(f);
-    }
-    int a = -1, b = -1;  // the longest edge not given up
-    double best = l_max;
-    for (const auto& t : p.f)
-      for (int k = 0; k < 3; ++k) {
-        const int i = t[k], j = t[(k + 1) % 3];
-        if (i > j) continue;
-        const double len = (p.v[j] - p.v[i]).norm();
-        if (len > best && std::find(stuck.begin(), stuck.end(), std::pair(i, j)) == stuck.end()) {
-          best = len;
-          a = i;
-          b = j;
-        }
-      }
-    if (a < 0) break;
-    const int fm = face[a * cap + b], fn = face[b * cap + a];
-    auto opposite = [&](int f) {
-      for (int k = 0; k < 3; ++k)
-        if (p.f[f][k] != a && p.f[f][k] != b) return p.f[f][k];
-      return -1;
-    };
-    const int c = opposite(fm), e = opposite(fn);
-    const Vec<3> dir = (nrm[fm].normalized() + nrm[fn].normalized()).normalized();
-    const Vec<3> va = p.v[a], ab = p.v[b] - p.v[a];
-    const double len = ab.norm();
-    bool grown = false;
-    for (int t = 0; t < kTriesPerEdge && !grown; ++t) {
-      const Vec<3> at = va + rng.uniform(l_min / len, 1 - l_min / len) * ab;
-      double push = to_sphere(at, dir, r);
-      for (int f = 0; f < static_cast<int>(p.f.size()); ++f) {  // (4.2): P stays behind every other face
-        if (f == fm || f == fn) continue;
-        const double rate = nrm[f].dot(dir);
-        if (rate > 0) push = std::min(push, (off[f] - nrm[f].dot(at)) / rate);
-      }
-      if (!(push > 0)) continue;
-      const Vec<3> q = at + rng.uniform(kPushLo, kPushHi) * push * dir;
-      if ((q - p.v[c]).norm() <= l_min || (q - p.v[e]).norm() <= l_min) continue;
-      bool inside = true;
-      for (int f = 0; f < static_cast<int>(p.f.size()) && inside; ++f) {
-        if (f == fm || f == fn) continue;
-        inside = nrm[f].dot(q) < off[f];  // (4.2): 6 V_f = n_f · (q − a_f) < 0
-      }
-      if (!inside) continue;
-      const int iq = static_cast<int>(p.v.size());
-      p.v.push_back(q);
-      face[a * cap + b] = face[b * cap + a] = -1;
-      p.f[fm] = {a, iq, c};
-      p.f[fn] = {b, iq, e};
-      p.f.push_back({iq, b, c});
-      p.f.push_back({iq, a, e});
-      const int nf = static_cast<int>(p.f.size());
-      for (int f : {fm, fn, nf - 2, nf - 1}) {
-        face_plane(f);
-        mark(f);
-      }
-      grown = true;
-    }
-    if (!grown) stuck.emplace_back(a, b);
   }
   return p;
 }
