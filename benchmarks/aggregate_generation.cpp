@@ -6,7 +6,7 @@
 //     200 mm square and the 100 mm cube, Table 4.1;
 //  c) disposition: time versus fraction on squares of 300, 400, 500 mm and cubes of 100, 150 mm (Figs. 4.19, 4.20),
 //     and so versus the number of aggregates;
-//  d) the two specimens of the issue: the 400 x 100 mm notched beam at 60 % (Tang §7.1: 3 x 10 mm notch, 10 mm of
+//  d) the specimens of Tang's tests: the 400 x 100 mm notched beam at 60 % (Tang §7.1: 3 x 10 mm notch, 10 mm of
 //     mortar around its tip; Table 4.1 in full, 4–64 mm at 2:2:3:3 — §7.1's four grades at 3:3:2:2 coarsest first;
 //     64 mm fits the 100 mm depth) and, beside it, the same beam with Table 4.1 cut at 32 mm (4–8, 8–16, 16–32 mm at
 //     2:2:3, a maximum size of a third of the depth); the 100 mm cube at 50 % with Table 4.1.
@@ -160,7 +160,7 @@ void cost_table(bool quick) {
 }
 
 void specimens_table(int seeds) {
-  std::printf("\n### d) The issue's specimens (one thread; the machine has 2 cores)\n\n");
+  std::printf("\n### d) The specimens of Tang's tests (one thread; the machine has 2 cores)\n\n");
   std::printf("| specimen | grading | fraction | aggregates | reached | mean time [s] | max time [s] | target | cpu/wall |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   auto beam = [](const Grading& g) {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "tests/test_worlds.hpp"
+#include "tests/common/test_worlds.hpp"
 
 using namespace mc;
 

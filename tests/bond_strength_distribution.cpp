@@ -8,7 +8,7 @@
 
 #include "contact_models/parallel_bond.hpp"
 #include "preprocess/regular_packing.hpp"
-#include "tests/test_worlds.hpp"
+#include "tests/common/test_worlds.hpp"
 
 using namespace mc;
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "tests/cli_harness.hpp"
+#include "tests/common/cli_harness.hpp"
 
 // The bonded bar of scenes/lattice_tension_2d.toml pulled until it breaks: every broken bond is in /cracks (one
 // row each, the counts equal to the histories', positions inside the bar, normals of unit length), and a run

@@ -5,7 +5,7 @@
 // later end continues like one long run, and with the same end adds nothing.
 // Each test works in its own fresh temp folder; the command runs as a child process (fork/execve) with its
 // stdout and stderr captured to files.
-#include "tests/cli_harness.hpp"
+#include "tests/common/cli_harness.hpp"
 
 // ================================================================ 1. bad input
 

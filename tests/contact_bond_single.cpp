@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "contact_models/contact_bond.hpp"
-#include "tests/test_worlds.hpp"
+#include "tests/common/test_worlds.hpp"
 
 using namespace mc;
 

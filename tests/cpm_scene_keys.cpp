@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "tests/common/errors.hpp"
 #include "engine/errors.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
@@ -37,14 +38,9 @@ steps = 1
 )";
 }
 
-std::string error_of(const std::string& text) {
-  try {
-    read_scene(TomlDoc::parse_text(text, "s.toml"), "s.toml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  FAIL_CHECK("expected an InputError");
-  return "";
+// The message of reading a scene that must be refused.
+std::string refusal(const std::string& text) {
+  return test::error_of([&] { read_scene(TomlDoc::parse_text(text, "s.toml"), "s.toml"); });
 }
 
 }  // namespace
@@ -56,22 +52,22 @@ TEST_CASE("cpm scene keys: read with their defaults, bad values and 2D refused w
   CHECK(s.contacts[0].model.bonds);
   CHECK(s.contacts[0].model.yields);
   // A friction angle of 90° or more has no tangent: the range is named.
-  const std::string a = error_of(scene(3, "").replace(scene(3, "").find("38.66 deg"), 9, "95 deg"));
+  const std::string a = refusal(scene(3, "").replace(scene(3, "").find("38.66 deg"), 9, "95 deg"));
   MESSAGE(a);
   CHECK(a.find("s.toml") != std::string::npos);
   CHECK(a.find("friction_angle") != std::string::npos);
   // The confinement is compressive (≤ 0).
-  const std::string b = error_of(scene(3, "confinement = \"2 MPa\""));
+  const std::string b = refusal(scene(3, "confinement = \"2 MPa\""));
   MESSAGE(b);
   CHECK(b.find("confinement") != std::string::npos);
-  const std::string c = error_of(scene(3, "compression_yield = \"parabolic\""));
+  const std::string c = refusal(scene(3, "compression_yield = \"parabolic\""));
   MESSAGE(c);
   CHECK(c.find("logarithmic") != std::string::npos);
-  CHECK(error_of(scene(3, "interaction_radius = 0.9")).find("interaction_radius") != std::string::npos);
-  CHECK(error_of(scene(3, "break_damage = 0")).find("break_damage") != std::string::npos);
-  CHECK(error_of(scene(3, "bond_normal_strength = \"1 N\"")).find("bond_normal_strength") != std::string::npos);
+  CHECK(refusal(scene(3, "interaction_radius = 0.9")).find("interaction_radius") != std::string::npos);
+  CHECK(refusal(scene(3, "break_damage = 0")).find("break_damage") != std::string::npos);
+  CHECK(refusal(scene(3, "bond_normal_strength = \"1 N\"")).find("bond_normal_strength") != std::string::npos);
   // 2D: refused, naming the model key and the 2D models to use instead.
-  const std::string d = error_of(scene(2, "").replace(scene(2, "").find("x = [0, 0, 0]"), 13, "x = [0, 0]"));
+  const std::string d = refusal(scene(2, "").replace(scene(2, "").find("x = [0, 0, 0]"), 13, "x = [0, 0]"));
   MESSAGE(d);
   CHECK(d.find("model") != std::string::npos);
   CHECK(d.find("dimension = 3") != std::string::npos);

@@ -12,7 +12,7 @@
 #include <cmath>
 
 #include "contact_models/cpm.hpp"
-#include "tests/cpm_pair.hpp"
+#include "tests/common/cpm_pair.hpp"
 
 using namespace mc;
 

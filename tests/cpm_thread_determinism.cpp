@@ -9,7 +9,7 @@
 
 #include "contact_models/cpm.hpp"
 #include "io/sphere_list.hpp"
-#include "tests/cpm_pair.hpp"
+#include "tests/common/cpm_pair.hpp"
 
 using namespace mc;
 

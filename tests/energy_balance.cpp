@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "tests/test_worlds.hpp"
+#include "tests/common/test_worlds.hpp"
 
 using namespace mc;
 
@@ -84,9 +84,10 @@ TEST_CASE("undamped_elastic_assembly_conserves_energy") {
   // is not linear: the contact normals turn and the shear spring is incremental (its force is carried with the
   // turning contact plane, Tang 3.5–3.10), so it is not exactly a potential. That error grows with the
   // amplitude (216 spheres, 2·10⁴ steps: worst |residual| / E_vib = 8·10⁻⁶, 8·10⁻⁵, 5·10⁻⁴ for perturbations
-  // of 0.01, 0.1, 0.5 of the overlap) and slowly with time. Here: 1.5·10⁻⁷ of E0 (the brief asks 10⁻⁴) and
-  // 1.1·10⁻⁴ of the vibrating energy alone (we ask 2·10⁻³). Taking the strain one step after the kinetic
-  // energy, as World::update_energy did before it was fixed, gave 1.0·10⁻⁴ of E0 and 7·10⁻² of E_vib here.
+  // of 0.01, 0.1, 0.5 of the overlap) and slowly with time. Here: 1.5·10⁻⁷ of E0 (asserted: 10⁻⁴, the size of the
+  // error of a strain taken one step late, below) and 1.1·10⁻⁴ of the vibrating energy alone (asserted: 2·10⁻³,
+  // the error at half an overlap with margin). Taking the strain one step after the kinetic energy instead
+  // (the mistake World::update_energy guards against) gives 1.0·10⁻⁴ of E0 and 7·10⁻² of E_vib here.
   CHECK(worst < 1e-4 * e0);
   CHECK(worst < 2e-3 * e_vib);
 }

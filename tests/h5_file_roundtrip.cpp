@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/common/errors.hpp"
+#include "tests/common/temp_dir.hpp"
 #include "engine/errors.hpp"
 #include "io/h5_file.hpp"
 
@@ -18,27 +20,11 @@ using Dims = std::vector<hsize_t>;
 
 namespace {
 
-// A private folder under the system temp directory, removed with everything in it.
-struct TempDir {
-  std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("mesocrack_h5_test_" + std::to_string(getpid()));
-  TempDir() { std::filesystem::create_directories(dir); }
-  ~TempDir() { std::filesystem::remove_all(dir); }
-  std::string file(const std::string& name) const { return (dir / name).string(); }
-};
+using mc::test::TempDir;
 
 // Open files, groups, datasets, attributes and named types, in all files.
 ssize_t open_ids() { return H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL); }
 
-template <class F>
-std::string io_error_of(F&& f) {
-  try {
-    f();
-  } catch (const mc::IoError& e) {
-    return e.what();
-  }
-  return "(no IoError)";
-}
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
@@ -80,8 +66,8 @@ TEST_CASE("datasets of every type round-trip with their shapes") {
   CHECK_FALSE(f.exists("/bad"));
 
   // Reading as integers never truncates floats or clamps out-of-range values.
-  CHECK(contains(io_error_of([&] { f.read_ints("/a/b/doubles"); }), "stored as floating point"));
-  CHECK(io_error_of([&] { f.read_bytes("/ints32"); }) ==
+  CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.read_ints("/a/b/doubles"); }), "stored as floating point"));
+  CHECK(mc::test::error_of<mc::IoError>([&] { f.read_bytes("/ints32"); }) ==
         path + ": cannot read dataset '/ints32': a stored value is out of range for uint8");
 }
 
@@ -103,9 +89,9 @@ TEST_CASE("groups: exists, list, create, remove; datasets are replaced, groups a
     f.write("/g/a", std::vector<std::int32_t>{1, 2, 3, 4, 5, 6}, {3, 2});
     CHECK(f.shape("/g/a") == Dims{3, 2});
     CHECK(f.read_ints("/g/a") == std::vector<std::int64_t>{1, 2, 3, 4, 5, 6});
-    CHECK(contains(io_error_of([&] { f.write("/g/sub", std::vector<double>{1}, {1}); }), "a group has that path"));
-    CHECK(contains(io_error_of([&] { f.create_group("/g/a"); }), "a dataset has that path"));
-    CHECK(contains(io_error_of([&] { f.list("/g/a"); }), "not a group"));
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.write("/g/sub", std::vector<double>{1}, {1}); }), "a group has that path"));
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.create_group("/g/a"); }), "a dataset has that path"));
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.list("/g/a"); }), "not a group"));
 
     f.remove("/g/b");
     f.remove("/g/sub");  // with everything below it
@@ -136,8 +122,8 @@ TEST_CASE("tables grow in several appends, truncate, and grow again") {
     const std::int64_t steps[] = {10, 20, 30, 40};
     f.append_rows("/history/step", steps, 2);
     f.append_rows("/history/step", steps + 2, 2);
-    CHECK(contains(io_error_of([&] { f.append_rows("/history/step", first, 1); }), "the table holds integers"));
-    CHECK(contains(io_error_of([&] { f.append_rows("/history/forces", steps, 1); }), "the table holds doubles"));
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.append_rows("/history/step", first, 1); }), "the table holds integers"));
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.append_rows("/history/forces", steps, 1); }), "the table holds doubles"));
     f.flush();
 
     std::vector<double> expected{1, 2, 3};
@@ -152,7 +138,7 @@ TEST_CASE("tables grow in several appends, truncate, and grow again") {
     H5File f(path, H5File::Mode::ReadWrite);  // as on resume
     f.truncate_rows("/history/forces", 2);
     f.truncate_rows("/history/step", 3);
-    CHECK(contains(io_error_of([&] { f.truncate_rows("/history/step", 5); }), "it has 3 rows, fewer than 5"));
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.truncate_rows("/history/step", 5); }), "it has 3 rows, fewer than 5"));
     const double more[] = {7, 8, 9, 10, 11, 12};
     f.append_rows("/history/forces", more, 2);
     const std::int64_t step = 99;
@@ -183,7 +169,7 @@ TEST_CASE("attributes and strings") {
     f.set_attr("/frames/0000/x", "unit", std::string("m"));
     f.set_attr("/frames/0000/x", "unit", std::string("metre"));  // overwritten, longer
     f.set_attr("/frames/0000", "step", 3.5);                     // overwritten, another type
-    CHECK(contains(io_error_of([&] { f.set_attr("/nowhere", "a", 1.0); }), "no such group or dataset"));
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.set_attr("/nowhere", "a", 1.0); }), "no such group or dataset"));
   }
   CHECK(open_ids() == before);
 
@@ -198,10 +184,10 @@ TEST_CASE("attributes and strings") {
   CHECK(f.has_attr("/frames/0000", "time"));
   CHECK_FALSE(f.has_attr("/frames/0000", "nope"));
   CHECK_FALSE(f.has_attr("/nowhere", "time"));
-  CHECK(contains(io_error_of([&] { f.attr_int("/frames/0000", "step"); }), "stored as floating point"));
-  CHECK(contains(io_error_of([&] { f.read_doubles("/scene"); }), "stored as string"));
-  CHECK(contains(io_error_of([&] { f.read_string("/frames/0000/x"); }), "stored as floating point"));
-  const std::string missing = io_error_of([&] { f.attr_double("/frames/0000", "pressure"); });
+  CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.attr_int("/frames/0000", "step"); }), "stored as floating point"));
+  CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.read_doubles("/scene"); }), "stored as string"));
+  CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.read_string("/frames/0000/x"); }), "stored as floating point"));
+  const std::string missing = mc::test::error_of<mc::IoError>([&] { f.attr_double("/frames/0000", "pressure"); });
   CHECK(missing == path + ": cannot read attribute 'pressure' of '/frames/0000': no such attribute");
 }
 
@@ -236,32 +222,32 @@ TEST_CASE("errors name the file, the object and the reason") {
   H5File(path, H5File::Mode::Create).write("/history/step", std::vector<std::int64_t>{1}, {1});
   {
     H5File f(path, H5File::Mode::ReadOnly);
-    CHECK(io_error_of([&] { f.read_doubles("/history/time"); }) ==
+    CHECK(mc::test::error_of<mc::IoError>([&] { f.read_doubles("/history/time"); }) ==
           path + ": cannot read dataset '/history/time': no such dataset");
-    const std::string deep = io_error_of([&] { f.shape("/no/group/here"); });
+    const std::string deep = mc::test::error_of<mc::IoError>([&] { f.shape("/no/group/here"); });
     CHECK(contains(deep, path));
     CHECK(contains(deep, "'/no/group/here'"));
-    CHECK(contains(io_error_of([&] { f.rows("/nothing"); }), "'/nothing': no such dataset"));
-    const std::string readonly = io_error_of([&] { f.write("/x", std::vector<double>{1}, {1}); });
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.rows("/nothing"); }), "'/nothing': no such dataset"));
+    const std::string readonly = mc::test::error_of<mc::IoError>([&] { f.write("/x", std::vector<double>{1}, {1}); });
     CHECK(contains(readonly, path + ": cannot write dataset '/x'"));
     CHECK(contains(readonly, "write intent"));
 
     H5File moved = std::move(f);
     CHECK(moved.read_ints("/history/step") == std::vector<std::int64_t>{1});
-    CHECK(contains(io_error_of([&] { f.exists("/history"); }), "moved from"));  // NOLINT(bugprone-use-after-move)
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.exists("/history"); }), "moved from"));  // NOLINT(bugprone-use-after-move)
   }
   CHECK(open_ids() == before);
   const std::string missing_file = tmp.file("absent.h5");
-  CHECK(io_error_of([&] { H5File absent(missing_file, H5File::Mode::ReadOnly); }) ==
+  CHECK(mc::test::error_of<mc::IoError>([&] { H5File absent(missing_file, H5File::Mode::ReadOnly); }) ==
         missing_file + ": cannot open file: no such file");
   const std::string not_hdf5 = tmp.file("plain.txt");
   std::FILE* plain = std::fopen(not_hdf5.c_str(), "w");
   std::fputs("not hdf5\n", plain);
   std::fclose(plain);
-  CHECK(contains(io_error_of([&] { H5File plain_file(not_hdf5, H5File::Mode::ReadWrite); }),
+  CHECK(contains(mc::test::error_of<mc::IoError>([&] { H5File plain_file(not_hdf5, H5File::Mode::ReadWrite); }),
                  not_hdf5 + ": cannot open file"));
   const std::string in_missing_dir = tmp.file("no_dir/x.h5");
-  CHECK(contains(io_error_of([&] { H5File no_dir(in_missing_dir, H5File::Mode::Create); }),
+  CHECK(contains(mc::test::error_of<mc::IoError>([&] { H5File no_dir(in_missing_dir, H5File::Mode::Create); }),
                  in_missing_dir + ": cannot create file: no such directory"));
   CHECK(open_ids() == before);
 }

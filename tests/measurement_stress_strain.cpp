@@ -8,7 +8,7 @@
 #include <random>
 
 #include "engine/measure.hpp"
-#include "tests/test_worlds.hpp"
+#include "tests/common/test_worlds.hpp"
 
 using namespace mc;
 

@@ -9,7 +9,7 @@
 #include "scene/build_world.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
-#include "tests/test_worlds.hpp"
+#include "tests/common/test_worlds.hpp"
 
 using namespace mc;
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/common/errors.hpp"
 #include "engine/errors.hpp"
 #include "scene/toml_reader.hpp"
 
@@ -19,22 +20,12 @@ using mc::Unit;
 
 namespace {
 
+using mc::test::error_of;
+
 const std::string kFile = "scenes/a.toml";
 
 TomlDoc doc(const std::string& text, const std::vector<std::string>& overrides = {}) {
   return TomlDoc::parse_text(text, kFile, overrides);
-}
-
-// The message of the InputError that f throws; an empty string (and a failed check) when it throws none.
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  FAIL_CHECK("expected an InputError");
-  return "";
 }
 
 void check_names(const std::string& message, const std::vector<std::string>& parts) {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "contact_models/softening_bond.hpp"
-#include "tests/test_worlds.hpp"
+#include "tests/common/test_worlds.hpp"
 
 using namespace mc;
 

@@ -9,6 +9,7 @@
 #include <set>
 #include <string>
 
+#include "tests/common/errors.hpp"
 #include "engine/errors.hpp"
 #include "io/sphere_list.hpp"
 
@@ -27,21 +28,11 @@ struct ListDir {
   }
 };
 
-template <class E, class F>
-std::string message_of(F&& f) {
-  try {
-    f();
-  } catch (const E& e) {
-    return e.what();
-  }
-  FAIL_CHECK("expected an exception of the right kind");
-  return "";
-}
 
 template <int D>
 std::string input_error(const ListDir& d, const std::string& text) {
   const std::string path = d.write("bad.spheres", text);
-  return message_of<mc::InputError>([&] { mc::read_sphere_list<D>(path); });
+  return mc::test::error_of<mc::InputError>([&] { mc::read_sphere_list<D>(path); });
 }
 
 }  // namespace
@@ -131,8 +122,8 @@ TEST_CASE("sphere list: each bad line names the file, the line, the text and wha
 TEST_CASE("sphere list: a file that cannot be read names the path and the reason") {
   const ListDir d;
   const std::string missing = (d.dir / "missing.spheres").string();
-  CHECK(message_of<mc::IoError>([&] { mc::read_sphere_list<3>(missing); }) ==
+  CHECK(mc::test::error_of<mc::IoError>([&] { mc::read_sphere_list<3>(missing); }) ==
         "cannot read particle list '" + missing + "': No such file or directory");
-  CHECK(message_of<mc::IoError>([&] { mc::read_sphere_list<3>(d.dir.string()); }) ==
+  CHECK(mc::test::error_of<mc::IoError>([&] { mc::read_sphere_list<3>(d.dir.string()); }) ==
         "cannot read particle list '" + d.dir.string() + "': Is a directory");
 }

@@ -10,7 +10,7 @@
 #include <cstring>
 #include <vector>
 
-#include "tests/test_worlds.hpp"
+#include "tests/common/test_worlds.hpp"
 
 using namespace mc;
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "engine/errors.hpp"
-#include "tests/test_worlds.hpp"
+#include "tests/common/test_worlds.hpp"
 
 using namespace mc;
 

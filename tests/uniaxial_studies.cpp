@@ -1,7 +1,7 @@
 // The studies built on the uniaxial compression test (Tang ch. 5–6), through the real command line on a small
 // 2D specimen (tests/scenes/uniaxial_2d_small.toml, about 300 discs, a few seconds per run): realization
 // statistics (Figs. 5.9–5.12), calibration to target macro-properties (§6.3), and density scaling.
-#include "tests/cli_harness.hpp"
+#include "tests/common/cli_harness.hpp"
 
 namespace {
 

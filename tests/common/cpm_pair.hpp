@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "contact_models/cpm.hpp"
-#include "tests/test_worlds.hpp"
+#include "tests/common/test_worlds.hpp"
 
 namespace mc::test {
 

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "io/h5_file.hpp"
+#include "tests/common/temp_dir.hpp"
 
 extern char** environ;
 
@@ -39,24 +40,7 @@ const fs::path kScenes = fs::path(MESOCRACK_SOURCE_DIR) / "scenes";
 
 // ---------------------------------------------------------------- files and folders
 
-// A private folder under the system temp directory, removed with everything in it. Captured stdout/stderr go
-// to its `.io` subfolder, so the folder itself holds only what the command wrote.
-struct TempDir {
-  fs::path dir;
-  TempDir() {
-    std::string t = (fs::temp_directory_path() / "mesocrack_cli_XXXXXX").string();
-    if (!mkdtemp(t.data())) throw std::runtime_error("mkdtemp failed: " + std::string(std::strerror(errno)));
-    dir = t;
-    fs::create_directory(dir / ".io");
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  fs::path operator/(const std::string& name) const { return dir / name; }
-};
+using mc::test::TempDir;  // captured stdout and stderr go to its .io subfolder (Child makes it)
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
