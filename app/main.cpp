@@ -9,13 +9,13 @@
 #include <filesystem>
 #include <iostream>
 
-#include "studies/calibration.hpp"
 #include "engine/errors.hpp"
+#include "scene/scene.hpp"
+#include "scene/toml_reader.hpp"
+#include "studies/calibration.hpp"
 #include "studies/realizations.hpp"
 #include "studies/runner.hpp"
-#include "scene/scene.hpp"
 #include "studies/summary.hpp"
-#include "scene/toml_reader.hpp"
 
 namespace {
 
@@ -39,7 +39,8 @@ int run(const std::string& scene_file, std::string output, const std::vector<std
         const std::string& resume) {
   if (!resume.empty()) {
     if (!output.empty() && std::filesystem::path(output) != std::filesystem::path(resume))
-      throw mc::InputError("--resume " + resume + " continues that file; -o " + output + " must name the same file or be left out");
+      throw mc::InputError("--resume " + resume + " continues that file; -o " + output +
+                           " must name the same file or be left out");
     output = resume;
   }
   if (output.empty()) throw mc::InputError("run: give the output file with -o OUT.h5");
@@ -59,7 +60,8 @@ int run(const std::string& scene_file, std::string output, const std::vector<std
 // and saved beside them as <stem>_realizations.json.
 int realizations(const std::string& scene_file, const std::string& output, const std::vector<std::string>& sets,
                  int threads, int n) {
-  if (output.empty()) throw mc::InputError("run --realizations: give the output file with -o OUT.h5 (realization k writes OUT_rk.h5)");
+  if (output.empty())
+    throw mc::InputError("run --realizations: give the output file with -o OUT.h5 (realization k writes OUT_rk.h5)");
   if (threads > 0) omp_set_num_threads(threads);
   const mc::RealizationSet set = mc::run_realizations(scene_file, sets, n, output, stderr);
   const std::string json = mc::realizations_json(set);
@@ -73,8 +75,8 @@ int realizations(const std::string& scene_file, const std::string& output, const
   return 0;
 }
 
-int calibrate(const std::string& scene_file, const std::string& output, const std::vector<std::string>& sets, int threads,
-              const std::string& targets, double tolerance, int max_iterations) {
+int calibrate(const std::string& scene_file, const std::string& output, const std::vector<std::string>& sets,
+              int threads, const std::string& targets, double tolerance, int max_iterations) {
   if (threads > 0) omp_set_num_threads(threads);
   const mc::CalibrationTarget target = mc::parse_targets(targets);
   mc::CalibrationOptions opt;
@@ -94,11 +96,13 @@ int report(const std::string& file) {
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : 1;
 }
 
-int generate(const std::string& scene_file, const std::string& output, const std::vector<std::string>& sets, int threads) {
+int generate(const std::string& scene_file, const std::string& output, const std::vector<std::string>& sets,
+             int threads) {
   if (output.empty()) throw mc::InputError("generate: give the specimen file with -o SPECIMEN.h5");
   if (threads > 0) omp_set_num_threads(threads);
   const mc::Scene scene = mc::read_scene(mc::TomlDoc::load(scene_file, sets), scene_file);
-  for (const auto& [name, value] : mc::generate_specimen(scene, output)) std::fprintf(stderr, "%s = %.6g\n", name.c_str(), value);
+  for (const auto& [name, value] : mc::generate_specimen(scene, output))
+    std::fprintf(stderr, "%s = %.6g\n", name.c_str(), value);
   std::fprintf(stderr, "specimen -> %s\n", output.c_str());
   return report(output);  // the picture: particles by phase, aggregate outlines
 }
@@ -126,13 +130,17 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
   run_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
   run_cmd->add_option("--resume", resume, "continue this output file from its last checkpoint");
-  run_cmd->add_option("--realizations", n_realizations,
-                      "run N packings (seeds seed..seed+N-1) into OUT_rK.h5 and report mean, std and CV of E, nu, UCS")
-      ->check(CLI::PositiveNumber)->excludes("--resume");
+  run_cmd
+      ->add_option("--realizations", n_realizations,
+                   "run N packings (seeds seed..seed+N-1) into OUT_rK.h5 and report mean, std and CV of E, nu, UCS")
+      ->check(CLI::PositiveNumber)
+      ->excludes("--resume");
   auto* calibrate_cmd = app.add_subcommand("calibrate", "find micro-parameters matching target E, nu, UCS (Tang 6.3)");
-  calibrate_cmd->add_option("scene", scene, "scene file (TOML) with one parallel_bond contact entry and [uniaxial]")->required();
+  calibrate_cmd->add_option("scene", scene, "scene file (TOML) with one parallel_bond contact entry and [uniaxial]")
+      ->required();
   calibrate_cmd->add_option("--target", targets, "targets, e.g. E=30GPa,nu=0.2,ucs=40MPa")->required();
-  calibrate_cmd->add_option("-o,--output", output, "the calibrated scene (TOML); its runs are written beside it")->required();
+  calibrate_cmd->add_option("-o,--output", output, "the calibrated scene (TOML); its runs are written beside it")
+      ->required();
   calibrate_cmd->add_option("--tolerance", tolerance, "relative tolerance on each target (default 0.05)")
       ->check(CLI::Range(1e-4, 0.5));
   calibrate_cmd->add_option("--max-iterations", max_iterations, "give up after this many runs (default 12)")

@@ -91,13 +91,14 @@ double cpu_share(const Summary& s) { return s.mean > 0 ? s.cpu / s.mean : 1; }
 
 void generator_table(bool quick) {
   std::printf("\n### a) Aggregate generator: time versus number of aggregates (Tang Figs. 4.15, 4.16)\n\n");
-  std::printf("Random convex shapes (default limits L_max = 0.5 d, L_min = 0.15 d) filling Table 4.1 shares of a target\n"
-              "area / volume; time per shape includes drawing the sizes.\n\n");
+  std::printf(
+      "Random convex shapes (default limits L_max = 0.5 d, L_min = 0.15 d) filling Table 4.1 shares of a target\n"
+      "area / volume; time per shape includes drawing the sizes.\n\n");
   std::printf("| dim | target content | aggregates | time [ms] | per aggregate [us] | mean vertices |\n");
   std::printf("|---|---|---|---|---|---|\n");
   for (int dim = 2; dim <= 3; ++dim) {
-    const std::vector<double> targets = dim == 2 ? std::vector<double>{2e4, 6e4, 2e5, 6e5, 2e6}
-                                                 : std::vector<double>{1e5, 3e5, 1e6, 3e6, 1e7};
+    const std::vector<double> targets =
+        dim == 2 ? std::vector<double>{2e4, 6e4, 2e5, 6e5, 2e6} : std::vector<double>{1e5, 3e5, 1e6, 3e6, 1e7};
     for (double target : targets) {
       if (quick && target > (dim == 2 ? 2e5 : 1e6)) continue;
       RandomStream rng(1);
@@ -117,24 +118,27 @@ void generator_table(bool quick) {
           },
           rng);
       const double ms = 1e3 * std::chrono::duration<double>(Clock::now() - t0).count();
-      std::printf("| %dD | %.0e mm%s | %zu | %.1f | %.1f | %.1f |\n", dim, target, dim == 2 ? "²" : "³", list.size(), ms,
-                  1e3 * ms / list.size(), static_cast<double>(vertices) / list.size());
+      std::printf("| %dD | %.0e mm%s | %zu | %.1f | %.1f | %.1f |\n", dim, target, dim == 2 ? "²" : "³", list.size(),
+                  ms, 1e3 * ms / list.size(), static_cast<double>(vertices) / list.size());
     }
   }
 }
 
 void success_table(bool quick, int seeds2, int seeds3) {
   std::printf("\n### b) Success rate versus target fraction (Tang Figs. 4.17, 4.18), Table 4.1\n\n");
-  std::printf("| dim | domain | fraction | reached | seeds | lowest fraction achieved | mean time [s] | max time [s] |\n");
+  std::printf(
+      "| dim | domain | fraction | reached | seeds | lowest fraction achieved | mean time [s] | max time [s] |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
   for (double f : {0.5, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85}) {
     const Summary s = repeat(box<2>(200, f, 1), seeds2);
-    std::printf("| 2D | 200 mm square | %.2f | %d | %d | %.4f | %.3f | %.3f |\n", f, s.reached, s.runs, s.min_achieved, s.mean, s.max);
+    std::printf("| 2D | 200 mm square | %.2f | %d | %d | %.4f | %.3f | %.3f |\n", f, s.reached, s.runs, s.min_achieved,
+                s.mean, s.max);
   }
   for (double f : {0.3, 0.4, 0.5, 0.55, 0.6}) {
     if (quick && f > 0.5) continue;
     const Summary s = repeat(box<3>(100, f, 1), seeds3);
-    std::printf("| 3D | 100 mm cube | %.2f | %d | %d | %.4f | %.3f | %.3f |\n", f, s.reached, s.runs, s.min_achieved, s.mean, s.max);
+    std::printf("| 3D | 100 mm cube | %.2f | %d | %d | %.4f | %.3f | %.3f |\n", f, s.reached, s.runs, s.min_achieved,
+                s.mean, s.max);
   }
 }
 
@@ -147,21 +151,24 @@ void cost_table(bool quick) {
     for (double f : {0.4, 0.5, 0.6, 0.7, 0.8}) {
       if (quick && side > 300) continue;
       const Summary s = repeat(box<2>(side, f, 1), 3);
-      std::printf("| 2D | %.0f mm square | %.1f | %.0f | %d/3 | %.3f | %.2f |\n", side, f, s.aggregates, s.reached, s.mean, cpu_share(s));
+      std::printf("| 2D | %.0f mm square | %.1f | %.0f | %d/3 | %.3f | %.2f |\n", side, f, s.aggregates, s.reached,
+                  s.mean, cpu_share(s));
     }
   }
   for (double side : {100.0, 150.0}) {
     for (double f : {0.3, 0.4, 0.45, 0.5, 0.55, 0.6}) {
       if (quick && (side > 100 || f > 0.5)) continue;
       const Summary s = repeat(box<3>(side, f, 1), 3);
-      std::printf("| 3D | %.0f mm cube | %.2f | %.0f | %d/3 | %.3f | %.2f |\n", side, f, s.aggregates, s.reached, s.mean, cpu_share(s));
+      std::printf("| 3D | %.0f mm cube | %.2f | %.0f | %d/3 | %.3f | %.2f |\n", side, f, s.aggregates, s.reached,
+                  s.mean, cpu_share(s));
     }
   }
 }
 
 void specimens_table(int seeds) {
   std::printf("\n### d) The specimens of Tang's tests (one thread; the machine has 2 cores)\n\n");
-  std::printf("| specimen | grading | fraction | aggregates | reached | mean time [s] | max time [s] | target | cpu/wall |\n");
+  std::printf(
+      "| specimen | grading | fraction | aggregates | reached | mean time [s] | max time [s] | target | cpu/wall |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   auto beam = [](const Grading& g) {
     PlacementSpec<2> s;
@@ -180,8 +187,8 @@ void specimens_table(int seeds) {
                 s.mean, s.max, s.max < 1 ? "yes" : "NO", cpu_share(s));
   }
   const Summary c = repeat(box<3>(100, 0.5, 1), seeds);
-  std::printf("| 100 mm cube | Table 4.1, 4-64 mm | 0.50 | %.0f | %d/%d | %.3f | %.3f | < 60 s: %s | %.2f |\n", c.aggregates,
-              c.reached, c.runs, c.mean, c.max, c.max < 60 ? "yes" : "NO", cpu_share(c));
+  std::printf("| 100 mm cube | Table 4.1, 4-64 mm | 0.50 | %.0f | %d/%d | %.3f | %.3f | < 60 s: %s | %.2f |\n",
+              c.aggregates, c.reached, c.runs, c.mean, c.max, c.max < 60 ? "yes" : "NO", cpu_share(c));
 }
 
 }  // namespace
@@ -191,8 +198,10 @@ int main(int argc, char** argv) {
   int seeds = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--quick") quick = true;
-    else if (a == "--seeds" && i + 1 < argc) seeds = std::atoi(argv[++i]);
+    if (a == "--quick")
+      quick = true;
+    else if (a == "--seeds" && i + 1 < argc)
+      seeds = std::atoi(argv[++i]);
     else {
       std::fprintf(stderr, "usage: aggregate_generation [--quick] [--seeds N]\n");
       return 2;

@@ -16,7 +16,6 @@
 
 namespace mc::bench {
 
-
 // Progress on stderr (the tables go to stdout).
 void progress(const char* fmt, auto... args) {
   std::fprintf(stderr, fmt, args...);
@@ -32,12 +31,12 @@ void progress(const char* fmt, auto... args) {
 
 template <int D>
 struct Cell {
-  std::vector<Vec<D>> x;   // in [0, L)^D, units of r0
+  std::vector<Vec<D>> x;  // in [0, L)^D, units of r0
   std::vector<double> r;
   double L = 0, phi = 0;
-  double z = 0;            // mean coordination, rattlers included
+  double z = 0;                              // mean coordination, rattlers included
   double mean_overlap = 0, max_overlap = 0;  // relative to r0
-  int iterations = 0;      // FIRE iterations in all
+  int iterations = 0;                        // FIRE iterations in all
 };
 
 template <int D>
@@ -101,9 +100,7 @@ class CellRelax {
   }
   // The engine's pair stiffness up to a constant: in 3D k_n = 4 E R_i R_j / (R_i + R_j) (balls in series), in 2D
   // it does not depend on the radii. The minimum found is then an equilibrium of the engine's contacts too.
-  double stiffness(int i, int j) const {
-    return D == 3 ? 2.0 * c_.r[i] * c_.r[j] / (c_.r[i] + c_.r[j]) : 1.0;
-  }
+  double stiffness(int i, int j) const { return D == 3 ? 2.0 * c_.r[i] * c_.r[j] / (c_.r[i] + c_.r[j]) : 1.0; }
   // FIRE (Bitzek et al. 2006).
   void minimise() {
     const int n = static_cast<int>(c_.x.size());
@@ -187,7 +184,7 @@ struct Assembly {
   std::vector<Vec<D>> x;
   std::vector<double> r;
   std::vector<char> edge;  // within R + 1.2 r0 of a face: some of its periodic partners may have been clipped away
-  double side = 0;        // the assembly fills [0, side]^D
+  double side = 0;         // the assembly fills [0, side]^D
 };
 
 // Tiles the cell (scaled to r0) over the cube [0, side]^D with side chosen for about n particles. inside:
@@ -238,10 +235,11 @@ const Cell<D>& cell_for_dim(bool quick) {
   if (!cell) {
     const auto t0 = Clock::now();
     cell = jammed_cell<D>(quick ? 500 : 1000, kTargetOverlap, 20240601 + D);
-    progress("  %dD cell: %zu particles, phi = %.4f, z = %.2f, overlap mean %.4f r0, max %.4f r0, %d FIRE "
-             "iterations, %.1f s\n",
-             D, cell->x.size(), cell->phi, cell->z, cell->mean_overlap, cell->max_overlap, cell->iterations,
-             std::chrono::duration<double>(Clock::now() - t0).count());
+    progress(
+        "  %dD cell: %zu particles, phi = %.4f, z = %.2f, overlap mean %.4f r0, max %.4f r0, %d FIRE "
+        "iterations, %.1f s\n",
+        D, cell->x.size(), cell->phi, cell->z, cell->mean_overlap, cell->max_overlap, cell->iterations,
+        std::chrono::duration<double>(Clock::now() - t0).count());
   }
   return *cell;
 }

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "studies/runner.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
+#include "studies/runner.hpp"
 
 namespace {
 
@@ -30,7 +30,8 @@ modulus = 30e9
 friction = 0.5
 [specimen]
 kind = "sphere_list"
-file = ")" + specimen + R"("
+file = ")" +
+         specimen + R"("
 [[groups]]
 name = "bottom"
 tags = [1]
@@ -43,7 +44,8 @@ velocity = [0, 0, -0.04]
 [timestep]
 safety = 0.8
 [run]
-steps = )" + std::to_string(steps) + R"(
+steps = )" +
+         std::to_string(steps) + R"(
 [output]
 history_every = 1000000
 checkpoint_every = 100000000
@@ -67,8 +69,10 @@ int main(int argc, char** argv) {
   long steps = 2000;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
-    if (a == "--specimen") specimen = std::filesystem::absolute(argv[i + 1]).string();
-    else if (a == "--steps") steps = std::stol(argv[i + 1]);
+    if (a == "--specimen")
+      specimen = std::filesystem::absolute(argv[i + 1]).string();
+    else if (a == "--steps")
+      steps = std::stol(argv[i + 1]);
   }
   const std::string text = base_scene(specimen, steps);
   const std::string out = (std::filesystem::temp_directory_path() / "mesocrack_effects.h5").string();
@@ -90,7 +94,8 @@ int main(int argc, char** argv) {
       {"histories every 10 steps", {"output.history_every=10"}},
       {"frames every 200 steps", {"output.frame_every=200"}},
   };
-  std::printf("# Cost of optional effects: %s, %ld steps, %d threads\n", specimen.c_str(), steps, omp_get_max_threads());
+  std::printf("# Cost of optional effects: %s, %ld steps, %d threads\n", specimen.c_str(), steps,
+              omp_get_max_threads());
   std::printf("| effect declared | wall time [s] | ratio to nothing declared |\n|---|---|---|\n");
   // Best of three for each: the machine is shared and noisy.
   auto best = [&](const std::vector<std::string>& sets) {

@@ -80,13 +80,13 @@ inline std::string loadavg() {
 }
 
 struct Timing {
-  double seconds = kInf;        // stepping loop only
-  double cpu_seconds = 0;       // CPU time of the process in that loop (all threads)
+  double seconds = kInf;   // stepping loop only
+  double cpu_seconds = 0;  // CPU time of the process in that loop (all threads)
   int n = 0, steps = 0;
-  double contacts = 0;          // touching ball–ball pairs, mean of the window's start and end
-  double candidates = 0;        // pairs in the neighbour lists at the end
-  double wall_candidates = 0;   // ball–wall pairs in the lists at the end
-  std::int64_t rebuilds = 0;    // neighbour-list rebuilds inside the timed window
+  double contacts = 0;         // touching ball–ball pairs, mean of the window's start and end
+  double candidates = 0;       // pairs in the neighbour lists at the end
+  double wall_candidates = 0;  // ball–wall pairs in the lists at the end
+  std::int64_t rebuilds = 0;   // neighbour-list rebuilds inside the timed window
   double dt = 0, dt_critical = 0;
   Footprint fp;
 

@@ -31,16 +31,16 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/dense_assembly.hpp"
+#include "benchmarks/run_timing.hpp"
 #include "contact_models/cpm.hpp"
 #include "contact_models/linear.hpp"
+#include "contact_models/parallel_bond.hpp"
 #include "engine/errors.hpp"
 #include "engine/parallel.hpp"
 #include "engine/world.hpp"
-#include "contact_models/parallel_bond.hpp"
-#include "preprocess/spatial_order.hpp"
 #include "io/sphere_list.hpp"
-#include "benchmarks/dense_assembly.hpp"
-#include "benchmarks/run_timing.hpp"
+#include "preprocess/spatial_order.hpp"
 
 #ifndef MESOCRACK_SOURCE_DIR
 #define MESOCRACK_SOURCE_DIR "."
@@ -55,7 +55,7 @@ using namespace mc;
 struct Options {
   bool quick = false;
   bool shared = true, scaling = true, effects = true;
-  bool unbonded = true;  // the shared specimen also without bonds (--only bonded: with bonds only)
+  bool unbonded = true;              // the shared specimen also without bonds (--only bonded: with bonds only)
   bool parallel = true, cpm = true;  // its parallel-bonded and CPM runs (--only bonded / cpm: that one alone)
   std::string specimen_dir = MESOCRACK_SPECIMEN_DIR;
   int reps = 3;
@@ -68,13 +68,13 @@ const int kThreads[] = {1, 2};
 // Worlds
 
 struct Material {
-  double modulus = 30e9;   // contact modulus E_c [Pa]
-  double density = 2600;   // [kg/m³]
+  double modulus = 30e9;  // contact modulus E_c [Pa]
+  double density = 2600;  // [kg/m³]
   double kn_ks = 1.0;
   double friction = 0.5;
-  double damping = 0.0;    // ζ of the contact dashpots
-  bool bonded = false;     // parallel bonds (E̅_c = E_c, k̄_n/k̄_s = k_n/k_s, λ̄ = 1, unbreakable here) beside the contacts
-  bool cpm = false;        // instead, CPM contacts (k_N = E_c), cohesive where d ≤ 1.05 (R_i + R_j)
+  double damping = 0.0;  // ζ of the contact dashpots
+  bool bonded = false;  // parallel bonds (E̅_c = E_c, k̄_n/k̄_s = k_n/k_s, λ̄ = 1, unbreakable here) beside the contacts
+  bool cpm = false;  // instead, CPM contacts (k_N = E_c), cohesive where d ≤ 1.05 (R_i + R_j)
 };
 
 // The CPM of the shared run: k_N = E_c, k_T/k_N = 0.2, the document's inelastic parameters, but ε_0 = 1e-3 so that
@@ -149,9 +149,9 @@ struct SharedRun {
   int n = 0;
   double radius = 0, height = 0;
   double dt_readme = 0;
-  std::string refusal;           // the engine's message if it refused dt_readme
-  Timing t[2];                   // 1 and 2 threads
-  double strain = kNaN;          // z strain of the moved layer after the run (2 threads, last repetition)
+  std::string refusal;   // the engine's message if it refused dt_readme
+  Timing t[2];           // 1 and 2 threads
+  double strain = kNaN;  // z strain of the moved layer after the run (2 threads, last repetition)
   long rss_before_kib = -1, hwm_kib = -1;
   bool hwm_reset = false;
   double read_seconds = 0;
@@ -240,11 +240,13 @@ void section_shared(const Options& opt, bool bonded, bool cpm = false) {
   Material mat;  // E_c = 30 GPa, ρ = 2600, kn/ks = 1, μ = 0.5, no dashpots
   mat.bonded = bonded && !cpm;
   mat.cpm = cpm;
-  const char* model = cpm ? "CPM (cohesive within R_I = 1.05)" : bonded ? "parallel bonds + linear contacts" : "unbonded linear contacts";
+  const char* model = cpm      ? "CPM (cohesive within R_I = 1.05)"
+                      : bonded ? "parallel bonds + linear contacts"
+                               : "unbonded linear contacts";
   const int steps = opt.quick ? 200 : 2000;
   std::vector<SharedRun> runs;
-  const std::vector<std::string> names = opt.quick ? std::vector<std::string>{"n10k"}
-                                                   : std::vector<std::string>{"n10k", "n50k"};
+  const std::vector<std::string> names =
+      opt.quick ? std::vector<std::string>{"n10k"} : std::vector<std::string>{"n10k", "n50k"};
   for (const auto& name : names) {
     const std::string path = opt.specimen_dir + "/" + name + ".spheres";
     progress("shared specimen %s\n", path.c_str());
@@ -253,26 +255,29 @@ void section_shared(const Options& opt, bool bonded, bool cpm = false) {
 
   std::printf("## a) The shared specimen (benchmarks/specimens): %s\n\n", model);
   if (cpm)
-    std::printf("Model: **Concrete Particle Model** (`ContactSet<Cpm,3>`, Šmilauer; the peers' line to compare is "
-                "Yade, CPM): cohesive contacts on every pair with d <= 1.05 (R_i + R_j) (R_I = 1.05, the README's bond "
-                "pairs), k_N = E_c below, k_T/k_N = 0.2, c_T0 = 3.5 MPa, tan φ = 0.8, ε_f/ε_0 = 30, ε_0 = 1e-3 (no "
-                "damage in the window), compressive hardening and the logarithmic surface on; no linear contacts: the "
-                "keys below other than the modulus and density do not apply. Bond-steps/s = cohesive contacts x "
-                "steps/s.\n\n");
+    std::printf(
+        "Model: **Concrete Particle Model** (`ContactSet<Cpm,3>`, Šmilauer; the peers' line to compare is "
+        "Yade, CPM): cohesive contacts on every pair with d <= 1.05 (R_i + R_j) (R_I = 1.05, the README's bond "
+        "pairs), k_N = E_c below, k_T/k_N = 0.2, c_T0 = 3.5 MPa, tan φ = 0.8, ε_f/ε_0 = 30, ε_0 = 1e-3 (no "
+        "damage in the window), compressive hardening and the logarithmic surface on; no linear contacts: the "
+        "keys below other than the modulus and density do not apply. Bond-steps/s = cohesive contacts x "
+        "steps/s.\n\n");
   else if (bonded)
-    std::printf("Model: **parallel bonds** (`ContactSet<ParallelBond,3>`, 6-DOF beams, Tang 3.37-3.41) on every pair "
-                "with d <= 1.05 (R_i + R_j), bond modulus = contact modulus, k̄_n/k̄_s = k_n/k_s, λ̄ = 1, in parallel "
-                "with the linear contacts below. Bond-steps/s = bonds x steps/s.\n\n");
-  std::printf("Contacts: linear contacts (`ContactSet<Linear,3>`), contact modulus E_c = %.3g Pa "
-              "(ball k_n = 4 R E_c, pair k_n = 2 R E_c in series), k_n/k_s = %.3g, friction μ = %.3g, no dashpots, "
-              "density %.4g kg/m³; no gravity, no local damping, no energy tracing. %s Tag 1 fixed (all 6 DOFs), "
-              "tag 2 moved down at constant velocity (all 6 DOFs fixed, prescribed v_z) for a z strain of 1e-4 "
-              "after 2010 steps; %d warm-up steps, then %d timed steps%s; best of %d fresh runs.\n\n",
-              mat.modulus, mat.kn_ks, mat.friction, mat.density,
-              bonded ? "The peers ran bonded specimens too: the ratios compare bond loop with bond loop."
-                     : "The peers ran *bonded* specimens: the ratios below compare our unbonded contact loop with "
-                       "their bond loops (section a, bonded, compares like with like).",
-              kSharedWarmup, steps, opt.quick ? " (--quick: 200 instead of 2000)" : "", opt.reps);
+    std::printf(
+        "Model: **parallel bonds** (`ContactSet<ParallelBond,3>`, 6-DOF beams, Tang 3.37-3.41) on every pair "
+        "with d <= 1.05 (R_i + R_j), bond modulus = contact modulus, k̄_n/k̄_s = k_n/k_s, λ̄ = 1, in parallel "
+        "with the linear contacts below. Bond-steps/s = bonds x steps/s.\n\n");
+  std::printf(
+      "Contacts: linear contacts (`ContactSet<Linear,3>`), contact modulus E_c = %.3g Pa "
+      "(ball k_n = 4 R E_c, pair k_n = 2 R E_c in series), k_n/k_s = %.3g, friction μ = %.3g, no dashpots, "
+      "density %.4g kg/m³; no gravity, no local damping, no energy tracing. %s Tag 1 fixed (all 6 DOFs), "
+      "tag 2 moved down at constant velocity (all 6 DOFs fixed, prescribed v_z) for a z strain of 1e-4 "
+      "after 2010 steps; %d warm-up steps, then %d timed steps%s; best of %d fresh runs.\n\n",
+      mat.modulus, mat.kn_ks, mat.friction, mat.density,
+      bonded ? "The peers ran bonded specimens too: the ratios compare bond loop with bond loop."
+             : "The peers ran *bonded* specimens: the ratios below compare our unbonded contact loop with "
+               "their bond loops (section a, bonded, compares like with like).",
+      kSharedWarmup, steps, opt.quick ? " (--quick: 200 instead of 2000)" : "", opt.reps);
 
   for (const auto& r : runs) {
     std::printf("- %s: %d spheres, r = %.4g m, height %.4g m, read in %.3f s; README dt = 0.3 r sqrt(ρ/E) = %.4g s",
@@ -280,16 +285,18 @@ void section_shared(const Options& opt, bool bonded, bool cpm = false) {
     if (r.refusal.empty())
       std::printf(", accepted (engine's critical estimate %.4g s).", r.t[0].dt_critical);
     else
-      std::printf(", **refused by the engine**: \"%s\". Engine's own step used instead: dt = %.4g s (0.8 × "
-                  "critical %.4g s).",
-                  r.refusal.c_str(), r.t[0].dt, r.t[0].dt_critical);
+      std::printf(
+          ", **refused by the engine**: \"%s\". Engine's own step used instead: dt = %.4g s (0.8 × "
+          "critical %.4g s).",
+          r.refusal.c_str(), r.t[0].dt, r.t[0].dt_critical);
     std::printf(" z strain of the moved layer after %d steps: %.3g.\n", kSharedWarmup + steps, r.strain);
   }
   std::printf("\n");
 
-  std::printf("| specimen | threads | particles | candidate pairs / particle | touching pairs / particle | "
-              "coordination | rebuilds in window | particle-steps/s | contact-steps/s | ns / particle-step | CPU/wall | "
-              "2-thread speedup |\n");
+  std::printf(
+      "| specimen | threads | particles | candidate pairs / particle | touching pairs / particle | "
+      "coordination | rebuilds in window | particle-steps/s | contact-steps/s | ns / particle-step | CPU/wall | "
+      "2-thread speedup |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& r : runs)
     for (int ti = 0; ti < 2; ++ti) {
@@ -301,12 +308,13 @@ void section_shared(const Options& opt, bool bonded, bool cpm = false) {
                   fix(t.ns_per_particle_step(), 1).c_str(), t.share(kThreads[ti]).c_str(),
                   ti == 1 ? fix(r.t[0].seconds / r.t[1].seconds, 2).c_str() : "");
     }
-  std::printf("\n(candidate pairs = pairs in the neighbour lists, within R_i + R_j + skin, skin = 0.1 R_min; for this "
-              "specimen they are exactly the README's bond pairs, d ≤ 1.05 (R_i + R_j). Touching pairs: overlap > 0; "
-              "contact-steps/s counts those. Coordination = 2 × touching pairs / N. CPU/wall = process CPU time / "
-              "wall time in the timed loop, ≈ the thread count on a quiet machine; \"contended\": below 80 %% of the "
-              "cores asked for, other processes took them and the figure measures the machine more than the engine.)"
-              "\n\n");
+  std::printf(
+      "\n(candidate pairs = pairs in the neighbour lists, within R_i + R_j + skin, skin = 0.1 R_min; for this "
+      "specimen they are exactly the README's bond pairs, d ≤ 1.05 (R_i + R_j). Touching pairs: overlap > 0; "
+      "contact-steps/s counts those. Coordination = 2 × touching pairs / N. CPU/wall = process CPU time / "
+      "wall time in the timed loop, ≈ the thread count on a quiet machine; \"contended\": below 80 %% of the "
+      "cores asked for, other processes took them and the figure measures the machine more than the engine.)"
+      "\n\n");
 
   // Our figures beside the peers', in the README's columns.
   auto ours = [&](int col) -> double {
@@ -319,10 +327,11 @@ void section_shared(const Options& opt, bool bonded, bool cpm = false) {
   for (const auto& p : kPeers)
     std::printf("| %s | %s | %s | %s | %s |\n", p.name, sci(p.pss[0], 3).c_str(), sci(p.pss[1], 3).c_str(),
                 sci(p.pss[2], 3).c_str(), sci(p.pss[3], 3).c_str());
-  std::printf("| **mesocrack, %s (this run)** | **%s** | **%s** | **%s** | **%s** |\n\n", model,
-              sci(ours(0)).c_str(), sci(ours(1)).c_str(), sci(ours(2)).c_str(), sci(ours(3)).c_str());
-  std::printf("Ratio ours / peer (> 1: mesocrack faster; %s):\n\n",
-              cpm ? "the CPM line is like with like" : bonded ? "both sides bonded" : "ours without bonds here");
+  std::printf("| **mesocrack, %s (this run)** | **%s** | **%s** | **%s** | **%s** |\n\n", model, sci(ours(0)).c_str(),
+              sci(ours(1)).c_str(), sci(ours(2)).c_str(), sci(ours(3)).c_str());
+  std::printf("Ratio ours / peer (> 1: mesocrack faster; %s):\n\n", cpm      ? "the CPM line is like with like"
+                                                                    : bonded ? "both sides bonded"
+                                                                             : "ours without bonds here");
   if (bonded)
     for (const auto& r : runs)
       for (int ti = 0; ti < 2; ++ti)
@@ -338,21 +347,21 @@ void section_shared(const Options& opt, bool bonded, bool cpm = false) {
   std::printf("\n");
 
   std::printf("Memory (peers, README: ESyS 44 MiB, Yade ~340 MiB with Python, for n10k):\n\n");
-  std::printf("| specimen | VmRSS before the worlds | peak resident (VmHWM) | engine containers (estimate) | "
-              "bytes / particle: particles | contacts (pairs + histories) | slots | gather lists | total |\n");
+  std::printf(
+      "| specimen | VmRSS before the worlds | peak resident (VmHWM) | engine containers (estimate) | "
+      "bytes / particle: particles | contacts (pairs + histories) | slots | gather lists | total |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& r : runs) {
     const Footprint& fp = r.t[1].fp;
     const double n = r.n;
     std::printf("| %s | %.1f MiB | %.1f MiB%s | %.1f MiB | %.0f | %.0f | %.0f | %.0f | %.0f |\n", r.name.c_str(),
                 r.rss_before_kib / 1024.0, r.hwm_kib / 1024.0, r.hwm_reset ? "" : " (peak of the whole process)",
-                fp.total() / 1048576.0, fp.particles / n, fp.contacts / n, fp.slots / n, fp.gather / n,
-                fp.total() / n);
+                fp.total() / 1048576.0, fp.particles / n, fp.contacts / n, fp.slots / n, fp.gather / n, fp.total() / n);
   }
-  std::printf("\n(VmHWM is reset before each specimen, so it is the peak while that specimen's worlds existed, "
-              "including the process itself and the particle list read from the file.)\n\n");
+  std::printf(
+      "\n(VmHWM is reset before each specimen, so it is the peak while that specimen's worlds existed, "
+      "including the process itself and the particle list read from the file.)\n\n");
 }
-
 
 // ---------------------------------------------------------------------------------------------------------
 // b) Scaling
@@ -404,23 +413,24 @@ void section_scaling(const Options& opt) {
   const Cell<2>& c2 = cell_for_dim<2>(opt.quick);
   const Cell<3>& c3 = cell_for_dim<3>(opt.quick);
   std::printf("## b) Scaling with the number of particles\n\n");
-  std::printf("Dense random assemblies, radii uniform in [0.8, 1.2]·r0 (r0 = %.3g m): a periodic cell of %zu (2D) / "
-              "%zu (3D) particles brought just past jamming (overlap-energy minimisation at φ = %.4f / %.4f; cell "
-              "coordination %.2f / %.2f, mean overlap %.2f %% / %.2f %% of r0, max %.1f %% / %.1f %%), tiled and "
-              "clipped to a square / cube, numbered along a Morton curve. The particles within R + 1.2 r0 of a face (they may "
-              "have lost periodic partners) are held (all DOFs fixed) in place of walls, so the rest stays in "
-              "equilibrium, dense; "
-              "no walls, no gravity, no damping. Unbonded linear contacts as in a); the engine's own step (0.8 × "
-              "critical). Steps = max(50, %s/N) after 10 warm-up steps; best of %d fresh runs. Coordination = 2 × "
-              "touching pairs / N. CPU/wall = process CPU time / wall time in the loop (≈ thread count on a quiet "
-              "machine; \"contended\": below 80 %% of the cores asked for). The engine runs loops of fewer than %d "
-              "items on one thread, so the 2-thread runs of the smallest sizes are partly serial.\n\n",
-              kR0, c2.x.size(), c3.x.size(), c2.phi, c3.phi, c2.z, c3.z, 100 * c2.mean_overlap,
-              100 * c3.mean_overlap, 100 * c2.max_overlap, 100 * c3.max_overlap, opt.quick ? "2e6" : "2e7",
-              opt.reps, kParallelMin);
-  std::printf("| dim | N | held | steps | candidate pairs / particle | coordination | rebuilds | bytes / particle | "
-              "1 thread: particle-steps/s | ns / particle-step | contact-steps/s | CPU/wall | "
-              "2 threads: particle-steps/s | ns / particle-step | contact-steps/s | CPU/wall | speedup |\n");
+  std::printf(
+      "Dense random assemblies, radii uniform in [0.8, 1.2]·r0 (r0 = %.3g m): a periodic cell of %zu (2D) / "
+      "%zu (3D) particles brought just past jamming (overlap-energy minimisation at φ = %.4f / %.4f; cell "
+      "coordination %.2f / %.2f, mean overlap %.2f %% / %.2f %% of r0, max %.1f %% / %.1f %%), tiled and "
+      "clipped to a square / cube, numbered along a Morton curve. The particles within R + 1.2 r0 of a face (they may "
+      "have lost periodic partners) are held (all DOFs fixed) in place of walls, so the rest stays in "
+      "equilibrium, dense; "
+      "no walls, no gravity, no damping. Unbonded linear contacts as in a); the engine's own step (0.8 × "
+      "critical). Steps = max(50, %s/N) after 10 warm-up steps; best of %d fresh runs. Coordination = 2 × "
+      "touching pairs / N. CPU/wall = process CPU time / wall time in the loop (≈ thread count on a quiet "
+      "machine; \"contended\": below 80 %% of the cores asked for). The engine runs loops of fewer than %d "
+      "items on one thread, so the 2-thread runs of the smallest sizes are partly serial.\n\n",
+      kR0, c2.x.size(), c3.x.size(), c2.phi, c3.phi, c2.z, c3.z, 100 * c2.mean_overlap, 100 * c3.mean_overlap,
+      100 * c2.max_overlap, 100 * c3.max_overlap, opt.quick ? "2e6" : "2e7", opt.reps, kParallelMin);
+  std::printf(
+      "| dim | N | held | steps | candidate pairs / particle | coordination | rebuilds | bytes / particle | "
+      "1 thread: particle-steps/s | ns / particle-step | contact-steps/s | CPU/wall | "
+      "2 threads: particle-steps/s | ns / particle-step | contact-steps/s | CPU/wall | speedup |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& r : rows) {
     const Timing &a = r.t[0], &b = r.t[1];
@@ -522,30 +532,35 @@ void section_effects(const Options& opt) {
       }
   }
   std::printf("## c) Cost of the optional effects\n\n");
-  std::printf("3D assembly of %d particles as in b) (cube of side %.4g m, the %.1f %% near the faces held), inside six "
-              "fixed planar walls touching the outermost particles; unbonded linear contacts; %d steps after 10 "
-              "warm-up; each effect on a fresh world, repetitions interleaved, best of %d. Ratio = step time with the "
-              "effect / step time with nothing declared; the second \"nothing declared\" row is the noise floor.\n\n",
-              n, a.side, 100.0 * static_cast<double>(std::count(a.edge.begin(), a.edge.end(), 1)) / n, steps, opt.reps);
-  std::printf("| declared | 1 thread: ns / particle-step | ratio | CPU/wall | 2 threads: ns / particle-step | ratio | "
-              "CPU/wall |\n|---|---|---|---|---|---|---|\n");
+  std::printf(
+      "3D assembly of %d particles as in b) (cube of side %.4g m, the %.1f %% near the faces held), inside six "
+      "fixed planar walls touching the outermost particles; unbonded linear contacts; %d steps after 10 "
+      "warm-up; each effect on a fresh world, repetitions interleaved, best of %d. Ratio = step time with the "
+      "effect / step time with nothing declared; the second \"nothing declared\" row is the noise floor.\n\n",
+      n, a.side, 100.0 * static_cast<double>(std::count(a.edge.begin(), a.edge.end(), 1)) / n, steps, opt.reps);
+  std::printf(
+      "| declared | 1 thread: ns / particle-step | ratio | CPU/wall | 2 threads: ns / particle-step | ratio | "
+      "CPU/wall |\n|---|---|---|---|---|---|---|\n");
   for (std::size_t e = 0; e < effects.size(); ++e)
     std::printf("| %s | %s | %s | %s | %s | %s | %s |\n", effects[e].name,
-                fix(best[0][e].ns_per_particle_step(), 1).c_str(), fix(best[0][e].seconds / best[0][0].seconds, 3).c_str(),
-                best[0][e].share(1).c_str(), fix(best[1][e].ns_per_particle_step(), 1).c_str(),
+                fix(best[0][e].ns_per_particle_step(), 1).c_str(),
+                fix(best[0][e].seconds / best[0][0].seconds, 3).c_str(), best[0][e].share(1).c_str(),
+                fix(best[1][e].ns_per_particle_step(), 1).c_str(),
                 fix(best[1][e].seconds / best[1][0].seconds, 3).c_str(), best[1][e].share(2).c_str());
-  std::printf("\n(reference run: coordination %.2f, candidate pairs / particle %.2f, ball–wall pairs %.0f, "
-              "rebuilds in the window %lld.)\n\n",
-              2.0 * best[1][0].contacts / n, best[1][0].candidates / n, best[1][0].wall_candidates,
-              static_cast<long long>(best[1][0].rebuilds));
+  std::printf(
+      "\n(reference run: coordination %.2f, candidate pairs / particle %.2f, ball–wall pairs %.0f, "
+      "rebuilds in the window %lld.)\n\n",
+      2.0 * best[1][0].contacts / n, best[1][0].candidates / n, best[1][0].wall_candidates,
+      static_cast<long long>(best[1][0].rebuilds));
 }
 
 // ---------------------------------------------------------------------------------------------------------
 
 [[noreturn]] void usage(const std::string& why) {
-  std::fprintf(stderr,
-               "%s\nusage: throughput [--quick] [--only shared|bonded|cpm|scaling|effects] [--specimen-dir DIR] [--reps N]\n",
-               why.c_str());
+  std::fprintf(
+      stderr,
+      "%s\nusage: throughput [--quick] [--only shared|bonded|cpm|scaling|effects] [--specimen-dir DIR] [--reps N]\n",
+      why.c_str());
   std::exit(2);
 }
 
@@ -602,14 +617,15 @@ int main(int argc, char** argv) {
   const Options opt = parse(argc, argv);
   const auto t0 = Clock::now();
   std::printf("# mesocrack throughput%s\n\n", opt.quick ? " (--quick: small sizes)" : "");
-  std::printf("%d hardware threads visible (omp_get_num_procs); timings with omp_set_num_threads(1) and (2). "
-              "OpenMP wait policy: %s%s.\n\n",
-              omp_get_num_procs(), policy ? policy : "libgomp default (spin, then sleep)",
-              policy_set_here ? " (set by this benchmark; run with OMP_WAIT_POLICY=active to measure spinning threads)"
-                              : "");
-  std::printf("Load average (1 / 5 / 15 min) at the start: %s. The machine may be shared: the CPU/wall columns and "
-              "the load after each section tell how quiet it was.\n\n",
-              loadavg().c_str());
+  std::printf(
+      "%d hardware threads visible (omp_get_num_procs); timings with omp_set_num_threads(1) and (2). "
+      "OpenMP wait policy: %s%s.\n\n",
+      omp_get_num_procs(), policy ? policy : "libgomp default (spin, then sleep)",
+      policy_set_here ? " (set by this benchmark; run with OMP_WAIT_POLICY=active to measure spinning threads)" : "");
+  std::printf(
+      "Load average (1 / 5 / 15 min) at the start: %s. The machine may be shared: the CPU/wall columns and "
+      "the load after each section tell how quiet it was.\n\n",
+      loadavg().c_str());
   auto section = [](auto&& fn) {
     fn();
     std::printf("(load average after this section: %s)\n\n", loadavg().c_str());

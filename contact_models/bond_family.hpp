@@ -34,11 +34,11 @@ struct GrainContact {
 // One step of the glued springs, before the bond's strength is consulted.
 template <int D>
 struct GluedTrial {
-  double vn;            // normal relative velocity (> 0 opening)
-  Vec<D> vs;            // shear relative velocity
-  double fn;            // normal force, Tang (3.9), from the gap at bonding: negative (tension) allowed
-  Vec<D> fs_carried;    // last step's shear force turned into the new contact plane
-  Vec<D> fs;            // the trial shear force, Tang (3.5), (3.10): no slip while bonded
+  double vn;          // normal relative velocity (> 0 opening)
+  Vec<D> vs;          // shear relative velocity
+  double fn;          // normal force, Tang (3.9), from the gap at bonding: negative (tension) allowed
+  Vec<D> fs_carried;  // last step's shear force turned into the new contact plane
+  Vec<D> fs;          // the trial shear force, Tang (3.5), (3.10): no slip while bonded
 
   [[gnu::always_inline]] static GluedTrial of(const Linear::Coeffs& c, const ContactGeometry<D>& g, const Vec<D>& fs,
                                               double gap0) {

@@ -13,7 +13,7 @@
 namespace mc {
 
 struct ContactBondParams {
-  LinearParams contact;                          // springs, friction and dashpots, Tang (3.25)–(3.26), (3.38)
+  LinearParams contact;  // springs, friction and dashpots, Tang (3.25)–(3.26), (3.38)
   // Normal (tensile) and shear strength [N]: normal (mean, std) truncated to > 0, or with a Weibull shape
   // k > 0 Weibull with scale λ = the "mean" field (Tang 8.4).
   double normal_mean = kNaN, normal_std = 0.0, normal_weibull = 0.0;
@@ -25,9 +25,9 @@ struct ContactBond {
   using Params = ContactBondParams;
   template <int D>
   struct State {
-    Vec<D> fs = Vec<D>::Zero();     // shear force on B [N]
-    double normal = 0, shear = 0;   // this bond's strengths [N]; 0: no bond (never bonded, or broken)
-    double gap0 = 0;                // gap when bonded [m] (≥ 0): the bonded springs are unstrained there
+    Vec<D> fs = Vec<D>::Zero();    // shear force on B [N]
+    double normal = 0, shear = 0;  // this bond's strengths [N]; 0: no bond (never bonded, or broken)
+    double gap0 = 0;               // gap when bonded [m] (≥ 0): the bonded springs are unstrained there
   };
   using Coeffs = Linear::Coeffs;
 
@@ -42,7 +42,9 @@ struct ContactBond {
 
   static constexpr bool bondable = true;
   template <int D>
-  static bool bonded(const State<D>& s) { return s.normal > 0; }
+  static bool bonded(const State<D>& s) {
+    return s.normal > 0;
+  }
   // A bond glues the pair where it stands: a pair bonded across a small gap (the installation tolerance) is
   // not pulled shut, its normal spring measures from that gap (PFC's reference gap). Overlapping pairs keep
   // their compression.
@@ -62,8 +64,10 @@ struct ContactBond {
     const Vec<D>& vs = t.vs;
     const Vec<D>& fs_before = t.fs_carried;
     Vec<D> fs = t.fs;
-    if (-fn >= s.normal) out.event.mode = CrackMode::Tensile;
-    else if (fs.norm() >= s.shear) out.event.mode = CrackMode::Shear;
+    if (-fn >= s.normal)
+      out.event.mode = CrackMode::Tensile;
+    else if (fs.norm() >= s.shear)
+      out.event.mode = CrackMode::Shear;
     if (out.event.mode == CrackMode::None) {
       s.fs = fs;
       out.force = fn * g.n + fs;
@@ -75,7 +79,7 @@ struct ContactBond {
     // stored ½ F(t−Δt)·F(t)/K by the energy identity of central differences (see ParallelBond::bond_energy).
     s.normal = s.shear = s.gap0 = 0;
     const double fn_before = fn + c.kn * vn * g.dt;  // the overlap closes by v_n Δt per step
-    if (g.overlap <= 0) {  // apart: no force at all
+    if (g.overlap <= 0) {                            // apart: no force at all
       if constexpr (Energy) out.dissipated += 0.5 * fn * fn_before / c.kn + 0.5 * fs.dot(fs_before) / c.ks;
       s.fs.setZero();
       return out;
@@ -110,7 +114,9 @@ struct ContactBond {
     return GrainContact::released_energy<D>(c, s);
   }
   template <int D>
-  static bool persistent(const State<D>& s) { return bonded(s); }
+  static bool persistent(const State<D>& s) {
+    return bonded(s);
+  }
 };
 
 // Compiled in contact_bond.cpp.

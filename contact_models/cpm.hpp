@@ -70,12 +70,12 @@ struct Cpm {
     double eps_d = 0;               // ε_d, damage strain of the visco-damage law (17)
   };
   struct Coeffs {
-    double area;       // A [m²]
-    double length;     // L of a non-cohesive contact: r_a + r_b (a wall: r_b) [m]
-    double kn, kt;     // k_N, k_T [Pa]
-    double tan_phi;    // tan φ (a wall: its friction coefficient)
-    double cohesion;   // c_T0 [Pa] (a wall: 0, and a linear surface)
-    double eps_conf;   // the strain shift of the confinement σ_0 (step 1)
+    double area;      // A [m²]
+    double length;    // L of a non-cohesive contact: r_a + r_b (a wall: r_b) [m]
+    double kn, kt;    // k_N, k_T [Pa]
+    double tan_phi;   // tan φ (a wall: its friction coefficient)
+    double cohesion;  // c_T0 [Pa] (a wall: 0, and a linear surface)
+    double eps_conf;  // the strain shift of the confinement σ_0 (step 1)
     const Params* p;
   };
 
@@ -96,7 +96,7 @@ struct Cpm {
     const double f = fa == fb ? fa : 2.0 * fa * fb / (fa + fb);
     const double kn = p.modulus * f;
     return {D == 2 ? 2.0 * r : M_PI * r * r, ra + rb, kn, kn * p.kt_kn_ratio, p.tan_friction, p.cohesion,
-            confinement_strain(p), &p};
+            confinement_strain(p),           &p};
   }
   // A wall is a non-cohesive partner (Yade: L = A's radius, A = π r²): the ball's springs k_N A/r in series
   // with the wall's, Coulomb friction with the wall's coefficient, no confinement.
@@ -110,13 +110,17 @@ struct Cpm {
   }
 
   static constexpr bool bondable = true;
-  static constexpr bool yields = true;    // first damage goes to the crack log (kind Yield)
-  static constexpr bool only_3d = true;   // the document's law and calibration are for spheres
+  static constexpr bool yields = true;   // first damage goes to the crack log (kind Yield)
+  static constexpr bool only_3d = true;  // the document's law and calibration are for spheres
   static double interaction_radius(const Params& p) { return p.interaction_radius; }
   template <int D>
-  static bool bonded(const State<D>& s) { return s.length > 0; }
+  static bool bonded(const State<D>& s) {
+    return s.length > 0;
+  }
   template <int D>
-  static bool persistent(const State<D>& s) { return bonded(s); }
+  static bool persistent(const State<D>& s) {
+    return bonded(s);
+  }
 
   // A cohesive contact, virgin and stress-free at the distance where it is made (Yade's refLength).
   template <int D, class Normal>
@@ -172,7 +176,8 @@ struct Cpm {
       } else {
         if constexpr (Energy) omega_before = damage(p, s.kappa);
         if (el > s.kappa) {
-          if (el > p.crack_onset_strain && s.kappa <= p.crack_onset_strain) out.event = {CrackMode::Tensile, CrackKind::Yield};
+          if (el > p.crack_onset_strain && s.kappa <= p.crack_onset_strain)
+            out.event = {CrackMode::Tensile, CrackKind::Yield};
           s.kappa = el;
         }
         omega = damage(p, s.kappa);
@@ -217,7 +222,8 @@ struct Cpm {
         // (20)–(22) with the document's coefficient c = ε_0 (1 − ω)(τ_d/Δt)^M_d (ωε_N − ε_d)^(M_d − 1) (as in
         // its summary and in Yade: the overstress (18) scaled by the undamaged fraction 1 − ω).
         const double m = p.damage_rate_exponent, y = target - s.eps_d;
-        const double cc = p.crack_onset_strain * (1.0 - omega) * std::pow(p.damage_time / g.dt, m) * std::pow(y, m - 1.0);
+        const double cc =
+            p.crack_onset_strain * (1.0 - omega) * std::pow(p.damage_time / g.dt, m) * std::pow(y, m - 1.0);
         s.eps_d += y * std::exp(cpm_solve_beta(cc, m));
         const double sv = (target - s.eps_d) * c.kn;
         if constexpr (Energy) out.dissipated += sv * c.area * vn * g.dt;  // the overstress's work, Δε = v_n Δt/L

@@ -28,7 +28,9 @@ inline double scale_to_target(double value, double measured, double target) { re
 
 // The dimensionless properties of the inelastic calibration: the characteristic length k_N G_f/f_t² [m] and
 // the strength ratio f_c/f_t.
-inline double characteristic_length(double kn, double fracture_energy, double ft) { return kn * fracture_energy / (ft * ft); }
+inline double characteristic_length(double kn, double fracture_energy, double ft) {
+  return kn * fracture_energy / (ft * ft);
+}
 
 // Steps 3 and 4 of the procedure: from runs that sampled a property against one parameter (ε_f/ε_0 against
 // k_N G_f/f_t², then tan φ against f_c/f_t), the parameter that gives the target property, by linear

@@ -1,5 +1,5 @@
-// The contact sets of the Hertz–Mindlin contact, compiled once here; hertz_mindlin.hpp announces them (extern template), so the
-// registry, the preprocessor, the tests and the benchmarks share this one instantiation.
+// The contact sets of the Hertz–Mindlin contact, compiled once here; hertz_mindlin.hpp announces them (extern
+// template), so the registry, the preprocessor, the tests and the benchmarks share this one instantiation.
 #include "contact_models/hertz_mindlin.hpp"
 
 namespace mc {

@@ -23,8 +23,8 @@ struct HertzMindlin {
     Vec<D> fs = Vec<D>::Zero();
   };
   struct Coeffs {
-    double cn;    // F^n = cn (U^n)^{3/2}: K^n of (3.27) is cn √U^n
-    double cs;    // k^s = cs |F^n|^{1/3}, Tang (3.28)
+    double cn;  // F^n = cn (U^n)^{3/2}: K^n of (3.27) is cn √U^n
+    double cs;  // k^s = cs |F^n|^{1/3}, Tang (3.28)
     double mu, zeta;
   };
 
@@ -56,7 +56,7 @@ struct HertzMindlin {
     const double fn = c.cn * sq * g.overlap;  // K^n U^n, Tang (3.27)
     const double ks = c.cs * std::cbrt(fn);   // Tang (3.28)
     Vec<D> fs = carry_shear<D>(s.fs, g.n, g.spin_n, g.dt) - ks * vs * g.dt;
-    const double fs_max = c.mu * fn;          // Tang (3.35)–(3.36)
+    const double fs_max = c.mu * fn;  // Tang (3.35)–(3.36)
     const double fs_mag = fs.norm();
     const bool slipping = fs_mag > fs_max;
     if (slipping) {
@@ -95,10 +95,14 @@ struct HertzMindlin {
   // At opening |F^s| ≤ μF^n and k^s ∝ (F^n)^{1/3}, so the shear energy left, ≤ μ²(F^n)^{5/3}/c_s, vanishes with
   // the normal force: nothing to book.
   template <int D>
-  static double released_energy(const Coeffs&, const State<D>&) { return 0.0; }
+  static double released_energy(const Coeffs&, const State<D>&) {
+    return 0.0;
+  }
 
   template <int D>
-  static bool persistent(const State<D>&) { return false; }
+  static bool persistent(const State<D>&) {
+    return false;
+  }
 };
 
 // Compiled in hertz_mindlin.cpp.

@@ -11,10 +11,10 @@
 namespace mc {
 
 struct LinearParams {
-  double modulus = kNaN;      // contact modulus E_c [Pa]: ball k_n = 2 t E_c (2D, t = 1 m) or 4 R E_c (3D), Tang (3.38)
-  double kn_ks_ratio = 1.0;   // k_n / k_s [-]
-  double friction = 0.0;      // μ [-], Tang (3.36)
-  double damping_ratio = 0.0; // ζ [-], fraction of critical damping of normal and shear dashpots
+  double modulus = kNaN;     // contact modulus E_c [Pa]: ball k_n = 2 t E_c (2D, t = 1 m) or 4 R E_c (3D), Tang (3.38)
+  double kn_ks_ratio = 1.0;  // k_n / k_s [-]
+  double friction = 0.0;     // μ [-], Tang (3.36)
+  double damping_ratio = 0.0;  // ζ [-], fraction of critical damping of normal and shear dashpots
 };
 
 struct Linear {
@@ -64,9 +64,9 @@ struct Linear {
     }
     const double vn = g.v_rel.dot(g.n);
     const Vec<D> vs = g.v_rel - vn * g.n;
-    const double fn = c.kn * g.overlap;                            // Tang (3.9)
+    const double fn = c.kn * g.overlap;                                        // Tang (3.9)
     Vec<D> fs = carry_shear<D>(s.fs, g.n, g.spin_n, g.dt) - c.ks * vs * g.dt;  // Tang (3.5), (3.10)
-    const double fs_max = c.mu * fn;                               // Tang (3.36)
+    const double fs_max = c.mu * fn;                                           // Tang (3.36)
     const bool slipping = fs.squaredNorm() > fs_max * fs_max;
     if (slipping) {
       const double fs_mag = fs.norm();
@@ -109,7 +109,9 @@ struct Linear {
   }
 
   template <int D>
-  static bool persistent(const State<D>&) { return false; }
+  static bool persistent(const State<D>&) {
+    return false;
+  }
 };
 
 // Compiled in linear.cpp.

@@ -14,12 +14,12 @@
 namespace mc {
 
 struct ParallelBondParams {
-  LinearParams contact;              // the grain contact in parallel (Tang 3.38: k_n = 2tE_c / 4RE_c)
-  double radius_multiplier = 1.0;    // λ̄ [-], Tang (3.40)
-  double modulus = kNaN;             // Ē_c [Pa]: k̄_n = Ē_c / (R_A + R_B), Tang (3.38)
+  LinearParams contact;            // the grain contact in parallel (Tang 3.38: k_n = 2tE_c / 4RE_c)
+  double radius_multiplier = 1.0;  // λ̄ [-], Tang (3.40)
+  double modulus = kNaN;           // Ē_c [Pa]: k̄_n = Ē_c / (R_A + R_B), Tang (3.38)
   // Per-bond Ē_c: normal (modulus, modulus_std) truncated to > 0, or Weibull (scale modulus, shape k) (8.4).
   double modulus_std = 0.0, modulus_weibull = 0.0;
-  double kn_ks_ratio = 1.0;          // k̄_n / k̄_s [-]
+  double kn_ks_ratio = 1.0;  // k̄_n / k̄_s [-]
   // σ̄_c, τ̄_c [Pa]: normal (mean, std) truncated to > 0, or with a Weibull shape k > 0 Weibull with scale
   // λ = the "mean" field (Tang 8.4).
   double tensile_mean = kNaN, tensile_std = 0.0, tensile_weibull = 0.0;
@@ -32,8 +32,10 @@ struct BondSection {
   double radius, area, inertia, polar;
   static BondSection of(double lambda, double ra, double rb) {
     const double r = lambda * std::min(ra, rb);  // Tang (3.40)
-    if constexpr (D == 2) return {r, 2.0 * r, 2.0 / 3.0 * r * r * r, 0.0};
-    else return {r, M_PI * r * r, 0.25 * M_PI * r * r * r * r, 0.5 * M_PI * r * r * r * r};
+    if constexpr (D == 2)
+      return {r, 2.0 * r, 2.0 / 3.0 * r * r * r, 0.0};
+    else
+      return {r, M_PI * r * r, 0.25 * M_PI * r * r * r * r, 0.5 * M_PI * r * r * r * r};
   }
 };
 
@@ -42,28 +44,28 @@ struct ParallelBond {
   using Params = ParallelBondParams;
   template <int D>
   struct State {
-    Vec<D> fs = Vec<D>::Zero();      // linear contact shear force [N]
-    Vec<D> bond_fs = Vec<D>::Zero(); // F̄^s [N]
-    Rot<D> bond_ms = Rot<D>::Zero(); // M̄^s, bending [N m] (2D: the only moment)
-    double bond_fn = 0;              // F̄^n [N], positive in compression
-    double bond_mn = 0;              // M̄^n, twisting [N m] (3D)
-    double tensile = 0, shear = 0;   // this bond's strengths σ̄_c, τ̄_c [Pa]; 0: no bond (never bonded or broken)
-    double stiffness = 1;            // this bond's Ē_c over the scene's bond_modulus (heterogeneity, Tang §8.1.2)
+    Vec<D> fs = Vec<D>::Zero();       // linear contact shear force [N]
+    Vec<D> bond_fs = Vec<D>::Zero();  // F̄^s [N]
+    Rot<D> bond_ms = Rot<D>::Zero();  // M̄^s, bending [N m] (2D: the only moment)
+    double bond_fn = 0;               // F̄^n [N], positive in compression
+    double bond_mn = 0;               // M̄^n, twisting [N m] (3D)
+    double tensile = 0, shear = 0;    // this bond's strengths σ̄_c, τ̄_c [Pa]; 0: no bond (never bonded or broken)
+    double stiffness = 1;             // this bond's Ē_c over the scene's bond_modulus (heterogeneity, Tang §8.1.2)
   };
   // What the force pass needs of a pair, computed every step from the radii (cheaper than storing it: two
   // divisions and a few products, against 56 more bytes per bond to stream).
   struct Coeffs {
     Linear::Coeffs contact;
-    double kn_a, ks_a;         // k̄_n A, k̄_s A [N/m], Tang (3.37)
-    double kn_i, ks_j;         // k̄_n I, k̄_s J [N m/rad]
-    double inv_a, r_i, r_j;    // 1/A, R̄/I, R̄/J: stress per unit force and moment, Tang (3.41)
+    double kn_a, ks_a;       // k̄_n A, k̄_s A [N/m], Tang (3.37)
+    double kn_i, ks_j;       // k̄_n I, k̄_s J [N m/rad]
+    double inv_a, r_i, r_j;  // 1/A, R̄/I, R̄/J: stress per unit force and moment, Tang (3.41)
   };
 
   template <int D>
   static Coeffs pair(const Params& p, double ra, double rb, double fa = 1, double fb = 1) {
     const double inv_sum = 1.0 / (ra + rb);
-    const double kn = p.modulus * inv_sum;           // Tang (3.38)
-    const double ks = kn * (1.0 / p.kn_ks_ratio);    // the reciprocal is loop-invariant: hoisted
+    const double kn = p.modulus * inv_sum;         // Tang (3.38)
+    const double ks = kn * (1.0 / p.kn_ks_ratio);  // the reciprocal is loop-invariant: hoisted
     const double r = p.radius_multiplier * std::min(ra, rb), inv_r = 1.0 / r;  // Tang (3.40)
     // The grain contact (Linear::pair), sharing 1/(R_A + R_B) when the particles have no stiffness factors.
     const Linear::Coeffs lc = fa == 1 && fb == 1 ? Linear::pair_from<D>(p.contact, D == 2 ? 0.5 : ra * rb * inv_sum)
@@ -72,8 +74,14 @@ struct ParallelBond {
       return {lc, kn * 2 * r, ks * 2 * r, kn * (2.0 / 3.0) * r * r * r, 0.0, 0.5 * inv_r, 1.5 * inv_r * inv_r, 0.0};
     } else {  // A = πR̄², I = πR̄⁴/4, J = πR̄⁴/2
       const double r4 = r * r * r * r, inv_r3 = inv_r * inv_r * inv_r;
-      return {lc, kn * M_PI * r * r, ks * M_PI * r * r, kn * 0.25 * M_PI * r4, ks * 0.5 * M_PI * r4,
-              inv_r * inv_r * M_1_PI, 4.0 * M_1_PI * inv_r3, 2.0 * M_1_PI * inv_r3};
+      return {lc,
+              kn * M_PI * r * r,
+              ks * M_PI * r * r,
+              kn * 0.25 * M_PI * r4,
+              ks * 0.5 * M_PI * r4,
+              inv_r * inv_r * M_1_PI,
+              4.0 * M_1_PI * inv_r3,
+              2.0 * M_1_PI * inv_r3};
     }
   }
   template <int D>
@@ -84,7 +92,9 @@ struct ParallelBond {
   static constexpr bool bondable = true;
 
   template <int D>
-  static bool bonded(const State<D>& s) { return s.tensile > 0; }
+  static bool bonded(const State<D>& s) {
+    return s.tensile > 0;
+  }
 
   // A new bond: stress-free, with its own strengths drawn from the scene's distributions (Tang Table 5.1).
   template <int D, class Normal>
@@ -140,16 +150,20 @@ struct ParallelBond {
       s.bond_mn -= c.ks_j * wn * kdt;
       s.bond_ms = carry_shear<3>(s.bond_ms, g.n, g.spin_n, dt) - c.kn_i * (g.w_rel - wn * g.n) * kdt;
     }
-    if (breaks_in_tension<D>(c, s)) [[unlikely]] out.event.mode = CrackMode::Tensile;
-    else if (breaks_in_shear<D>(c, s)) [[unlikely]] out.event.mode = CrackMode::Shear;
+    if (breaks_in_tension<D>(c, s)) [[unlikely]]
+      out.event.mode = CrackMode::Tensile;
+    else if (breaks_in_shear<D>(c, s)) [[unlikely]]
+      out.event.mode = CrackMode::Shear;
     if (out.event.mode != CrackMode::None) [[unlikely]] {
       if constexpr (Energy) out.dissipated += bond_energy<D>(c, before, s);  // released with the crack
       s = State<D>{s.fs};
       return out;
     }
     out.force += s.bond_fn * g.n + s.bond_fs;
-    if constexpr (D == 2) out.moment += s.bond_ms;
-    else out.moment += s.bond_mn * g.n + s.bond_ms;
+    if constexpr (D == 2)
+      out.moment += s.bond_ms;
+    else
+      out.moment += s.bond_mn * g.n + s.bond_ms;
     return out;
   }
 
@@ -174,7 +188,9 @@ struct ParallelBond {
     return 0.5 * e / a.stiffness;
   }
   template <int D>
-  static double strain_energy_bond(const Coeffs& c, const State<D>& s) { return bond_energy<D>(c, s, s); }
+  static double strain_energy_bond(const Coeffs& c, const State<D>& s) {
+    return bond_energy<D>(c, s, s);
+  }
   template <int D>
   static double strain_energy(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
     return GrainContact::strain_energy<D>(c.contact, g, s) + (bonded(s) ? strain_energy_bond<D>(c, s) : 0.0);
@@ -184,7 +200,9 @@ struct ParallelBond {
     return GrainContact::released_energy<D>(c.contact, s);
   }
   template <int D>
-  static bool persistent(const State<D>& s) { return bonded(s); }
+  static bool persistent(const State<D>& s) {
+    return bonded(s);
+  }
 };
 
 // Compiled in parallel_bond.cpp.

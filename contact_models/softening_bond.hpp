@@ -18,8 +18,8 @@ namespace mc {
 // The contact bond's springs and strengths (F_c^n, F_c^s [N]), and how far the bond softens.
 struct SofteningBondParams : ContactBondParams {
   // U_p,max comes from exactly one of these (the other is 0).
-  double plastic_limit = 0.0;                    // U_p,max [m]
-  double fracture_energy = 0.0;                  // G_f [J/m²] over the bond's section
+  double plastic_limit = 0.0;    // U_p,max [m]
+  double fracture_energy = 0.0;  // G_f [J/m²] over the bond's section
 };
 
 // What it shares with the contact bond (glued springs measured from the gap at bonding, their energy, the
@@ -83,15 +83,15 @@ struct SofteningBond : ContactBond {
     double m, base, h, e;
     CrackMode mode;
     if (tension) {
-      m = std::sqrt(fn * fn + fs_mag * fs_mag);                             // Tang (3.43)
-      const double a = std::atan2(fs_mag, -fn) / (0.5 * M_PI);            // 2α/π
-      h = ((1.0 - a) * s.normal + a * s.shear) / up_max;                  // Tang (3.42)
+      m = std::sqrt(fn * fn + fs_mag * fs_mag);                 // Tang (3.43)
+      const double a = std::atan2(fs_mag, -fn) / (0.5 * M_PI);  // 2α/π
+      h = ((1.0 - a) * s.normal + a * s.shear) / up_max;        // Tang (3.42)
       base = 0.0;
       e = std::sqrt(fn * fn / (c.kn * c.kn) + fs_mag * fs_mag / (c.ks * c.ks));
-      mode = fs_mag < -fn ? CrackMode::Tensile : CrackMode::Shear;        // α < π/4: opened rather than slid
+      mode = fs_mag < -fn ? CrackMode::Tensile : CrackMode::Shear;  // α < π/4: opened rather than slid
     } else {
       m = fs_mag;
-      base = c.mu * fn;                                                    // Tang (3.47)
+      base = c.mu * fn;  // Tang (3.47)
       h = s.shear / up_max;
       e = fs_mag / c.ks;
       mode = CrackMode::Shear;

@@ -46,8 +46,8 @@ Grid<D> bin(const std::vector<Vec<D>>& x, double h) {
   const double cap = std::pow(8.0 * static_cast<double>(x.size()) + 64.0, 1.0 / D);
   for (int k = 0; k < D; ++k) {
     const double ext = hi[k] - lo[k];
-    g.n[k] = std::max<std::int64_t>(1, std::min<std::int64_t>(static_cast<std::int64_t>(ext / h) + 1,
-                                                              static_cast<std::int64_t>(cap)));
+    g.n[k] = std::max<std::int64_t>(
+        1, std::min<std::int64_t>(static_cast<std::int64_t>(ext / h) + 1, static_cast<std::int64_t>(cap)));
     if (static_cast<double>(g.n[k]) * h <= ext) g.h = std::max(g.h, ext / static_cast<double>(g.n[k]) * 1.000001);
   }
   std::int64_t cells = 1;

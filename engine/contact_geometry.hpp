@@ -9,14 +9,14 @@ namespace mc {
 // Partner A (index i, or the wall) and partner B (index j, the ball for a ball–wall contact).
 template <int D>
 struct ContactGeometry {
-  Vec<D> n;          // unit normal from A to B, Tang (3.1)
-  double overlap;    // U^n = R_A + R_B − d (> 0 when touching), Tang (3.3)
-  Vec<D> v_rel;      // velocity of B relative to A at the contact point, Tang (3.6)
-  Rot<D> w_rel;      // ω_B − ω_A (bending and twisting of bonds)
-  double spin_n;     // ½(ω_A + ω_B)·n (3D): rigid spin of the contact plane about its normal
-  double r_a, r_b;   // radii (r_a = ∞ for a wall)
-  double m_a, m_b;   // masses (m_a = 0 for a wall, which is immovable)
-  double k_a, k_b;   // the particles' stiffness factors (1 for a wall, and unless heterogeneity is declared)
+  Vec<D> n;         // unit normal from A to B, Tang (3.1)
+  double overlap;   // U^n = R_A + R_B − d (> 0 when touching), Tang (3.3)
+  Vec<D> v_rel;     // velocity of B relative to A at the contact point, Tang (3.6)
+  Rot<D> w_rel;     // ω_B − ω_A (bending and twisting of bonds)
+  double spin_n;    // ½(ω_A + ω_B)·n (3D): rigid spin of the contact plane about its normal
+  double r_a, r_b;  // radii (r_a = ∞ for a wall)
+  double m_a, m_b;  // masses (m_a = 0 for a wall, which is immovable)
+  double k_a, k_b;  // the particles' stiffness factors (1 for a wall, and unless heterogeneity is declared)
   double dt;
   // m_A m_B / (m_A + m_B) (m_B for a wall): the critical damping of dashpots. Only models with dashpots ask.
   double m_eff() const { return m_a > 0 ? m_a * m_b / (m_a + m_b) : m_b; }
@@ -24,9 +24,9 @@ struct ContactGeometry {
 
 // What a wall brings to a ball–wall contact: its own springs (in series with the ball's) and friction.
 struct WallMaterial {
-  double kn = kNaN;           // N/m
-  double ks = kNaN;           // N/m
-  double friction = 0.0;      // μ [-]
+  double kn = kNaN;       // N/m
+  double ks = kNaN;       // N/m
+  double friction = 0.0;  // μ [-]
 };
 
 // Force on B (A receives −force). `moment` is a moment on B carried by the model itself (bond bending and
@@ -44,8 +44,8 @@ struct ContactForce {
 
 // Stiffness seen by the timestep estimate, Tang (3.22)–(3.24).
 struct ContactStiffness {
-  double normal = 0;      // N/m
-  double shear = 0;       // N/m; acting at the contact point it also resists rotation (shear·lever², added by the engine)
+  double normal = 0;  // N/m
+  double shear = 0;   // N/m; acting at the contact point it also resists rotation (shear·lever², added by the engine)
   double rotational = 0;  // N m/rad carried by the model itself (bond bending)
 };
 
@@ -67,7 +67,8 @@ template <int D>
   // stable step θ ≲ 1e-6: the loss (≲ 1e-12 of |F| per step, dissipative, never generative) is left, which
   // spares a division on the critical path of every carried vector. A tilt above 1e-4 rad in one step (violent
   // impacts) restores the magnitude exactly.
-  if (p * p <= 1e-8 * mag2) [[likely]] return t;
+  if (p * p <= 1e-8 * mag2) [[likely]]
+    return t;
   const double t2 = mag2 - p * p;
   return t2 > 0 ? Vec<D>(t * std::sqrt(mag2 / t2)) : Vec<D>::Zero();
 }

@@ -35,9 +35,9 @@ concept ContactModel = requires(const typename M::Params& p, const WallMaterial&
 };
 
 template <class M, int D>
-concept BondModel = ContactModel<M, D> && requires(const typename M::Params& p, const ContactGeometry<D>& g,
-                                                   typename M::template State<D>& s,
-                                                   const typename M::template State<D>& cs, PairRandom& rng) {
+concept BondModel = ContactModel<M, D> &&
+    requires(const typename M::Params& p, const ContactGeometry<D>& g, typename M::template State<D>& s,
+             const typename M::template State<D>& cs, PairRandom& rng) {
   M::bondable;
   { M::template bonded<D>(cs) } -> std::convertible_to<bool>;
   M::template install<D>(p, g, s, rng);

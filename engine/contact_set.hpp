@@ -3,20 +3,20 @@
 #pragma once
 #include <omp.h>
 
-#include <cstdint>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <type_traits>
 #include <vector>
 
 #include "engine/cell_grid.hpp"
-#include "engine/parallel.hpp"
-#include "engine/random.hpp"
 #include "engine/contact_geometry.hpp"
 #include "engine/contact_model.hpp"
+#include "engine/parallel.hpp"
 #include "engine/particles.hpp"
+#include "engine/random.hpp"
 #include "engine/wall.hpp"
 
 namespace mc {
@@ -39,7 +39,6 @@ struct SlotStiffness {
   std::vector<double> kt, kra, krb;
 };
 
-
 template <int D>
 class ContactSetBase {
  public:
@@ -55,10 +54,10 @@ class ContactSetBase {
   // energy dissipated this step (friction, dashpots) when `energy` is set, else 0.
   virtual double forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy,
                         Slots<D>& slots, std::size_t offset, std::size_t wall_offset) = 0;
-  virtual void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness& k,
-                         std::size_t offset, std::size_t wall_offset) const = 0;
+  virtual void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness& k, std::size_t offset,
+                         std::size_t wall_offset) const = 0;
   virtual ContactStiffness nominal_stiffness(double r) const = 0;  // one contact with an identical particle
-  virtual double damping_ratio() const = 0;                       // of the model's dashpots (0: none)
+  virtual double damping_ratio() const = 0;                        // of the model's dashpots (0: none)
   // Bonds the given pairs (sorted, all present in the list); returns how many were bonded. Models without
   // bonds bond nothing.
   virtual std::size_t install_bonds(const Particles<D>& p, const std::vector<Pair>& pairs, std::uint64_t seed) = 0;
@@ -68,7 +67,7 @@ class ContactSetBase {
   virtual double strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const = 0;
   // Bonds that broke or first yielded in the last forces() call, in pair order (the same on any thread count).
   virtual const std::vector<PairEvent<D>>& events() const = 0;
-  virtual std::size_t bond_count() const = 0;  // intact bonds
+  virtual std::size_t bond_count() const = 0;    // intact bonds
   virtual std::size_t memory_bytes() const = 0;  // pairs, histories and side arrays, as allocated
   // The whole history as bytes (checkpoints): pairs, wall pairs and states.
   virtual std::vector<std::uint8_t> save() const = 0;
@@ -87,7 +86,10 @@ template <int D>
   cb = ca - d;                                 // centre of B to the contact point
   g.v_rel = (p.v[j] + Dim<D>::cross(p.w[j], cb)) - (p.v[i] + Dim<D>::cross(p.w[i], ca));
   g.w_rel = p.w[j] - p.w[i];
-  if constexpr (D == 3) g.spin_n = 0.5 * (p.w[i] + p.w[j]).dot(g.n); else g.spin_n = 0;
+  if constexpr (D == 3)
+    g.spin_n = 0.5 * (p.w[i] + p.w[j]).dot(g.n);
+  else
+    g.spin_n = 0;
   g.r_a = p.radius[i];
   g.r_b = p.radius[j];
   g.m_a = p.mass[i];
@@ -106,12 +108,15 @@ inline ContactGeometry<D> wall_geometry(const Particles<D>& p, const Wall<D>& w,
   const Vec<D> d = p.x[j] - c;
   const double dist = d.norm();
   g.n = dist > 0 ? Vec<D>(d / dist) : w.normal;
-  g.overlap = p.radius[j] - dist;                   // Tang (3.3), ball–wall
-  cb = -(p.radius[j] - 0.5 * g.overlap) * g.n;      // Tang (3.4)
-  cw = p.x[j] + cb - w.origin;                       // contact point about the wall origin
+  g.overlap = p.radius[j] - dist;               // Tang (3.3), ball–wall
+  cb = -(p.radius[j] - 0.5 * g.overlap) * g.n;  // Tang (3.4)
+  cw = p.x[j] + cb - w.origin;                  // contact point about the wall origin
   g.v_rel = p.v[j] + Dim<D>::cross(p.w[j], cb) - w.velocity;
   g.w_rel = p.w[j];
-  if constexpr (D == 3) g.spin_n = 0.5 * p.w[j].dot(g.n); else g.spin_n = 0;
+  if constexpr (D == 3)
+    g.spin_n = 0.5 * p.w[j].dot(g.n);
+  else
+    g.spin_n = 0;
   g.r_a = kInf;
   g.r_b = p.radius[j];
   g.m_a = 0;
@@ -123,7 +128,7 @@ inline ContactGeometry<D> wall_geometry(const Particles<D>& p, const Wall<D>& w,
 }
 
 template <class Model, int D>
-  requires ContactModel<Model, D>
+requires ContactModel<Model, D>
 class ContactSet final : public ContactSetBase<D> {
  public:
   using State = typename Model::template State<D>;
@@ -155,7 +160,8 @@ class ContactSet final : public ContactSetBase<D> {
       const auto [i, j] = pairs_[c];
       Vec<D> ca, cb;
       const auto g = ball_geometry(p, i, j, 0.0, ca, cb);
-      const auto st = Model::template stiffness<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g, states_[c]);
+      const auto st =
+          Model::template stiffness<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g, states_[c]);
       k.kt[off + c] = st.normal + st.shear;
       k.kra[off + c] = st.shear * ca.squaredNorm() + st.rotational;
       k.krb[off + c] = st.shear * cb.squaredNorm() + st.rotational;
@@ -216,13 +222,17 @@ class ContactSet final : public ContactSetBase<D> {
   }
 
   double interaction_radius() const override {
-    if constexpr (requires { Model::interaction_radius(params_); }) return Model::interaction_radius(params_);
-    else return 0.0;
+    if constexpr (requires { Model::interaction_radius(params_); })
+      return Model::interaction_radius(params_);
+    else
+      return 0.0;
   }
 
   double damping_ratio() const override {
-    if constexpr (requires { params_.damping_ratio; }) return params_.damping_ratio;
-    else return 0.0;
+    if constexpr (requires { params_.damping_ratio; })
+      return params_.damping_ratio;
+    else
+      return 0.0;
   }
 
   double strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const override {
@@ -233,7 +243,8 @@ class ContactSet final : public ContactSetBase<D> {
       for (std::size_t c = std::size_t(b) * kBlock; c < end; ++c) {
         Vec<D> ca, cb;
         const auto g = ball_geometry(p, pairs_[c][0], pairs_[c][1], 0.0, ca, cb);
-        part[b] += Model::template strain_energy<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g, states_[c]);
+        part[b] += Model::template strain_energy<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g,
+                                                    states_[c]);
       }
     }
     double e = 0;
@@ -270,8 +281,8 @@ class ContactSet final : public ContactSetBase<D> {
 
  private:
   template <bool Energy>
-  double forces_impl(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, Slots<D>& s,
-                     std::size_t off, std::size_t woff) {
+  double forces_impl(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, Slots<D>& s, std::size_t off,
+                     std::size_t woff) {
     const std::size_t n = pairs_.size();
     // A local copy: the compiler then knows no store in the loop changes it, and hoists what depends on the
     // parameters alone (reciprocals) out of the loop.
@@ -294,7 +305,8 @@ class ContactSet final : public ContactSetBase<D> {
         const double reach = p.radius[i] + p.radius[j];
         if (d.squaredNorm() >= reach * reach && !Model::template persistent<D>(st)) {
           if constexpr (Energy) {
-            dissipated += Model::template released_energy<D>(Model::template pair<D>(prm, p.radius[i], p.radius[j], p.stiffness[i], p.stiffness[j]), st);
+            dissipated += Model::template released_energy<D>(
+                Model::template pair<D>(prm, p.radius[i], p.radius[j], p.stiffness[i], p.stiffness[j]), st);
             if (dashpot_[c].squaredNorm() > 0) {  // the last step's dashpot force acted as the pair parted
               Vec<D> ca, cb;
               dissipated -= 0.5 * dashpot_[c].dot(ball_geometry(p, i, j, dt, ca, cb).v_rel) * dt;
@@ -311,7 +323,8 @@ class ContactSet final : public ContactSetBase<D> {
         const auto g = ball_geometry(p, i, j, dt, ca, cb);
         // The model works on a copy in registers; one store back.
         State local = st;
-        const auto r = Model::template force<D, Energy>(Model::template pair<D>(prm, g.r_a, g.r_b, g.k_a, g.k_b), g, local);
+        const auto r =
+            Model::template force<D, Energy>(Model::template pair<D>(prm, g.r_a, g.r_b, g.k_a, g.k_b), g, local);
         st = local;
         s.f[slot] = r.force;
         s.ma[slot] = Dim<D>::cross(ca, Vec<D>(-r.force)) - r.moment;
@@ -340,8 +353,8 @@ class ContactSet final : public ContactSetBase<D> {
       const std::size_t slot = woff + c;
       Vec<D> cw, cb;
       const auto g = wall_geometry(p, walls[w], j, dt, cw, cb);
-      const auto r =
-          Model::template force<D, Energy>(Model::template wall<D>(prm, walls[w].material, g.r_b, g.k_b), g, wall_states_[c]);
+      const auto r = Model::template force<D, Energy>(Model::template wall<D>(prm, walls[w].material, g.r_b, g.k_b), g,
+                                                      wall_states_[c]);
       s.f[slot] = r.force;
       s.ma[slot] = Dim<D>::cross(cw, Vec<D>(-r.force)) - r.moment;  // on the wall, about its origin
       s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
@@ -389,10 +402,10 @@ class ContactSet final : public ContactSetBase<D> {
   template <class T>
   static void put(std::vector<std::uint8_t>& out, const std::vector<T>& v) {
     const std::uint64_t n = v.size();
-    const auto* p = reinterpret_cast<const std::uint8_t*>(&n);
-    out.insert(out.end(), p, p + sizeof n);
-    const auto* q = reinterpret_cast<const std::uint8_t*>(v.data());
-    out.insert(out.end(), q, q + n * sizeof(T));
+    const std::size_t at = out.size(), bytes = n * sizeof(T);
+    out.resize(at + sizeof n + bytes);
+    std::memcpy(out.data() + at, &n, sizeof n);
+    if (bytes > 0) std::memcpy(out.data() + at + sizeof n, static_cast<const void*>(v.data()), bytes);
   }
   template <class T>
   static void get(const std::vector<std::uint8_t>& in, std::size_t& at, std::vector<T>& v) {

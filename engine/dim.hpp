@@ -16,10 +16,10 @@ struct Dim;
 
 template <>
 struct Dim<2> {
-  static constexpr int rot = 1;                // rotational degrees of freedom
-  using Rot = Eigen::Matrix<double, 1, 1>;     // angular velocity, moment
-  using Orientation = double;                  // angle [rad]
-  static constexpr double inertia_factor = 0.5;  // I = ½ m R² for a disc, Tang (3.15)
+  static constexpr int rot = 1;                            // rotational degrees of freedom
+  using Rot = Eigen::Matrix<double, 1, 1>;                 // angular velocity, moment
+  using Orientation = double;                              // angle [rad]
+  static constexpr double inertia_factor = 0.5;            // I = ½ m R² for a disc, Tang (3.15)
   static double volume(double r) { return M_PI * r * r; }  // per unit thickness t = 1 m
   // ω × r for ω along z
   static Vec<2> cross(const Rot& w, const Vec<2>& r) { return {-w[0] * r[1], w[0] * r[0]}; }

@@ -49,7 +49,7 @@ struct Count {
 template <int D>
 struct Moments {
   double n = 0;
-  Vec<D> x = Vec<D>::Zero(), v = Vec<D>::Zero();  // Σ x^p, Σ V^p
+  Vec<D> x = Vec<D>::Zero(), v = Vec<D>::Zero();             // Σ x^p, Σ V^p
   Tensor<D> xx = Tensor<D>::Zero(), vx = Tensor<D>::Zero();  // Σ x̃ x̃ᵀ, Σ Ṽ x̃ᵀ
   Moments& operator+=(const Moments& o) {
     n += o.n, x += o.x, v += o.v, xx += o.xx, vx += o.vx;
@@ -92,9 +92,8 @@ Tensor<D> average_stress(const World<D>& world, const Region<D>& region) {
     StressSum<D> t;
     if (!region.contains(p.x[i])) return t;
     t.volume = Dim<D>::volume(p.radius[i]);
-    world.for_each_contact_of(i, [&](std::size_t, const Vec<D>& f, const Vec<D>& lever) {
-      t.s += lever * f.transpose();
-    });
+    world.for_each_contact_of(i,
+                              [&](std::size_t, const Vec<D>& f, const Vec<D>& lever) { t.s += lever * f.transpose(); });
     return t;
   });
   if (sum.volume == 0) return Tensor<D>::Constant(kNaN);

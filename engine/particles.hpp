@@ -15,14 +15,14 @@ using FixMask = std::uint8_t;
 template <int D>
 struct Particles {
   using R = Rot<D>;
-  std::vector<Vec<D>> x, v, f;            // position [m], velocity at t−Δt/2 [m/s], resultant force [N]
-  std::vector<R> w, m;                    // angular velocity [rad/s], resultant moment [N m]
+  std::vector<Vec<D>> x, v, f;  // position [m], velocity at t−Δt/2 [m/s], resultant force [N]
+  std::vector<R> w, m;          // angular velocity [rad/s], resultant moment [N m]
   std::vector<typename Dim<D>::Orientation> q;
-  std::vector<double> radius, mass, inertia;   // [m], [kg], [kg m²]
+  std::vector<double> radius, mass, inertia;  // [m], [kg], [kg m²]
   std::vector<int> phase;
-  std::vector<double> stiffness;          // factor on the particle's own springs (heterogeneity, Tang §8.1.2); 1
+  std::vector<double> stiffness;  // factor on the particle's own springs (heterogeneity, Tang §8.1.2); 1
   std::vector<FixMask> fix;
-  std::vector<Vec<D>> f_applied;          // declared external loads (empty unless the scene applies any)
+  std::vector<Vec<D>> f_applied;  // declared external loads (empty unless the scene applies any)
   std::vector<R> m_applied;
 
   int size() const { return static_cast<int>(x.size()); }

@@ -26,7 +26,7 @@ struct SpecimenData {
   std::vector<double> x, radius;  // x: N·D
   std::vector<std::int32_t> phase;
   std::vector<std::string> phase_names;
-  std::vector<std::int64_t> id;   // the specimen's own ids (bodies may be renumbered for locality)
+  std::vector<std::int64_t> id;                       // the specimen's own ids (bodies may be renumbered for locality)
   std::vector<std::pair<std::string, double>> facts;  // what generating it measured (porosity, bonds per phase pair …)
   std::vector<std::vector<std::array<double, 2>>> outlines;  // aggregate outlines in the picture plane
 };

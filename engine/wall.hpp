@@ -19,28 +19,28 @@ enum class WallControl { Fixed, Velocity, Servo };
 template <int D>
 struct Wall {
   std::string name;
-  Vec<D> origin;                      // centre of the segment/rectangle, a point of an infinite wall [m]
-  Vec<D> normal;                      // unit normal, pointing to the side where the material is
-  std::array<Vec<D>, D - 1> axis;     // in-plane unit axes
-  std::array<double, D - 1> half;     // half-extents along the axes [m]; ∞ for an infinite wall
+  Vec<D> origin;                   // centre of the segment/rectangle, a point of an infinite wall [m]
+  Vec<D> normal;                   // unit normal, pointing to the side where the material is
+  std::array<Vec<D>, D - 1> axis;  // in-plane unit axes
+  std::array<double, D - 1> half;  // half-extents along the axes [m]; ∞ for an infinite wall
   WallMaterial material;
 
   WallControl control = WallControl::Fixed;
   Vec<D> target_velocity = Vec<D>::Zero();  // Velocity control [m/s]
-  double ramp_time = 0;                      // [s]: velocity rises as (1 − cos πt/T)/2, no jerk at start
-  double target_stress = 0;                  // Servo: compressive normal stress to hold [Pa]
-  double servo_area = kNaN;                  // [m² in 3D, m in 2D]; NaN: the wall's own area
+  double ramp_time = 0;                     // [s]: velocity rises as (1 − cos πt/T)/2, no jerk at start
+  double target_stress = 0;                 // Servo: compressive normal stress to hold [Pa]
+  double servo_area = kNaN;                 // [m² in 3D, m in 2D]; NaN: the wall's own area
   // Pairs of opposite walls (indices) whose current distances span the loaded area (one pair in 2D, two in
   // 3D): the stress follows the specimen as it shrinks, as PFC computes it. Empty: servo_area or own area.
   std::vector<std::array<int, 2>> area_between;
-  double servo_gain = 0.5;                   // α of the PFC servo, 0 < α ≤ 1
-  double servo_max_speed = kInf;             // [m/s]
+  double servo_gain = 0.5;        // α of the PFC servo, 0 < α ≤ 1
+  double servo_max_speed = kInf;  // [m/s]
 
   Vec<D> velocity = Vec<D>::Zero();
-  Vec<D> displacement = Vec<D>::Zero();      // since the start of the run [m]
-  Vec<D> force = Vec<D>::Zero();             // exerted by the balls on the wall [N]
-  Rot<D> moment = Rot<D>::Zero();            // about the origin [N m]
-  double contact_kn = 0;                     // Σ(k_n + k_s) of its touching contacts (servo gain; ≥ Σk_n, so conservative)
+  Vec<D> displacement = Vec<D>::Zero();  // since the start of the run [m]
+  Vec<D> force = Vec<D>::Zero();         // exerted by the balls on the wall [N]
+  Rot<D> moment = Rot<D>::Zero();        // about the origin [N m]
+  double contact_kn = 0;  // Σ(k_n + k_s) of its touching contacts (servo gain; ≥ Σk_n, so conservative)
 
   // Closest point of the wall to p; the contact normal runs from it to p.
   Vec<D> closest(const Vec<D>& p) const {
@@ -79,8 +79,10 @@ struct Wall {
         // safer gain).
         const double a = std::isnan(servo_area) ? area() : servo_area;
         double speed = 0;
-        if (contact_kn > 0) speed = servo_gain * a / (contact_kn * dt) * (target_stress - normal_stress());
-        else if (std::isfinite(servo_max_speed)) speed = servo_max_speed;  // nothing touched yet: approach at full speed
+        if (contact_kn > 0)
+          speed = servo_gain * a / (contact_kn * dt) * (target_stress - normal_stress());
+        else if (std::isfinite(servo_max_speed))
+          speed = servo_max_speed;  // nothing touched yet: approach at full speed
         speed = std::clamp(speed, -servo_max_speed, servo_max_speed);
         velocity = speed * normal;
         break;

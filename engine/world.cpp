@@ -5,9 +5,9 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <iterator>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <sstream>
 
 #include "engine/errors.hpp"
@@ -28,7 +28,8 @@ void World<D>::init() {
   // Until the first step, the kinetic energy is that of the initial velocities.
   ke_half_ = 0;
   for (int i = 0; i < n; ++i)
-    ke_half_ += 0.5 * (particles.mass[i] * particles.v[i].squaredNorm() + particles.inertia[i] * particles.w[i].squaredNorm());
+    ke_half_ +=
+        0.5 * (particles.mass[i] * particles.v[i].squaredNorm() + particles.inertia[i] * particles.w[i].squaredNorm());
 }
 
 template <int D>
@@ -128,7 +129,8 @@ std::size_t World<D>::install_bonds(double tolerance, std::uint64_t seed) {
   for (int s = 0; s < nsets; ++s) {
     // The pairs to bond join the list (they may lie beyond the skin), then get their bonds.
     std::vector<Pair> all;
-    std::set_union(sets[s]->pairs().begin(), sets[s]->pairs().end(), bond[s].begin(), bond[s].end(), std::back_inserter(all));
+    std::set_union(sets[s]->pairs().begin(), sets[s]->pairs().end(), bond[s].begin(), bond[s].end(),
+                   std::back_inserter(all));
     sets[s]->set_pairs(all);
     n += sets[s]->install_bonds(particles, bond[s], seed);
   }
@@ -171,7 +173,7 @@ double World<D>::critical_timestep() {
       kt = st.normal + st.shear;
       kr = st.shear * particles.radius[i] * particles.radius[i] + st.rotational;
     }
-    double t = std::sqrt(particles.mass[i] / kt);                  // Tang (3.22)
+    double t = std::sqrt(particles.mass[i] / kt);                       // Tang (3.22)
     if (kr > 0) t = std::min(t, std::sqrt(particles.inertia[i] / kr));  // Tang (3.23)
     tmin = std::min(tmin, t);
   }
@@ -230,7 +232,8 @@ std::int64_t World<D>::crack_count(CrackKind kind, CrackMode mode, int phase_a, 
   std::int64_t n = 0;
   for (int a = 0; a < np; ++a)
     for (int b = a; b < np; ++b) {
-      const bool match = (phase_a < 0 && phase_b < 0) || (std::min(phase_a, phase_b) == a && std::max(phase_a, phase_b) == b);
+      const bool match =
+          (phase_a < 0 && phase_b < 0) || (std::min(phase_a, phase_b) == a && std::max(phase_a, phase_b) == b);
       if (match) n += crack_counts_[((int(kind) * 3 + int(mode)) * np + a) * np + b];
     }
   return n;
@@ -382,7 +385,8 @@ void World<D>::step() {
   const int key = (damp ? 1 : 0) | (grav ? 2 : 0) | (applied_loads ? 4 : 0) | (trace_energy ? 8 : 0);
   [&]<int... K>(std::integer_sequence<int, K...>) {
     ((key == K ? (moved = move_particles<bool(K & 1), bool(K & 2), bool(K & 4), bool(K & 8)>(), 0) : 0), ...);
-  }(std::make_integer_sequence<int, 16>{});
+  }
+  (std::make_integer_sequence<int, 16>{});
   moved_ = moved;
   move_walls();
   time += dt;

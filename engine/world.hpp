@@ -18,13 +18,13 @@ namespace mc {
 
 // Energy terms, Tang (3.74)–(3.80) plus the work of local damping. Traced only when the scene asks.
 struct EnergyTrace {
-  double body_work = 0;      // gravity and applied loads, (3.74)
-  double boundary_work = 0;  // walls, (3.76)
+  double body_work = 0;            // gravity and applied loads, (3.74)
+  double boundary_work = 0;        // walls, (3.76)
   double dissipated_contacts = 0;  // friction slip (3.77) and contact dashpots
   double dissipated_local = 0;     // PFC local damping
-  double kinetic = 0;        // (3.79), at the current time
-  double strain = 0;         // (3.80) and the models' own, at the current time (updated by World::update_energy)
-  double initial = 0;        // kinetic + strain when tracing started
+  double kinetic = 0;              // (3.79), at the current time
+  double strain = 0;               // (3.80) and the models' own, at the current time (updated by World::update_energy)
+  double initial = 0;              // kinetic + strain when tracing started
   // Work put in minus what is stored and dissipated; zero for an exact integrator.
   double residual() const {
     return initial + body_work + boundary_work - kinetic - strain - dissipated_contacts - dissipated_local;
@@ -32,9 +32,9 @@ struct EnergyTrace {
 };
 
 struct TimestepControl {
-  double safety = 0.8;        // fraction of the critical step, Tang (3.24)
-  double fixed = 0;           // > 0: use this step (refused if above the critical estimate)
-  int every = 10;             // re-estimate every N steps (and at every neighbour-list rebuild)
+  double safety = 0.8;  // fraction of the critical step, Tang (3.24)
+  double fixed = 0;     // > 0: use this step (refused if above the critical estimate)
+  int every = 10;       // re-estimate every N steps (and at every neighbour-list rebuild)
 };
 
 template <int D>
@@ -43,10 +43,10 @@ class World {
   Particles<D> particles;
   std::vector<Wall<D>> walls;
   std::vector<std::unique_ptr<ContactSetBase<D>>> sets;
-  std::vector<std::vector<int>> model_of;   // [phase_a][phase_b] → index in sets; −1: no interaction
+  std::vector<std::vector<int>> model_of;  // [phase_a][phase_b] → index in sets; −1: no interaction
 
-  double skin = 0;              // Verlet skin [m]; 0 → 0.1 R_min at init
-  double local_damping = 0;     // PFC local damping coefficient α
+  double skin = 0;           // Verlet skin [m]; 0 → 0.1 R_min at init
+  double local_damping = 0;  // PFC local damping coefficient α
   std::optional<Vec<D>> gravity;
   bool applied_loads = false;
   bool trace_energy = false;
@@ -76,10 +76,10 @@ class World {
   std::vector<Crack<D>> cracks;
   // Cracks of a kind and mode; phases −1 count any phase (the pair is unordered).
   std::int64_t crack_count(CrackKind kind, CrackMode mode, int phase_a = -1, int phase_b = -1) const;
-  std::size_t bond_count() const;          // intact bonds of all models
+  std::size_t bond_count() const;  // intact bonds of all models
 
-  std::size_t contact_count() const;       // touching or bonded ball–ball contacts
-  std::size_t candidate_count() const;     // pairs in the neighbour lists
+  std::size_t contact_count() const;    // touching or bonded ball–ball contacts
+  std::size_t candidate_count() const;  // pairs in the neighbour lists
   Vec<D> slot_force(std::size_t slot) const { return slots_.f[slot]; }
   // Each contact of particle p: fn(slot, force on p, vector from p's centre to the contact point).
   template <class F>
@@ -115,7 +115,7 @@ class World {
   std::vector<Pair> slot_pair_;
   std::vector<Vec<D>> x_at_rebuild_;
   std::vector<Vec<D>> wall_at_rebuild_;
-  double moved_ = kInf;   // max particle displacement since the last rebuild (+ walls)
+  double moved_ = kInf;  // max particle displacement since the last rebuild (+ walls)
   double ke_half_ = 0;
   std::vector<std::int64_t> crack_counts_;  // [kind][mode][phase_a][phase_b], phase_a ≤ phase_b
 };

@@ -23,15 +23,18 @@ void World<D>::save(Archive& a) const {
   a.put("m", p.m);
   std::vector<double> q;
   for (const auto& o : p.q) {
-    if constexpr (D == 2) q.push_back(o);
-    else q.insert(q.end(), {o.w(), o.x(), o.y(), o.z()});
+    if constexpr (D == 2)
+      q.push_back(o);
+    else
+      q.insert(q.end(), {o.w(), o.x(), o.y(), o.z()});
   }
   a.reals["q"] = q;
   a.put("x_at_rebuild", x_at_rebuild_);
   a.put("wall_at_rebuild", wall_at_rebuild_);
   std::vector<double> wl;
   for (const auto& w : walls) {
-    for (const Vec<D>* v : {&w.origin, &w.velocity, &w.displacement, &w.force}) wl.insert(wl.end(), v->data(), v->data() + D);
+    for (const Vec<D>* v : {&w.origin, &w.velocity, &w.displacement, &w.force})
+      wl.insert(wl.end(), v->data(), v->data() + D);
     wl.insert(wl.end(), w.moment.data(), w.moment.data() + Dim<D>::rot);
     wl.push_back(w.contact_kn);
   }
@@ -41,10 +44,11 @@ void World<D>::save(Archive& a) const {
   a.put("slot_f", slots_.f);
   const auto* cb = reinterpret_cast<const std::uint8_t*>(cracks.data());
   a.bytes["cracks"] = std::vector<std::uint8_t>(cb, cb + cracks.size() * sizeof(Crack<D>));
-  a.reals["scalars"] = {dt, dt_critical, time, static_cast<double>(step_count), static_cast<double>(rebuilds), moved_,
-                        ke_half_, skin};
+  a.reals["scalars"] = {dt,     dt_critical, time, static_cast<double>(step_count), static_cast<double>(rebuilds),
+                        moved_, ke_half_,    skin};
   const EnergyTrace& e = energy;
-  a.reals["energy"] = {e.body_work, e.boundary_work, e.dissipated_contacts, e.dissipated_local, e.kinetic, e.strain, e.initial};
+  a.reals["energy"] = {e.body_work, e.boundary_work, e.dissipated_contacts, e.dissipated_local, e.kinetic,
+                       e.strain,    e.initial};
 }
 
 template <int D>
@@ -64,8 +68,10 @@ void World<D>::restore(const Archive& a) {
   a.get("m", p.m);
   const auto& q = a.reals.at("q");
   for (std::size_t i = 0; i < p.q.size(); ++i) {
-    if constexpr (D == 2) p.q[i] = q[i];
-    else p.q[i] = Eigen::Quaterniond(q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
+    if constexpr (D == 2)
+      p.q[i] = q[i];
+    else
+      p.q[i] = Eigen::Quaterniond(q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
   }
   a.get("x_at_rebuild", x_at_rebuild_);
   a.get("wall_at_rebuild", wall_at_rebuild_);
@@ -103,7 +109,8 @@ void World<D>::restore(const Archive& a) {
   const int np = static_cast<int>(model_of.size());
   crack_counts_.assign(2 * 3 * np * np, 0);
   for (const auto& c : cracks)
-    ++crack_counts_[((int(c.kind) * 3 + int(c.mode)) * np + std::min(c.phase_a, c.phase_b)) * np + std::max(c.phase_a, c.phase_b)];
+    ++crack_counts_[((int(c.kind) * 3 + int(c.mode)) * np + std::min(c.phase_a, c.phase_b)) * np +
+                    std::max(c.phase_a, c.phase_b)];
 }
 
 template void World<2>::save(Archive&) const;

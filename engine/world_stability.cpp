@@ -23,8 +23,8 @@ void World<D>::check_stability() const {
     if (p.v[i].norm() * dt > 0.5 * p.radius[i]) {
       m << "unstable at step " << step_count << " (t = " << time << " s): particle " << i << " moved "
         << p.v[i].norm() * dt / p.radius[i] << " of its radius in one step (|v| = " << p.v[i].norm()
-        << " m/s); likely cause: timestep " << dt << " s above the stability limit (critical estimate "
-        << dt_critical << " s), or stiffness too high for it";
+        << " m/s); likely cause: timestep " << dt << " s above the stability limit (critical estimate " << dt_critical
+        << " s), or stiffness too high for it";
       throw InstabilityError(m.str());
     }
     for (int k = 0; k < D; ++k)
@@ -61,8 +61,8 @@ void World<D>::check_stability() const {
         << " J plus dissipated " << energy.dissipated_contacts + energy.dissipated_local
         << " J exceeds twice the energy put in (" << budget << " J)";
       if (n > 0) m << ", particle " << fastest << " moving fastest (|v| = " << p.v[fastest].norm() << " m/s)";
-      m << "; likely cause: timestep " << dt << " s above the stability limit (critical estimate "
-        << dt_critical << " s)";
+      m << "; likely cause: timestep " << dt << " s above the stability limit (critical estimate " << dt_critical
+        << " s)";
       throw InstabilityError(m.str());
     }
   }

@@ -35,7 +35,8 @@ RunOutput::RunOutput(const std::string& path, const std::string& scene_text, con
   file_.write("/specimen/id", s.id, {n});
   file_.set_attr("/specimen", "phase_names", join(s.phase_names));
   for (const auto& [name, value] : s.facts) file_.set_attr("/specimen", name, value);
-  if (!s.outlines.empty()) {  // /specimen/outline_xy [M, 2], outline_start [K + 1]: polygon k is rows start[k]..start[k+1]
+  if (!s.outlines
+           .empty()) {  // /specimen/outline_xy [M, 2], outline_start [K + 1]: polygon k is rows start[k]..start[k+1]
     std::vector<double> xy;
     std::vector<std::int64_t> start{0};
     for (const auto& o : s.outlines) {
@@ -79,8 +80,8 @@ std::int64_t RunOutput::history_rows() const {
   return names_.empty() ? 0 : static_cast<std::int64_t>(file_.rows("/history/time"));
 }
 
-void RunOutput::append_frame(double time, std::int64_t step, const std::vector<double>& x,
-                             const std::vector<double>& v, const std::vector<double>& force) {
+void RunOutput::append_frame(double time, std::int64_t step, const std::vector<double>& x, const std::vector<double>& v,
+                             const std::vector<double>& force) {
   file_.append_rows("/frames/time", &time, 1);
   file_.append_rows("/frames/step", &step, 1);
   file_.append_rows("/frames/x", x.data(), 1);
@@ -98,7 +99,8 @@ void RunOutput::write_checkpoint(const Archive& a, std::int64_t step) {
     return file_.exists(s) && file_.has_attr(s, "complete") && file_.attr_int(s, "complete") == 1;
   };
   if (valid("/checkpoint/a")) {
-    const bool b_newer = valid("/checkpoint/b") && file_.attr_int("/checkpoint/b", "step") > file_.attr_int("/checkpoint/a", "step");
+    const bool b_newer =
+        valid("/checkpoint/b") && file_.attr_int("/checkpoint/b", "step") > file_.attr_int("/checkpoint/a", "step");
     slot = b_newer ? "/checkpoint/a" : "/checkpoint/b";
   }
   // Mark the slot incomplete before touching it, so a kill during the write cannot leave it looking valid.
@@ -119,7 +121,9 @@ Archive RunOutput::read_checkpoint() const {
     if (file_.exists(s) && file_.has_attr(s, "complete") && file_.attr_int(s, "complete") == 1 &&
         file_.attr_int(s, "step") > best_step)
       best = s, best_step = file_.attr_int(s, "step");
-  if (best.empty()) throw IoError(file_.path() + ": no complete checkpoint to resume from (set output.checkpoint_every or output.checkpoint_seconds)");
+  if (best.empty())
+    throw IoError(file_.path() +
+                  ": no complete checkpoint to resume from (set output.checkpoint_every or output.checkpoint_seconds)");
   Archive a;
   if (file_.exists(best + "/reals"))
     for (const auto& k : file_.list(best + "/reals")) a.reals[k] = file_.read_doubles(best + "/reals/" + k);
@@ -145,7 +149,8 @@ void RunOutput::create_crack_log(int dimension, const std::vector<std::string>& 
 
 void RunOutput::append_cracks(const CrackRows& r) {
   if (r.size() == 0) return;
-  const std::vector<std::int64_t>* ints[] = {&r.step, &r.mode, &r.kind, &r.phase_a, &r.phase_b, &r.model, &r.id_a, &r.id_b};
+  const std::vector<std::int64_t>* ints[] = {&r.step,    &r.mode,  &r.kind, &r.phase_a,
+                                             &r.phase_b, &r.model, &r.id_a, &r.id_b};
   for (int k = 0; k < 8; ++k) file_.append_rows(std::string("/cracks/") + kCrackInts[k], ints[k]->data(), r.size());
   file_.append_rows("/cracks/time", r.time.data(), r.size());
   file_.append_rows("/cracks/position", r.position.data(), r.size());
@@ -210,21 +215,24 @@ void RunOutput::write_xdmf() const {
     std::ostringstream s;
     s << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << n << " " << width << "\">"
       << "<DataItem Dimensions=\"3 2\" Format=\"XML\">" << f << " 0 1 1 1 " << n * width << "</DataItem>"
-      << "<DataItem Dimensions=\"" << frames << " " << n * width << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
-      << h5 << ":" << ds << "</DataItem></DataItem>";
+      << "<DataItem Dimensions=\"" << frames << " " << n * width
+      << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":" << ds << "</DataItem></DataItem>";
     return s.str();
   };
   for (hsize_t f = 0; f < frames; ++f) {
     x << "   <Grid Name=\"frame" << f << "\" GridType=\"Uniform\">\n    <Time Value=\"" << times[f] << "\"/>\n"
       << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\"/>\n"
-      << "    <Geometry GeometryType=\"" << (d == 2 ? "XY" : "XYZ") << "\">" << slab("/frames/x", f, d) << "</Geometry>\n"
+      << "    <Geometry GeometryType=\"" << (d == 2 ? "XY" : "XYZ") << "\">" << slab("/frames/x", f, d)
+      << "</Geometry>\n"
       << "    <Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem Dimensions=\"" << n
       << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":/specimen/radius</DataItem></Attribute>\n"
       << "    <Attribute Name=\"phase\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem Dimensions=\"" << n
       << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5 << ":/specimen/phase</DataItem></Attribute>\n";
     if (d == 3) {  // ParaView vectors have three components; 2D vectors are shown as two scalars
-      x << "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">" << slab("/frames/v", f, 3) << "</Attribute>\n"
-        << "    <Attribute Name=\"force\" AttributeType=\"Vector\" Center=\"Node\">" << slab("/frames/force", f, 3) << "</Attribute>\n";
+      x << "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">" << slab("/frames/v", f, 3)
+        << "</Attribute>\n"
+        << "    <Attribute Name=\"force\" AttributeType=\"Vector\" Center=\"Node\">" << slab("/frames/force", f, 3)
+        << "</Attribute>\n";
     }
     x << "   </Grid>\n";
   }

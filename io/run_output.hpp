@@ -15,7 +15,8 @@ namespace mc {
 class RunOutput {
  public:
   // A new file (an existing one is replaced).
-  RunOutput(const std::string& path, const std::string& scene_text, const std::string& scene_file, const SpecimenData& s);
+  RunOutput(const std::string& path, const std::string& scene_text, const std::string& scene_file,
+            const SpecimenData& s);
   // An existing file, to resume it.
   explicit RunOutput(const std::string& path);
 
@@ -41,7 +42,7 @@ class RunOutput {
   void set_status(const std::string& status, const std::string& message = "");
   void set_xy_plots(const std::string& pairs);
   void flush();
-  void write_csv() const;   // <stem>_history.csv
+  void write_csv() const;  // <stem>_history.csv
   const std::string& path() const { return file_.path(); }
   H5File& file() { return file_; }
 

@@ -131,8 +131,7 @@ SphereList<D> parse_sphere_list(std::string_view text, const std::string& name) 
 
     const auto [it, fresh] = line_of_id.emplace(id, line);
     if (!fresh)
-      fail("id " + quoted(tok[0]) + " is already used on line " + std::to_string(it->second) +
-           "; ids must be unique");
+      fail("id " + quoted(tok[0]) + " is already used on line " + std::to_string(it->second) + "; ids must be unique");
 
     out.x.push_back(x);
     out.radius.push_back(r);
@@ -147,9 +146,7 @@ SphereList<D> parse_sphere_list(std::string_view text, const std::string& name) 
 
 template <int D>
 SphereList<D> read_sphere_list(const std::string& path) {
-  auto cannot_read = [&](int err) {
-    throw IoError("cannot read particle list '" + path + "': " + std::strerror(err));
-  };
+  auto cannot_read = [&](int err) { throw IoError("cannot read particle list '" + path + "': " + std::strerror(err)); };
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!f) cannot_read(errno);
   std::string text;

@@ -17,10 +17,10 @@ namespace mc {
 
 template <int D>
 struct SphereList {
-  std::vector<Vec<D>> x;          // centres [m]
-  std::vector<double> radius;     // [m], > 0
-  std::vector<int> tag;           // the file's group tag (e.g. 0 interior, 1 and 2 boundary layers)
-  std::vector<std::int64_t> id;   // the file's ids, unique and >= 0, in file order
+  std::vector<Vec<D>> x;         // centres [m]
+  std::vector<double> radius;    // [m], > 0
+  std::vector<int> tag;          // the file's group tag (e.g. 0 interior, 1 and 2 boundary layers)
+  std::vector<std::int64_t> id;  // the file's ids, unique and >= 0, in file order
 
   int size() const { return static_cast<int>(x.size()); }
 };

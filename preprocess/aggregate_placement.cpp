@@ -27,8 +27,10 @@ double measure(const Vec<D>& lo, const Vec<D>& hi) {
 template <int D>
 ConvexShape<D> random_turn(const ConvexShape<D>& s, RandomStream& rng) {
   ConvexShape<D> out = s;
-  if constexpr (D == 2) rotate(out, rng.uniform(0, 2 * M_PI));
-  else rotate(out, random_rotation(rng));
+  if constexpr (D == 2)
+    rotate(out, rng.uniform(0, 2 * M_PI));
+  else
+    rotate(out, random_rotation(rng));
   return out;
 }
 
@@ -46,8 +48,8 @@ void check_spec(const PlacementSpec<D>& s) {
   std::ostringstream m;
   for (int k = 0; k < D; ++k)
     if (!(s.hi[k] > s.lo[k]) || !std::isfinite(s.lo[k]) || !std::isfinite(s.hi[k])) {
-      m << "aggregate placement: the domain must have hi > lo along every axis (axis " << k << ": " << s.lo[k]
-        << " to " << s.hi[k] << ")";
+      m << "aggregate placement: the domain must have hi > lo along every axis (axis " << k << ": " << s.lo[k] << " to "
+        << s.hi[k] << ")";
       throw InputError(m.str());
     }
   if (!(s.fraction > 0 && s.fraction < 1)) {
@@ -63,7 +65,8 @@ void check_spec(const PlacementSpec<D>& s) {
   if (s.attempts < 1) throw InputError("aggregate placement: attempts must be at least 1");
   for (const auto& b : s.keep_out_boxes)
     for (int k = 0; k < D; ++k)
-      if (!(b.hi[k] > b.lo[k])) throw InputError("aggregate placement: a keep-out box must have hi > lo along every axis");
+      if (!(b.hi[k] > b.lo[k]))
+        throw InputError("aggregate placement: a keep-out box must have hi > lo along every axis");
   for (const auto& b : s.keep_out_balls)
     if (!(b.radius > 0)) throw InputError("aggregate placement: a keep-out ball must have a positive radius");
 }
@@ -395,14 +398,14 @@ class Placer {
   RandomStream rng_;
   AggregateLayout<D> out_;
   double domain_ = 0, d_min_ = kInf;
-  std::vector<ConvexShape<D>> made_;  // the aggregate database, as fill_grading made it
-  std::vector<Body<D>> keep_bodies_;  // the keep-out boxes
+  std::vector<ConvexShape<D>> made_;              // the aggregate database, as fill_grading made it
+  std::vector<Body<D>> keep_bodies_;              // the keep-out boxes
   std::vector<std::int32_t> free_cells_, where_;  // where_[cell]: its index in free_cells_, −1 once taken
-  std::vector<Body<D>> placed_bodies_;  // per aggregate id − 1
-  std::vector<int> stamp_;  // per aggregate: the last check 5 that looked at it
+  std::vector<Body<D>> placed_bodies_;            // per aggregate id − 1
+  std::vector<int> stamp_;                        // per aggregate: the last check 5 that looked at it
   int test_no_ = 0;
   std::vector<std::int32_t> covered_;  // the cells of the last body rasterised
-  Body<D> body_;  // the body of the last position tested
+  Body<D> body_;                       // the body of the last position tested
 };
 
 }  // namespace

@@ -49,8 +49,9 @@ struct PlacementSpec {
   // Zones that stay mortar (Tang §7.1: the notch, and a radius around its tip): no aggregate may overlap them.
   std::vector<AlignedBox<D>> keep_out_boxes;
   std::vector<Ball<D>> keep_out_balls;
-  double cells_per_dmin = 5;  // grid cell = D_min / cells_per_dmin (per axis, rounded to fit the domain), in [5, 10] (4.6)
-  int attempts = 2000;        // fresh positions per aggregate (each with up to 3 relocations) before it is given up
+  double cells_per_dmin =
+      5;                // grid cell = D_min / cells_per_dmin (per axis, rounded to fit the domain), in [5, 10] (4.6)
+  int attempts = 2000;  // fresh positions per aggregate (each with up to 3 relocations) before it is given up
   std::uint64_t seed = 1;
 };
 
@@ -58,10 +59,10 @@ template <int D>
 struct PlacedAggregate {
   ConvexShape<D> shape;  // in the domain: polygon vertices counter-clockwise / polyhedron vertices and faces
   Vec<D> centroid;
-  Vec<D> lo, hi;         // bounding box
-  double size = 0;       // d, the auxiliary circle / sphere diameter
-  double content = 0;    // exact area / volume
-  int range = 0;         // index in the grading's ranges
+  Vec<D> lo, hi;       // bounding box
+  double size = 0;     // d, the auxiliary circle / sphere diameter
+  double content = 0;  // exact area / volume
+  int range = 0;       // index in the grading's ranges
 };
 
 // The background grid (Tang 4.6) and status matrix (4.5): cell (i, j[, k]) has its centre at
@@ -77,7 +78,7 @@ struct StatusGrid {
   std::int64_t cells() const;
   std::int64_t cell_of(const Vec<D>& x) const;  // −1 outside the grid
   Vec<D> centre(std::int64_t cell) const;
-  std::int32_t at(const Vec<D>& x) const;       // the status of x's cell (0 outside the grid)
+  std::int32_t at(const Vec<D>& x) const;  // the status of x's cell (0 outside the grid)
 };
 
 struct RangeOutcome {
@@ -95,7 +96,7 @@ struct AggregateLayout {
   Vec<D> lo, hi;                               // the domain
   std::vector<PlacedAggregate<D>> aggregates;  // aggregate id = index + 1; largest first
   StatusGrid<D> grid;
-  std::vector<RangeOutcome> ranges;            // in the order of the grading's ranges
+  std::vector<RangeOutcome> ranges;  // in the order of the grading's ranges
   double target_fraction = 0, achieved_fraction = 0;
   bool reached = false;       // every aggregate was placed, so every range holds its target share
   std::int64_t attempts = 0;  // placements tried (fresh positions and relocations)

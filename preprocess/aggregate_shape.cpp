@@ -254,7 +254,10 @@ bool separated_by_edge(const Polygon& a, const Polygon& b) {
     const Vec<2> o = a.v[i], e = a.v[(i + 1) % n] - o;
     bool all_out = true;
     for (const auto& x : b.v)
-      if (cross2(e, x - o) > 0) { all_out = false; break; }
+      if (cross2(e, x - o) > 0) {
+        all_out = false;
+        break;
+      }
     if (all_out) return true;
   }
   return false;
@@ -265,7 +268,10 @@ bool separated_by_face(const Polyhedron& a, const Polyhedron& b) {
     const Vec<3> o = a.v[t[0]], n = (a.v[t[1]] - o).cross(a.v[t[2]] - o);
     bool all_out = true;
     for (const auto& x : b.v)
-      if (n.dot(x - o) < 0) { all_out = false; break; }
+      if (n.dot(x - o) < 0) {
+        all_out = false;
+        break;
+      }
     if (all_out) return true;
   }
   return false;

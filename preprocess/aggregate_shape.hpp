@@ -39,9 +39,9 @@ using ConvexShape = typename ShapeOf<D>::type;
 
 // Growth limits, as fractions of the size d (Tang §4.1.2: L_max and L_min).
 struct ShapeParams {
-  double l_max = 0.5;           // growth goes on while an edge is longer than L_max = l_max · d
-  double l_min = 0.15;          // every new edge is longer than L_min = l_min · d; needs l_min < l_max / 2
-  double min_seed_angle = 30;   // [deg] no angle of the triangle / quadrilateral seed is sharper (2D)
+  double l_max = 0.5;          // growth goes on while an edge is longer than L_max = l_max · d
+  double l_min = 0.15;         // every new edge is longer than L_min = l_min · d; needs l_min < l_max / 2
+  double min_seed_angle = 30;  // [deg] no angle of the triangle / quadrilateral seed is sharper (2D)
 };
 
 // Tang (4.1): ½ det[[x y 1], [x_i y_i 1], [x_i+1 y_i+1 1]] with P first, i.e. the signed area of the triangle
@@ -55,11 +55,11 @@ double signed_volume(const Vec<3>& a, const Vec<3>& b, const Vec<3>& c, const Ve
 
 // Tang §4.1.2. Seed: a triangle or a quadrilateral (even odds), one vertex at a random point of each of the 3 or 4
 // equal arcs of the circle of diameter d (arcs from a random angle), redrawn while an angle is sharper than
-// min_seed_angle or an edge is not longer than L_min. Growth: while some edge is longer than L_max, one of them (at random) gets a new vertex P pushed
-// out along its outward normal from a random point A of it, A at least L_min from both ends (so both new edges are
-// longer than L_min). The push is a random 10–90 % of the most that keeps the polygon inside the circle and
-// convex: P stays on the inner side of the two neighbouring edges (S(P a_i−1 a_i) > 0 and S(P a_i+1 a_i+2) > 0,
-// (4.1)). Throws InputError for d ≤ 0 or limits that do not allow growth.
+// min_seed_angle or an edge is not longer than L_min. Growth: while some edge is longer than L_max, one of them (at
+// random) gets a new vertex P pushed out along its outward normal from a random point A of it, A at least L_min from
+// both ends (so both new edges are longer than L_min). The push is a random 10–90 % of the most that keeps the polygon
+// inside the circle and convex: P stays on the inner side of the two neighbouring edges (S(P a_i−1 a_i) > 0 and S(P
+// a_i+1 a_i+2) > 0, (4.1)). Throws InputError for d ≤ 0 or limits that do not allow growth.
 Polygon random_polygon(double d, const ShapeParams& params, RandomStream& rng);
 
 // Tang §4.1.3. Seed: an octahedron whose 6 vertices lie on the sphere of diameter d near ±x, ±y, ±z (each

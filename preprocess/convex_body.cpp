@@ -28,7 +28,10 @@ bool face_separates(const Body<D>& a, const Body<D>& b) {
     if (a.n[i].dot(b.c) < a.off[i]) continue;  // b's centroid behind the face: so is part of b
     bool all_out = true;
     for (const auto& x : b.v)
-      if (a.n[i].dot(x) < a.off[i]) { all_out = false; break; }
+      if (a.n[i].dot(x) < a.off[i]) {
+        all_out = false;
+        break;
+      }
     if (all_out) return true;
   }
   return false;
@@ -177,7 +180,8 @@ double distance(const Body<2>& b, const Vec<2>& x) {
 double distance(const Body<3>& b, const Vec<3>& x) {
   if (inside(b, x)) return 0;
   double best = kInf;
-  for (const auto& t : b.tri) best = std::min(best, (closest_on_triangle(x, b.v[t[0]], b.v[t[1]], b.v[t[2]]) - x).norm());
+  for (const auto& t : b.tri)
+    best = std::min(best, (closest_on_triangle(x, b.v[t[0]], b.v[t[1]], b.v[t[2]]) - x).norm());
   return best;
 }
 
@@ -200,8 +204,10 @@ Polyhedron box_shape(const AlignedBox<3>& box) {
       // q holds the side's corners in bit order: 0, 1, 3, 2 goes round it.
       for (const auto& t : {std::array<int, 3>{q[0], q[1], q[3]}, std::array<int, 3>{q[0], q[3], q[2]}}) {
         const Vec<3> n = (p.v[t[1]] - p.v[t[0]]).cross(p.v[t[2]] - p.v[t[0]]);
-        if (n.dot(p.v[t[0]] - mid) > 0) p.f.push_back(t);
-        else p.f.push_back({t[0], t[2], t[1]});
+        if (n.dot(p.v[t[0]] - mid) > 0)
+          p.f.push_back(t);
+        else
+          p.f.push_back({t[0], t[2], t[1]});
       }
     }
   return p;

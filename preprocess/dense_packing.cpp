@@ -17,8 +17,10 @@ namespace {
 // Mean particle volume (area in 2D, t = 1 m) for radii uniform in [a, b]: E[πR²] and E[4πR³/3].
 template <int D>
 double mean_volume(double a, double b) {
-  if constexpr (D == 2) return M_PI * (a * a + a * b + b * b) / 3.0;
-  else return M_PI * (a + b) * (a * a + b * b) / 3.0;
+  if constexpr (D == 2)
+    return M_PI * (a * a + a * b + b * b) / 3.0;
+  else
+    return M_PI * (a + b) * (a * a + b * b) / 3.0;
 }
 
 template <int D>
@@ -56,7 +58,8 @@ void check_spec(const DensePackingSpec<D>& s) {
   if (!(s.porosity > 0.05 && s.porosity < 0.9))
     throw InputError("porosity " + std::to_string(s.porosity) + " is outside (0.05, 0.9)");
   for (int k = 0; k < D; ++k)
-    if (s.hi[k] - s.lo[k] < 6 * b) throw InputError("the box must be at least 3 largest diameters wide in every direction");
+    if (s.hi[k] - s.lo[k] < 6 * b)
+      throw InputError("the box must be at least 3 largest diameters wide in every direction");
 }
 
 // The particles placed without overlap at half size: a packing fraction of (1 − n)/2^D, which random placement

@@ -21,23 +21,23 @@ namespace mc {
 template <int D>
 struct DensePackingSpec {
   enum class Shape { Box, Cylinder } shape = Shape::Box;  // Cylinder (3D): axis along z, inscribed in the box
-  Vec<D> lo, hi;                  // the box [m]
-  double radius_min = 0;          // [m]
-  double radius_ratio = 1.66;     // R_max / R_min, Tang Table 5.1
-  double porosity = 0.16;         // target, 1 − (particle volume)/(box volume) with the full radii
-  double stress = 1e5;            // isotropic stress the packing is settled to [Pa]
-  double modulus = kNaN;          // contact modulus E_c of the genesis contacts [Pa]
-  double density = 2600;          // [kg/m³]
+  Vec<D> lo, hi;                                          // the box [m]
+  double radius_min = 0;                                  // [m]
+  double radius_ratio = 1.66;                             // R_max / R_min, Tang Table 5.1
+  double porosity = 0.16;  // target, 1 − (particle volume)/(box volume) with the full radii
+  double stress = 1e5;     // isotropic stress the packing is settled to [Pa]
+  double modulus = kNaN;   // contact modulus E_c of the genesis contacts [Pa]
+  double density = 2600;   // [kg/m³]
   std::uint64_t seed = 1;
 };
 
 struct PackingReport {
-  std::int64_t count = 0;          // particles (after carving a cylinder)
-  double porosity_grown = 0;       // in the box, once grown to full size (the target, up to the count's rounding)
-  double porosity_final = 0;       // in the box at the end (before carving a cylinder)
-  double stress_final = 0;         // mean wall stress at the end [Pa]
-  int floaters = 0;                // particles with fewer than D + 1 neighbours within 1e-3 R_min
-  std::int64_t steps = 0;          // genesis steps
+  std::int64_t count = 0;     // particles (after carving a cylinder)
+  double porosity_grown = 0;  // in the box, once grown to full size (the target, up to the count's rounding)
+  double porosity_final = 0;  // in the box at the end (before carving a cylinder)
+  double stress_final = 0;    // mean wall stress at the end [Pa]
+  int floaters = 0;           // particles with fewer than D + 1 neighbours within 1e-3 R_min
+  std::int64_t steps = 0;     // genesis steps
 };
 
 // Throws InputError when the parameters cannot make a packing (box too small, porosity out of range) or the

@@ -68,7 +68,8 @@ double fuller_passing(double d, double d_max, double n) { return std::pow(d / d_
 
 Grading fuller_grading(const std::vector<double>& sieves, double n) {
   check_sieves("Fuller grading", sieves);
-  if (!(n > 0) || !std::isfinite(n)) throw InputError("Fuller grading: exponent n = " + std::to_string(n) + " must be positive");
+  if (!(n > 0) || !std::isfinite(n))
+    throw InputError("Fuller grading: exponent n = " + std::to_string(n) + " must be positive");
   const double dmax = sieves.back(), total = 1 - fuller_passing(sieves.front(), dmax, n);
   Grading g;
   for (std::size_t i = 0; i + 1 < sieves.size(); ++i)
@@ -84,7 +85,8 @@ double walraven_passing(double r, double pk) {
 
 SectionGrading walraven_section(const std::vector<double>& sieves, double pk) {
   check_sieves("Walraven section grading", sieves);
-  if (!(pk > 0 && pk < 1)) throw InputError("Walraven section grading: volume fraction P_k = " + std::to_string(pk) + " must be in (0, 1)");
+  if (!(pk > 0 && pk < 1))
+    throw InputError("Walraven section grading: volume fraction P_k = " + std::to_string(pk) + " must be in (0, 1)");
   const double dmax = sieves.back();
   SectionGrading s;
   for (std::size_t i = 0; i + 1 < sieves.size(); ++i) {
@@ -97,10 +99,11 @@ SectionGrading walraven_section(const std::vector<double>& sieves, double pk) {
 }
 
 std::vector<SizedAggregate> fill_grading(const Grading& g, double target, int dim,
-                                         const std::function<double(double)>& make, RandomStream& rng,
-                                         SizeDraw draw, double fuller_n) {
+                                         const std::function<double(double)>& make, RandomStream& rng, SizeDraw draw,
+                                         double fuller_n) {
   check_grading(g);
-  if (!(target >= 0) || !std::isfinite(target)) throw InputError("aggregate sizes: the target content must be non-negative");
+  if (!(target >= 0) || !std::isfinite(target))
+    throw InputError("aggregate sizes: the target content must be non-negative");
   if (dim != 2 && dim != 3) throw InputError("aggregate sizes: dimension must be 2 or 3");
   std::vector<int> order(g.ranges.size());
   std::iota(order.begin(), order.end(), 0);
@@ -116,10 +119,11 @@ std::vector<SizedAggregate> fill_grading(const Grading& g, double target, int di
     double have = 0;
     while (true) {
       const double u = rng.uniform();
-      const double d = draw == SizeDraw::uniform ? r.lo + u * (r.hi - r.lo)
-                                                 : power_law(r.lo, r.hi, fuller_n - 1 - dim, u);
+      const double d =
+          draw == SizeDraw::uniform ? r.lo + u * (r.hi - r.lo) : power_law(r.lo, r.hi, fuller_n - 1 - dim, u);
       const double c = make(d);
-      if (!(c > 0) || !std::isfinite(c)) throw InputError("aggregate sizes: an aggregate of size " + std::to_string(d) + " has no content");
+      if (!(c > 0) || !std::isfinite(c))
+        throw InputError("aggregate sizes: an aggregate of size " + std::to_string(d) + " has no content");
       SizedAggregate a{made++, k, d, 1.0, c};
       if (have + c <= want) {
         out.push_back(a);
@@ -164,17 +168,20 @@ std::vector<SizedAggregate> fill_grading(const Grading& g, double target, int di
       break;
     }
   }
-  std::stable_sort(out.begin(), out.end(), [](const SizedAggregate& a, const SizedAggregate& b) { return a.size > b.size; });
+  std::stable_sort(out.begin(), out.end(),
+                   [](const SizedAggregate& a, const SizedAggregate& b) { return a.size > b.size; });
   return out;
 }
 
 std::vector<SizedAggregate> aggregate_sizes(const Grading& g, double fraction, double domain, int dim,
-                                            double shape_factor, std::uint64_t seed, SizeDraw draw,
-                                            double fuller_n) {
-  if (!(fraction > 0 && fraction < 1)) throw InputError("aggregate sizes: fraction " + std::to_string(fraction) + " must be in (0, 1)");
-  if (!(domain > 0) || !(shape_factor > 0)) throw InputError("aggregate sizes: domain content and shape factor must be positive");
+                                            double shape_factor, std::uint64_t seed, SizeDraw draw, double fuller_n) {
+  if (!(fraction > 0 && fraction < 1))
+    throw InputError("aggregate sizes: fraction " + std::to_string(fraction) + " must be in (0, 1)");
+  if (!(domain > 0) || !(shape_factor > 0))
+    throw InputError("aggregate sizes: domain content and shape factor must be positive");
   RandomStream rng(seed);
-  return fill_grading(g, fraction * domain, dim, [&](double d) { return shape_factor * std::pow(d, dim); }, rng, draw, fuller_n);
+  return fill_grading(
+      g, fraction * domain, dim, [&](double d) { return shape_factor * std::pow(d, dim); }, rng, draw, fuller_n);
 }
 
 }  // namespace mc

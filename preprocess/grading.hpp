@@ -78,7 +78,7 @@ std::vector<SizedAggregate> fill_grading(const Grading& g, double target, int di
 // aggregate_shape.hpp with default limits average about 0.53 in 2D and 0.20 in 3D). For planning (counts, cost);
 // place_aggregates fills with the exact contents of its shapes. Largest first.
 std::vector<SizedAggregate> aggregate_sizes(const Grading& g, double fraction, double domain, int dim,
-                                            double shape_factor, std::uint64_t seed,
-                                            SizeDraw draw = SizeDraw::uniform, double fuller_n = 0.5);
+                                            double shape_factor, std::uint64_t seed, SizeDraw draw = SizeDraw::uniform,
+                                            double fuller_n = 0.5);
 
 }  // namespace mc

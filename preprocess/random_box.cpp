@@ -23,7 +23,9 @@ Packing<D> random_box_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t c
   Packing<D> out;
   const double h = 2.0 * r_max;  // hash cells: any overlapping pair lies in neighbouring cells
   std::unordered_map<std::int64_t, std::vector<int>> cells;
-  auto key = [&](const std::array<std::int64_t, 3>& c) { return (c[0] * 73856093) ^ (c[1] * 19349663) ^ (c[2] * 83492791); };
+  auto key = [&](const std::array<std::int64_t, 3>& c) {
+    return (c[0] * 73856093) ^ (c[1] * 19349663) ^ (c[2] * 83492791);
+  };
   auto cell_of = [&](const Vec<D>& p) {
     std::array<std::int64_t, 3> c{0, 0, 0};
     for (int k = 0; k < D; ++k) c[k] = static_cast<std::int64_t>(std::floor((p[k] - lo[k]) / h));
@@ -49,7 +51,10 @@ Packing<D> random_box_packing(const Vec<D>& lo, const Vec<D>& hi, std::int64_t c
             const auto it = cells.find(key({c[0] + o[0], c[1] + o[1], c[2] + o[2]}));
             if (it == cells.end()) continue;
             for (int j : it->second)
-              if ((out.x[j] - p).norm() < out.radius[j] + r) { free = false; break; }
+              if ((out.x[j] - p).norm() < out.radius[j] + r) {
+                free = false;
+                break;
+              }
           }
       if (!free) continue;
       cells[key(c)].push_back(static_cast<int>(out.x.size()));

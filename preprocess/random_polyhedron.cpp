@@ -39,8 +39,10 @@ Polyhedron seed_octahedron(double r, RandomStream& rng) {
       for (int sy = 0; sy < 2; ++sy)
         for (int sz = 0; sz < 2; ++sz) {
           const int x = sx, y = 2 + sy, z = 4 + sz;
-          if ((sx + sy + sz) % 2 == 0) p.f.push_back({x, y, z});  // octant (+,+,+) and its even-sign kin
-          else p.f.push_back({x, z, y});
+          if ((sx + sy + sz) % 2 == 0)
+            p.f.push_back({x, y, z});  // octant (+,+,+) and its even-sign kin
+          else
+            p.f.push_back({x, z, y});
         }
     if (is_convex(p, 0.02 * r) || tries >= 1000) break;
   }

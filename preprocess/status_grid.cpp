@@ -29,9 +29,12 @@ std::pair<double, double> row_span(const Body<D>& b, const Vec<D>& y) {
     double rhs = b.off[f];
     for (int k = 1; k < D; ++k) rhs -= b.n[f][k] * y[k];
     const double a = b.n[f][0];
-    if (a > 1e-14) xu = std::min(xu, rhs / a);
-    else if (a < -1e-14) xl = std::max(xl, rhs / a);
-    else if (rhs < 0) xu = -kInf;
+    if (a > 1e-14)
+      xu = std::min(xu, rhs / a);
+    else if (a < -1e-14)
+      xl = std::max(xl, rhs / a);
+    else if (rhs < 0)
+      xu = -kInf;
   }
   return {xl, xu};
 }

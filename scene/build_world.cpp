@@ -18,7 +18,8 @@ Wall<D> make_wall(const WallSpec& w) {
   } else if (w.kind == WallSpec::Kind::Segment) {
     if constexpr (D == 2) out = Wall<2>::segment(vec_of<2>(w.a), vec_of<2>(w.b), vec_of<2>(w.inside));
   } else {
-    if constexpr (D == 3) out = Wall<3>::rectangle(vec_of<3>(w.point), vec_of<3>(w.normal), vec_of<3>(w.axis), w.size0, w.size1);
+    if constexpr (D == 3)
+      out = Wall<3>::rectangle(vec_of<3>(w.point), vec_of<3>(w.normal), vec_of<3>(w.axis), w.size0, w.size1);
   }
   out.name = w.name;
   out.material = w.material;
@@ -42,7 +43,8 @@ void add_walls(const Scene& s, World<D>& w) {
   };
   for (std::size_t k = 0; k < s.walls.size(); ++k)
     for (std::size_t j = 0; j + 1 < s.walls[k].area_between.size(); j += 2)
-      w.walls[k].area_between.push_back({wall_index(s.walls[k].area_between[j]), wall_index(s.walls[k].area_between[j + 1])});
+      w.walls[k].area_between.push_back(
+          {wall_index(s.walls[k].area_between[j]), wall_index(s.walls[k].area_between[j + 1])});
 }
 
 template <int D>
@@ -106,8 +108,10 @@ void add_contact_sets(const Scene& s, World<D>& w) {
   const int np = static_cast<int>(s.phases.size());
   w.model_of.assign(np, std::vector<int>(np, -1));
   for (const ContactSpec& c : s.contacts) {
-    if constexpr (D == 2) w.sets.push_back(c.model.make2());
-    else w.sets.push_back(c.model.make3());
+    if constexpr (D == 2)
+      w.sets.push_back(c.model.make2());
+    else
+      w.sets.push_back(c.model.make3());
     w.model_of[c.phase_a][c.phase_b] = w.model_of[c.phase_b][c.phase_a] = static_cast<int>(w.sets.size()) - 1;
   }
   std::vector<bool> present(np, false);

@@ -15,8 +15,8 @@
 namespace mc {
 
 struct SpecimenInfo {
-  std::vector<std::int64_t> ids;          // the specimen's own particle ids (a sphere list's first column), per index
-  std::vector<std::vector<int>> groups;   // members of the scene's [[groups]], in its order
+  std::vector<std::int64_t> ids;         // the specimen's own particle ids (a sphere list's first column), per index
+  std::vector<std::vector<int>> groups;  // members of the scene's [[groups]], in its order
   std::vector<std::pair<std::string, double>> facts;  // what generating the specimen measured
   // Aggregate outlines in the picture plane (2D: x–y; 3D: the section through the specimen's middle along y,
   // as (x, z)), for drawing.

@@ -133,12 +133,15 @@ void ExplicitSystem<D>::save(Archive& a) const {
 template <int D>
 void ExplicitSystem<D>::restore(const Archive& a) {
   if (a.reals.at("x").size() != static_cast<std::size_t>(world_.particles.size() * D))
-    throw InputError("its checkpoint holds a different specimen than the scene builds; resume with the scene that wrote it");
+    throw InputError(
+        "its checkpoint holds a different specimen than the scene builds; resume with the scene that wrote it");
   world_.restore(a);
   const auto& strains = a.reals.at("region_strains");
   if (strains.size() != obs_.strain.size() * D * D)
-    throw InputError("its checkpoint holds " + std::to_string(strains.size() / (D * D)) + " measurement regions, the "
-                     "scene declares " + std::to_string(obs_.strain.size()) + "; resume with the scene that wrote it");
+    throw InputError("its checkpoint holds " + std::to_string(strains.size() / (D * D)) +
+                     " measurement regions, the "
+                     "scene declares " +
+                     std::to_string(obs_.strain.size()) + "; resume with the scene that wrote it");
   std::size_t k = 0;
   for (auto& si : obs_.strain)
     for (int i = 0; i < D * D; ++i) si.strain.data()[i] = strains[k++];

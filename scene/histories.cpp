@@ -31,12 +31,15 @@ void add_bonds(const Scene& s, SeriesList<D>& l) {
   const World<D>* w = l.w;
   l.add("bonds.intact", "-", [w] { return static_cast<double>(w->bond_count()); });
   for (CrackMode m : {CrackMode::Tensile, CrackMode::Shear})
-    l.add(std::string("cracks.") + mode_name(m), "-", [w, m] { return static_cast<double>(w->crack_count(CrackKind::Break, m)); });
+    l.add(std::string("cracks.") + mode_name(m), "-",
+          [w, m] { return static_cast<double>(w->crack_count(CrackKind::Break, m)); });
   if (std::any_of(s.contacts.begin(), s.contacts.end(), [](const ContactSpec& c) { return c.model.yields; }))
     l.add("cracks.yield", "-", [w] {
-      return static_cast<double>(w->crack_count(CrackKind::Yield, CrackMode::Tensile) + w->crack_count(CrackKind::Yield, CrackMode::Shear));
+      return static_cast<double>(w->crack_count(CrackKind::Yield, CrackMode::Tensile) +
+                                 w->crack_count(CrackKind::Yield, CrackMode::Shear));
     });
-  const auto bonded = std::count_if(s.contacts.begin(), s.contacts.end(), [](const ContactSpec& c) { return c.model.bonds; });
+  const auto bonded =
+      std::count_if(s.contacts.begin(), s.contacts.end(), [](const ContactSpec& c) { return c.model.bonds; });
   if (bonded < 2) return;
   for (const ContactSpec& c : s.contacts) {
     if (!c.model.bonds) continue;
@@ -55,7 +58,8 @@ void add_walls(const Scene& s, SeriesList<D>& l) {
     const std::string pre = "wall." + s.walls[i].name + ".";
     for (int k = 0; k < D; ++k) l.add(pre + "force_" + axis_name(k), "N", [w, i, k] { return w->walls[i].force[k]; });
     l.add(pre + "stress", "Pa", [w, i] { return w->walls[i].normal_stress(); });
-    for (int k = 0; k < D; ++k) l.add(pre + "disp_" + axis_name(k), "m", [w, i, k] { return w->walls[i].displacement[k]; });
+    for (int k = 0; k < D; ++k)
+      l.add(pre + "disp_" + axis_name(k), "m", [w, i, k] { return w->walls[i].displacement[k]; });
     for (int k = 0; k < Dim<D>::rot; ++k)
       l.add(pre + "moment_" + axis_name(D == 2 ? 2 : k), "N m", [w, i, k] { return w->walls[i].moment[k]; });
   }
@@ -140,7 +144,8 @@ void add_regions(const Scene& s, const Observers<D>* obs, SeriesList<D>& l) {
     }
     if (rs.strain)
       for (int i = 0; i < D; ++i)
-        for (int j = i; j < D; ++j) l.add(pre + "strain_" + tensor_name(i, j), "-", [obs, r, i, j] { return obs->strain[r].strain(i, j); });
+        for (int j = i; j < D; ++j)
+          l.add(pre + "strain_" + tensor_name(i, j), "-", [obs, r, i, j] { return obs->strain[r].strain(i, j); });
     if (rs.porosity) l.add(pre + "porosity", "-", [w, g] { return porosity(*w, *g); });
     if (rs.coordination) l.add(pre + "coordination", "-", [w, g] { return coordination_number(*w, *g); });
   }
@@ -177,8 +182,12 @@ void add_probes(const Scene& s, const SpecimenInfo* info, SeriesList<D>& l) {
           return c >= 0 ? dv[c] : dv.dot((q.x[b] - q.x[a]).normalized());
         });
         break;
-      case K::Position: l.add(p.name, "m", [w, a, c] { return c >= 0 ? w->particles.x[a][c] : w->particles.x[a].norm(); }); break;
-      case K::Velocity: l.add(p.name, "m/s", [w, a, c] { return c >= 0 ? w->particles.v[a][c] : w->particles.v[a].norm(); }); break;
+      case K::Position:
+        l.add(p.name, "m", [w, a, c] { return c >= 0 ? w->particles.x[a][c] : w->particles.x[a].norm(); });
+        break;
+      case K::Velocity:
+        l.add(p.name, "m/s", [w, a, c] { return c >= 0 ? w->particles.v[a][c] : w->particles.v[a].norm(); });
+        break;
       case K::AngularVelocity:
         l.add(p.name, "rad/s", [w, a, c] {
           const auto& om = w->particles.w[a];
@@ -228,8 +237,8 @@ std::vector<Series> make_series(const Scene& s, World<D>* w, const SpecimenInfo*
 }
 
 std::vector<std::string> history_names(const Scene& s) {
-  const std::vector<Series> series = s.dimension == 2 ? make_series<2>(s, nullptr, nullptr, nullptr)
-                                                      : make_series<3>(s, nullptr, nullptr, nullptr);
+  const std::vector<Series> series =
+      s.dimension == 2 ? make_series<2>(s, nullptr, nullptr, nullptr) : make_series<3>(s, nullptr, nullptr, nullptr);
   std::vector<std::string> names;
   for (const auto& x : series) names.push_back(x.name);
   return names;

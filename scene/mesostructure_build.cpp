@@ -19,7 +19,8 @@ PlacementSpec<D> placement_spec(const Scene& s, const Particles<D>& p) {
   } else {  // the specimen's bounding box
     spec.lo = spec.hi = p.x[0];
     for (int i = 0; i < p.size(); ++i)
-      spec.lo = spec.lo.cwiseMin(p.x[i] - Vec<D>::Constant(p.radius[i])), spec.hi = spec.hi.cwiseMax(p.x[i] + Vec<D>::Constant(p.radius[i]));
+      spec.lo = spec.lo.cwiseMin(p.x[i] - Vec<D>::Constant(p.radius[i])),
+      spec.hi = spec.hi.cwiseMax(p.x[i] + Vec<D>::Constant(p.radius[i]));
   }
   spec.grading.ranges.clear();
   for (const auto& r : m.ranges) spec.grading.ranges.push_back({r[0], r[1], r[2]});
@@ -69,7 +70,8 @@ std::vector<std::vector<std::array<double, 2>>> outlines(const AggregateLayout<D
   double yc = 0;
   if constexpr (D == 3) {
     double lo = kInf, hi = -kInf;
-    for (int i = 0; i < p.size(); ++i) lo = std::min(lo, p.x[i][1] - p.radius[i]), hi = std::max(hi, p.x[i][1] + p.radius[i]);
+    for (int i = 0; i < p.size(); ++i)
+      lo = std::min(lo, p.x[i][1] - p.radius[i]), hi = std::max(hi, p.x[i][1] + p.radius[i]);
     yc = 0.5 * (lo + hi);
   }
   std::vector<std::vector<std::array<double, 2>>> out;

@@ -15,9 +15,11 @@ std::tuple<double, double, double> read_distribution(const Table& t, const std::
   const double a = t.number(key, u, Range::positive());
   const bool normal = t.has(key + "_std"), weibull = t.has(key + "_weibull_shape");
   if (normal && weibull)
-    t.fail(key + "_weibull_shape", "given together with " + key + "_std: a bond parameter is drawn either from a normal "
-                                   "distribution (" + key + " = mean, " + key + "_std) or from a Weibull distribution (" +
-                                   key + " = scale, " + key + "_weibull_shape), not both");
+    t.fail(key + "_weibull_shape", "given together with " + key +
+                                       "_std: a bond parameter is drawn either from a normal "
+                                       "distribution (" +
+                                       key + " = mean, " + key + "_std) or from a Weibull distribution (" + key +
+                                       " = scale, " + key + "_weibull_shape), not both");
   const double b = t.number(key + "_std", u, Range::non_negative(), 0.0);
   const double k = t.number(key + "_weibull_shape", Unit::None, Range::positive(), 0.0);
   return {a, b, k};
@@ -63,7 +65,8 @@ ParallelBondParams read_params<ParallelBond>(const Table& t) {
   p.radius_multiplier = t.number("bond_radius_multiplier", Unit::None, Range::positive(), 1.0);
   std::tie(p.modulus, p.modulus_std, p.modulus_weibull) = read_distribution(t, "bond_modulus", Unit::Pressure);
   p.kn_ks_ratio = t.number("bond_kn_ks_ratio", Unit::None, Range::positive(), 1.0);
-  std::tie(p.tensile_mean, p.tensile_std, p.tensile_weibull) = read_distribution(t, "bond_tensile_strength", Unit::Pressure);
+  std::tie(p.tensile_mean, p.tensile_std, p.tensile_weibull) =
+      read_distribution(t, "bond_tensile_strength", Unit::Pressure);
   std::tie(p.shear_mean, p.shear_std, p.shear_weibull) = read_distribution(t, "bond_shear_strength", Unit::Pressure);
   return p;
 }
@@ -88,8 +91,10 @@ SofteningBondParams read_params<SofteningBond>(const Table& t) {
       "bond_fracture_energy (G_f, an energy per area in J/m2 or N/m)";
   if (limit && energy) t.fail("bond_fracture_energy", "given together with bond_plastic_limit; " + allowed);
   if (!limit && !energy) t.fail("bond_plastic_limit", "missing; " + allowed);
-  if (limit) p.plastic_limit = t.number("bond_plastic_limit", Unit::Length, Range::positive());
-  else p.fracture_energy = t.number("bond_fracture_energy", Unit::EnergyPerArea, Range::positive());
+  if (limit)
+    p.plastic_limit = t.number("bond_plastic_limit", Unit::Length, Range::positive());
+  else
+    p.fracture_energy = t.number("bond_fracture_energy", Unit::EnergyPerArea, Range::positive());
   return p;
 }
 
@@ -120,8 +125,9 @@ CpmParams read_params<Cpm>(const Table& t) {
   // The confinement must not damage contacts at once (Šmilauer, "Isotropic confinement"): σ_0 ≤ 0 is checked by
   // its range; a compressive σ_0 on the hardening branch needs K̃_s > 0 to have a strain at all.
   if (p.confinement < 0 && p.hardening && p.confinement < p.modulus * p.hardening_strain && p.hardening_ratio == 0)
-    t.fail("confinement", "lies beyond the hardening stress k_N ε_s, where hardening_modulus_ratio = 0 gives no strain "
-                          "for it; raise hardening_modulus_ratio above 0 or lower the confinement");
+    t.fail("confinement",
+           "lies beyond the hardening stress k_N ε_s, where hardening_modulus_ratio = 0 gives no strain "
+           "for it; raise hardening_modulus_ratio above 0 or lower the confinement");
   return p;
 }
 

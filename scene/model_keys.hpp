@@ -15,11 +15,17 @@ namespace mc {
 template <class Model>
 typename Model::Params read_params(const Table& t);
 
-template <> LinearParams read_params<Linear>(const Table& t);
-template <> HertzMindlinParams read_params<HertzMindlin>(const Table& t);
-template <> ParallelBondParams read_params<ParallelBond>(const Table& t);
-template <> ContactBondParams read_params<ContactBond>(const Table& t);
-template <> SofteningBondParams read_params<SofteningBond>(const Table& t);
-template <> CpmParams read_params<Cpm>(const Table& t);
+template <>
+LinearParams read_params<Linear>(const Table& t);
+template <>
+HertzMindlinParams read_params<HertzMindlin>(const Table& t);
+template <>
+ParallelBondParams read_params<ParallelBond>(const Table& t);
+template <>
+ContactBondParams read_params<ContactBond>(const Table& t);
+template <>
+SofteningBondParams read_params<SofteningBond>(const Table& t);
+template <>
+CpmParams read_params<Cpm>(const Table& t);
 
 }  // namespace mc

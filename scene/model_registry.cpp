@@ -17,12 +17,19 @@ struct Entry {
 
 template <class Model>
 Entry entry() {
-  return {Model::name, requires { Model::only_3d; }, [](const Table& t) {
-            const typename Model::Params p = read_params<Model>(t);
-            return ModelSpec{Model::name, BondModel<Model, 3>, requires { Model::yields; },
-                             [p] { return std::unique_ptr<ContactSetBase<2>>(new ContactSet<Model, 2>(p)); },
-                             [p] { return std::unique_ptr<ContactSetBase<3>>(new ContactSet<Model, 3>(p)); }};
-          }};
+  return {Model::name, requires {Model::only_3d;
+}
+,
+    [](const Table& t) {
+      const typename Model::Params p = read_params<Model>(t);
+      return ModelSpec{Model::name, BondModel<Model, 3>, requires {Model::yields;
+    },
+    [p] { return std::unique_ptr<ContactSetBase<2>>(new ContactSet<Model, 2>(p)); },
+    [p] { return std::unique_ptr<ContactSetBase<3>>(new ContactSet<Model, 3>(p)); }
+};
+}
+}
+;
 }
 
 template <class... Models>
@@ -52,8 +59,10 @@ ModelSpec read_contact_model(const Table& t, const std::string& name, int dimens
     if (e.only_3d && dimension == 2) {
       std::string allowed;
       for (const auto& n : contact_model_names(2)) allowed += (allowed.empty() ? "" : ", ") + n;
-      t.fail("model", "the " + name + " model is a law for spheres (its cross-sections, calibration and interaction "
-                      "radius are 3D): use it with dimension = 3, or a 2D model (" + allowed + ")");
+      t.fail("model", "the " + name +
+                          " model is a law for spheres (its cross-sections, calibration and interaction "
+                          "radius are 3D): use it with dimension = 3, or a 2D model (" +
+                          allowed + ")");
     }
     return e.read(t);
   }

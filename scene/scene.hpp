@@ -55,7 +55,7 @@ struct SpecimenSpec {
   double radius_min = 0, radius_max = 0;  // RandomBox, uniform in [min, max]; Lattice: radius_min
   int phase = 0;                          // RandomBox, Lattice, Packing
   // Packing (PFC genesis, preprocess/dense_packing.hpp): radius_min, and
-  bool cylinder = false;                  // 3D: carve a cylinder (axis z) out of the box
+  bool cylinder = false;  // 3D: carve a cylinder (axis z) out of the box
   double radius_ratio = 1.66, porosity = 0.16, stress = 1e5, modulus = 0;
 };
 
@@ -63,28 +63,29 @@ struct SpecimenSpec {
 // aggregate join the aggregate phase; the contact table then gives aggregate, mortar and ITZ pairs their models.
 struct MesostructureSpec {
   bool present = false;
-  double fraction = 0;                              // target aggregate area / volume fraction of the domain
-  std::vector<std::array<double, 3>> ranges;        // (lo, hi, share) [m, m, -]; shares normalised
-  std::vector<double> lo, hi;                       // the domain; empty: the specimen's bounding box
+  double fraction = 0;                                        // target aggregate area / volume fraction of the domain
+  std::vector<std::array<double, 3>> ranges;                  // (lo, hi, share) [m, m, -]; shares normalised
+  std::vector<double> lo, hi;                                 // the domain; empty: the specimen's bounding box
   std::vector<std::vector<double>> keep_out_lo, keep_out_hi;  // boxes that stay mortar (a notch)
   std::vector<std::vector<double>> keep_out_centre;           // balls that stay mortar (around a notch tip)
   std::vector<double> keep_out_radius;
-  double cells_per_dmin = 5;                        // background grid, Tang (4.6)
+  double cells_per_dmin = 5;  // background grid, Tang (4.6)
   int mortar_phase = 0, aggregate_phase = 0;
 };
 
 struct WallSpec {
   std::string name;
   enum class Kind { Plane, Segment, Rectangle } kind;
-  std::vector<double> point, normal, a, b, axis;  // plane: point+normal; segment: a,b (+inside); rectangle: point(centre)+normal+axis
-  std::vector<double> inside;                     // segment: a point on the material side
-  double size0 = 0, size1 = 0;                    // rectangle edge lengths
+  std::vector<double> point, normal, a, b,
+      axis;                     // plane: point+normal; segment: a,b (+inside); rectangle: point(centre)+normal+axis
+  std::vector<double> inside;   // segment: a point on the material side
+  double size0 = 0, size1 = 0;  // rectangle edge lengths
   WallMaterial material;
   WallControl control = WallControl::Fixed;
   std::vector<double> velocity;  // Velocity
   double ramp_time = 0;
   double stress = 0, servo_area = kNaN, gain = 0.5, max_speed = kInf;  // Servo
-  std::vector<std::string> area_between;  // Servo: names of opposite walls, in pairs
+  std::vector<std::string> area_between;                               // Servo: names of opposite walls, in pairs
 };
 
 // Boundary conditions on a group of particles chosen by tag (sphere lists), by index or by a box.
@@ -121,8 +122,8 @@ struct StopSpec {
   std::string quantity;  // a history name
   // MagnitudeAbove: |value| > threshold; not a scene key, `calibrate` uses it to end its elastic runs early.
   enum class Kind { Below, Above, PostPeak, MagnitudeAbove } kind;
-  double value;          // threshold, or the fraction of the peak
-  double after_time = 0; // not before this time [s]
+  double value;           // threshold, or the fraction of the peak
+  double after_time = 0;  // not before this time [s]
 };
 
 struct SummarySpec {
@@ -149,7 +150,7 @@ struct Scene {
   std::optional<std::vector<double>> gravity;
   double local_damping = 0;
   double density_scaling = 1;  // inertial mass factor for quasi-static runs (PFC density scaling); 1: off
-  double skin = 0;  // 0: 0.1 R_min
+  double skin = 0;             // 0: 0.1 R_min
   TimestepControl timestep;
   bool energy = false;
   std::vector<RegionSpec> regions;
@@ -162,7 +163,7 @@ struct Scene {
   std::vector<StopSpec> stops;
   std::vector<SummarySpec> summaries;
   std::vector<std::shared_ptr<const Analysis>> analyses;  // [uniaxial] … (scene/analysis.hpp), in registry order
-  std::string xy_plots;    // "x:y;x2:y2" drawn by report
+  std::string xy_plots;                                   // "x:y;x2:y2" drawn by report
 
   std::int64_t history_every = 100, frame_every = 0, checkpoint_every = 0, guard_every = 100;
 

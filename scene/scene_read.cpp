@@ -45,15 +45,17 @@ void read_phases(const Table& root, Scene& s) {
     p.stiffness_std = t.number("stiffness_std", Unit::None, Range::non_negative(), 0.0);
     p.stiffness_weibull = t.number("stiffness_weibull_shape", Unit::None, Range::positive(), 0.0);
     if (p.stiffness_std > 0 && p.stiffness_weibull > 0)
-      t.fail("stiffness_weibull_shape", "given together with stiffness_std: the particles' stiffness factor is drawn "
-                                        "either from a normal distribution (mean 1, stiffness_std) or from a Weibull "
-                                        "distribution (scale 1, stiffness_weibull_shape), not both");
+      t.fail("stiffness_weibull_shape",
+             "given together with stiffness_std: the particles' stiffness factor is drawn "
+             "either from a normal distribution (mean 1, stiffness_std) or from a Weibull "
+             "distribution (scale 1, stiffness_weibull_shape), not both");
     for (const auto& q : s.phases)
       if (q.name == p.name) t.fail("name", "phase names must be unique");
     s.phases.push_back(p);
     t.finish();
   }
-  if (s.phases.empty()) throw InputError(s.file + ": missing [[phases]]: at least one phase with a name and a density (kg/m3)");
+  if (s.phases.empty())
+    throw InputError(s.file + ": missing [[phases]]: at least one phase with a name and a density (kg/m3)");
 }
 
 void read_contacts(const Table& root, Scene& s) {
@@ -182,8 +184,8 @@ void read_walls(const Table& root, Scene& s) {
   for (const Table& t : root.tables("walls")) {
     WallSpec w;
     w.name = t.string("name", "wall" + std::to_string(s.walls.size()));
-    const std::string shape =
-        t.choice("shape", d == 2 ? std::vector<std::string>{"plane", "segment"} : std::vector<std::string>{"plane", "rectangle"});
+    const std::string shape = t.choice("shape", d == 2 ? std::vector<std::string>{"plane", "segment"}
+                                                       : std::vector<std::string>{"plane", "rectangle"});
     if (shape == "plane") {
       w.kind = WallSpec::Kind::Plane;
       w.point = vec(t, "point", Unit::Length, d);
@@ -228,15 +230,18 @@ void read_walls(const Table& root, Scene& s) {
 FixMask parse_fix(const Table& t, int d) {
   // fix = "x y rz" (any of x, y, z, rx, ry, rz), or "all", or "translation", or "rotation".
   const std::string text = t.string("fix", "");
-  std::vector<std::string> dofs = d == 2 ? std::vector<std::string>{"x", "y", "rz"}
-                                         : std::vector<std::string>{"x", "y", "z", "rx", "ry", "rz"};
+  std::vector<std::string> dofs =
+      d == 2 ? std::vector<std::string>{"x", "y", "rz"} : std::vector<std::string>{"x", "y", "z", "rx", "ry", "rz"};
   FixMask m = 0;
   std::stringstream ss(text);
   std::string w;
   while (ss >> w) {
-    if (w == "all") m |= static_cast<FixMask>((1u << (d + (d == 2 ? 1 : 3))) - 1);
-    else if (w == "translation") m |= static_cast<FixMask>((1u << d) - 1);
-    else if (w == "rotation") m |= static_cast<FixMask>(((1u << (d == 2 ? 1 : 3)) - 1) << d);
+    if (w == "all")
+      m |= static_cast<FixMask>((1u << (d + (d == 2 ? 1 : 3))) - 1);
+    else if (w == "translation")
+      m |= static_cast<FixMask>((1u << d) - 1);
+    else if (w == "rotation")
+      m |= static_cast<FixMask>(((1u << (d == 2 ? 1 : 3)) - 1) << d);
     else {
       const auto it = std::find(dofs.begin(), dofs.end(), w);
       if (it == dofs.end()) {
@@ -255,11 +260,16 @@ void read_groups(const Table& root, Scene& s) {
   for (const Table& t : root.tables("groups")) {
     GroupSpec g;
     g.name = t.string("name", "group" + std::to_string(s.groups.size()));
-    if (t.has("tags")) for (double x : t.numbers("tags", Unit::None, Range::closed(0, 1e9), 0)) g.tags.push_back(static_cast<std::int64_t>(x));
-    if (t.has("ids")) for (double x : t.numbers("ids", Unit::None, Range::closed(0, 1e12), 0)) g.ids.push_back(static_cast<std::int64_t>(x));
+    if (t.has("tags"))
+      for (double x : t.numbers("tags", Unit::None, Range::closed(0, 1e9), 0))
+        g.tags.push_back(static_cast<std::int64_t>(x));
+    if (t.has("ids"))
+      for (double x : t.numbers("ids", Unit::None, Range::closed(0, 1e12), 0))
+        g.ids.push_back(static_cast<std::int64_t>(x));
     g.box_lo = opt_vec(t, "box_lo", Unit::Length, d);
     g.box_hi = opt_vec(t, "box_hi", Unit::Length, d);
-    if (g.box_lo.empty() != g.box_hi.empty()) t.fail(g.box_lo.empty() ? "box_hi" : "box_lo", "box_lo and box_hi go together");
+    if (g.box_lo.empty() != g.box_hi.empty())
+      t.fail(g.box_lo.empty() ? "box_hi" : "box_lo", "box_lo and box_hi go together");
     if (g.tags.empty() && g.ids.empty() && g.box_lo.empty())
       t.fail("tags", "a group selects particles by 'tags', 'ids' or 'box_lo'/'box_hi'");
     g.fix = parse_fix(t, d);
@@ -279,8 +289,9 @@ void read_physics(const Table& root, Scene& s) {
     s.local_damping = t->number("local_damping", Unit::None, Range::open_fraction(), 0.0);
     s.density_scaling = t->number("density_scaling", Unit::None, Range::at_least(1.0), 1.0);
     if (s.density_scaling != 1.0 && s.gravity)
-      t->fail("density_scaling", "scales the inertial mass, which gravity would then pull with too: density scaling is "
-                                 "for quasi-static runs without gravity (leave it at 1 or drop gravity)");
+      t->fail("density_scaling",
+              "scales the inertial mass, which gravity would then pull with too: density scaling is "
+              "for quasi-static runs without gravity (leave it at 1 or drop gravity)");
     s.energy = t->boolean("energy", false);
     s.skin = t->number("skin", Unit::Length, Range::positive(), 0.0);
     s.domain_lo = opt_vec(*t, "domain_lo", Unit::Length, d);
@@ -318,7 +329,8 @@ void read_mesostructure(const Table& root, Scene& s) {
       total += share;
       r.finish();
     }
-    if (m.ranges.empty()) t->fail("ranges", "grading = \"ranges\" needs at least one [[mesostructure.ranges]] with lo, hi, share");
+    if (m.ranges.empty())
+      t->fail("ranges", "grading = \"ranges\" needs at least one [[mesostructure.ranges]] with lo, hi, share");
     for (auto& r : m.ranges) r[2] /= total;
   }
   m.lo = opt_vec(*t, "lo", Unit::Length, d);
@@ -385,14 +397,21 @@ void read_observers(const Table& root, Scene& s) {
   for (const Table& t : root.tables("probes")) {
     ProbeSpec p;
     p.name = t.string("name");
-    const std::string k = t.choice("kind", {"overlap", "gap", "relative_speed", "position", "velocity", "angular_velocity"});
+    const std::string k =
+        t.choice("kind", {"overlap", "gap", "relative_speed", "position", "velocity", "angular_velocity"});
     using K = ProbeSpec::Kind;
-    p.kind = k == "overlap" ? K::Overlap : k == "gap" ? K::Gap : k == "relative_speed" ? K::RelativeSpeed
-           : k == "position" ? K::Position : k == "velocity" ? K::Velocity : K::AngularVelocity;
+    p.kind = k == "overlap"          ? K::Overlap
+             : k == "gap"            ? K::Gap
+             : k == "relative_speed" ? K::RelativeSpeed
+             : k == "position"       ? K::Position
+             : k == "velocity"       ? K::Velocity
+                                     : K::AngularVelocity;
     const bool two = p.kind == K::Overlap || p.kind == K::Gap || p.kind == K::RelativeSpeed;
-    for (double x : t.numbers("particles", Unit::None, Range::closed(0, 1e12), two ? 2 : 1)) p.particles.push_back(static_cast<std::int64_t>(x));
+    for (double x : t.numbers("particles", Unit::None, Range::closed(0, 1e12), two ? 2 : 1))
+      p.particles.push_back(static_cast<std::int64_t>(x));
     if (t.has("component")) {
-      const std::string c = t.choice("component", d == 2 ? std::vector<std::string>{"x", "y", "z"} : std::vector<std::string>{"x", "y", "z"});
+      const std::string c = t.choice(
+          "component", d == 2 ? std::vector<std::string>{"x", "y", "z"} : std::vector<std::string>{"x", "y", "z"});
       p.component = c == "x" ? 0 : c == "y" ? 1 : 2;
       if (p.kind != K::AngularVelocity && p.component >= d) t.fail("component", "a 2D scene has only x and y");
     }
@@ -413,7 +432,8 @@ void read_run(const Table& root, Scene& s) {
     if (st.has("below")) x.kind = StopSpec::Kind::Below, x.value = st.number("below", Unit::None, Range::any());
     if (st.has("above")) x.kind = StopSpec::Kind::Above, x.value = st.number("above", Unit::None, Range::any());
     if (st.has("post_peak_fraction"))
-      x.kind = StopSpec::Kind::PostPeak, x.value = st.number("post_peak_fraction", Unit::None, Range{0.0, 1.0, true, true});
+      x.kind = StopSpec::Kind::PostPeak,
+      x.value = st.number("post_peak_fraction", Unit::None, Range{0.0, 1.0, true, true});
     x.after_time = st.number("after_time", Unit::Time, Range::non_negative(), 0.0);
     s.stops.push_back(x);
     st.finish();
@@ -425,8 +445,8 @@ void read_run(const Table& root, Scene& s) {
     SummarySpec x;
     x.name = st.string("name");
     x.of = st.string("of");
-    const std::vector<std::string> kinds = {"max", "min", "final", "initial", "time_of_max", "duration_positive",
-                                            "final_over_initial", "mean_final_10"};
+    const std::vector<std::string> kinds = {
+        "max", "min", "final", "initial", "time_of_max", "duration_positive", "final_over_initial", "mean_final_10"};
     const std::string k = st.choice("reduce", kinds);
     x.reduce = static_cast<SummarySpec::Reduce>(std::find(kinds.begin(), kinds.end(), k) - kinds.begin());
     s.summaries.push_back(x);
@@ -447,7 +467,9 @@ void read_output(const Table& root, Scene& s) {
 
 // Names used by stop conditions and summaries must be histories the scene records.
 void check_names(const Table& root, const Scene& s, const std::vector<std::string>& histories) {
-  auto known = [&](const std::string& n) { return std::find(histories.begin(), histories.end(), n) != histories.end(); };
+  auto known = [&](const std::string& n) {
+    return std::find(histories.begin(), histories.end(), n) != histories.end();
+  };
   std::string list;
   for (const auto& h : histories) list += (list.empty() ? "" : ", ") + h;
   auto tabs = root.table("run").tables("stop");

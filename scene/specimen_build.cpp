@@ -101,8 +101,10 @@ Packing<D> genesis(const Scene& s, std::vector<std::pair<std::string, double>>& 
   } catch (const InputError& e) {
     throw InputError(s.file + ": [specimen] kind = \"packing\": " + e.what());
   }
-  facts = {{"packing_porosity_grown", rep.porosity_grown}, {"packing_porosity_final", rep.porosity_final},
-           {"packing_stress_final", rep.stress_final}, {"packing_floaters", double(rep.floaters)},
+  facts = {{"packing_porosity_grown", rep.porosity_grown},
+           {"packing_porosity_final", rep.porosity_final},
+           {"packing_stress_final", rep.stress_final},
+           {"packing_floaters", double(rep.floaters)},
            {"packing_steps", double(rep.steps)}};
   return pk;
 }
@@ -113,11 +115,14 @@ Packing<D> generated(const Scene& s, std::vector<std::pair<std::string, double>>
   const SpecimenSpec& sp = s.specimen;
   if (sp.kind == SpecimenSpec::Kind::Packing) return genesis<D>(s, facts);
   if (sp.kind == SpecimenSpec::Kind::Lattice) {
-    if constexpr (D == 2) return hexagonal_packing(vec_of<2>(sp.box_lo), vec_of<2>(sp.box_hi), sp.radius_min);
-    else return fcc_packing(vec_of<3>(sp.box_lo), vec_of<3>(sp.box_hi), sp.radius_min);
+    if constexpr (D == 2)
+      return hexagonal_packing(vec_of<2>(sp.box_lo), vec_of<2>(sp.box_hi), sp.radius_min);
+    else
+      return fcc_packing(vec_of<3>(sp.box_lo), vec_of<3>(sp.box_hi), sp.radius_min);
   }
   try {
-    return random_box_packing<D>(vec_of<D>(sp.box_lo), vec_of<D>(sp.box_hi), sp.count, sp.radius_min, sp.radius_max, s.seed);
+    return random_box_packing<D>(vec_of<D>(sp.box_lo), vec_of<D>(sp.box_hi), sp.count, sp.radius_min, sp.radius_max,
+                                 s.seed);
   } catch (const InputError& e) {
     throw InputError(s.file + ": key 'specimen.count' = " + std::to_string(sp.count) + ": " + e.what());
   }

@@ -34,7 +34,9 @@ class OrderedMap {
   const_iterator end() const { return items_.end(); }
   size_type size() const { return items_.size(); }
 
-  iterator find(const Key& k) { return std::find_if(begin(), end(), [&](const auto& kv) { return kv.first == k; }); }
+  iterator find(const Key& k) {
+    return std::find_if(begin(), end(), [&](const auto& kv) { return kv.first == k; });
+  }
   const_iterator find(const Key& k) const {
     return std::find_if(begin(), end(), [&](const auto& kv) { return kv.first == k; });
   }

@@ -33,9 +33,9 @@ struct Field {
 
 namespace {
 
-using detail::Field, detail::Value, detail::join_key, detail::join_list, detail::trim;
 using detail::array_hint, detail::expected_finite_number, detail::expected_number, detail::format_number,
     detail::number_hint, detail::quantity;
+using detail::Field, detail::Value, detail::join_key, detail::join_list, detail::trim;
 
 std::string quoted(const std::string& s) {
   std::string out = "\"";
@@ -167,8 +167,8 @@ Value parse_scene_text(const std::string& text, const std::string& name) {
   try {
     return parse_toml(text, name);
   } catch (const toml::exception& e) {
-    throw InputError(name + ":" + std::to_string(e.location().line()) + ": TOML syntax error: " +
-                     fold_toml_message(e.what()));
+    throw InputError(name + ":" + std::to_string(e.location().line()) +
+                     ": TOML syntax error: " + fold_toml_message(e.what()));
   }
 }
 
@@ -188,9 +188,10 @@ void Field::bad(const std::string& what) const {
 void Field::out_of_range(const Range& r, Unit u, double si) const {
   const std::string unit = si_unit(u);
   // A quantity with a unit is compared in SI: show the converted value next to what was written.
-  const std::string converted = value->is_string() ? " (" + format_number(si) + (unit.empty() ? "" : " " + unit) + ")" : "";
-  throw InputError(st.file + ": " + label() + " = " + show(*value) + converted +
-                   " is out of range: allowed " + r.describe(unit));
+  const std::string converted =
+      value->is_string() ? " (" + format_number(si) + (unit.empty() ? "" : " " + unit) + ")" : "";
+  throw InputError(st.file + ": " + label() + " = " + show(*value) + converted + " is out of range: allowed " +
+                   r.describe(unit));
 }
 
 }  // namespace detail
@@ -325,7 +326,8 @@ void Table::finish() const {
   for (const auto& kv : visit.table->as_table()) {
     if (std::find(visit.known.begin(), visit.known.end(), kv.first) != visit.known.end()) continue;
     const Field f{*state_, join_key(visit.path, kv.first), &kv.second};
-    const std::string allowed = visit.known.empty() ? "no keys are allowed here" : "allowed here: " + join_list(visit.known, ", ");
+    const std::string allowed =
+        visit.known.empty() ? "no keys are allowed here" : "allowed here: " + join_list(visit.known, ", ");
     throw InputError(state_->file + ": unknown " + f.label() + "; " + allowed);
   }
 }
@@ -338,7 +340,8 @@ TomlDoc TomlDoc::load(const std::string& file, const std::vector<std::string>& o
   return parse_text(read_file(file), file, overrides);
 }
 
-TomlDoc TomlDoc::parse_text(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
+TomlDoc TomlDoc::parse_text(const std::string& text, const std::string& name,
+                            const std::vector<std::string>& overrides) {
   auto st = std::make_shared<detail::TomlState>();
   st->file = name;
   st->root = detail::parse_scene_text(text, name);

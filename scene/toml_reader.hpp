@@ -19,7 +19,7 @@ namespace mc {
 namespace detail {
 struct TomlState;
 struct Field;
-}
+}  // namespace detail
 
 // A view of one TOML table at a key path. Reading a key (or asking has()) marks it as known; finish() then
 // rejects the keys nobody asked for. Views are cheap to copy and share the document's bookkeeping.

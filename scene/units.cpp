@@ -26,24 +26,55 @@ struct UnitDef {
 };
 
 constexpr UnitDef kUnits[] = {
-    {"m", Unit::Length, 0},        {"cm", Unit::Length, -2},          {"mm", Unit::Length, -3},
-    {"um", Unit::Length, -6},      {"s", Unit::Time, 0},              {"ms", Unit::Time, -3},
-    {"us", Unit::Time, -6},        {"min", Unit::Time, 0, 60.0},      {"h", Unit::Time, 0, 3600.0},
-    {"kg", Unit::Mass, 0},         {"g", Unit::Mass, -3},             {"t", Unit::Mass, 3},
-    {"N", Unit::Force, 0},         {"kN", Unit::Force, 3},            {"MN", Unit::Force, 6},
-    {"N*m", Unit::Moment, 0},      {"N m", Unit::Moment, 0},          {"kN*m", Unit::Moment, 3},
-    {"kN m", Unit::Moment, 3},     {"Pa", Unit::Pressure, 0},         {"kPa", Unit::Pressure, 3},
-    {"MPa", Unit::Pressure, 6},    {"GPa", Unit::Pressure, 9},        {"kg/m3", Unit::Density, 0},
-    {"g/cm3", Unit::Density, 3},   {"t/m3", Unit::Density, 3},        {"m/s", Unit::Velocity, 0},
-    {"mm/s", Unit::Velocity, -3},  {"mm/min", Unit::Velocity, -3, 1.0, 60.0},
-    {"um/s", Unit::Velocity, -6},  {"m/s2", Unit::Acceleration, 0},   {"N/m", Unit::Stiffness, 0},
-    {"kN/m", Unit::Stiffness, 3},  {"MN/m", Unit::Stiffness, 6},      {"GN/m", Unit::Stiffness, 9},
-    {"N/mm", Unit::Stiffness, 3},  {"J", Unit::Energy, 0},            {"N*m", Unit::Energy, 0},
-    {"mJ", Unit::Energy, -3},      {"rad", Unit::Angle, 0},           {"deg", Unit::Angle, 0, std::numbers::pi, 180.0},
-    {"1/s", Unit::Rate, 0},        {"/s", Unit::Rate, 0},             {"Hz", Unit::Frequency, 0},
-    {"kHz", Unit::Frequency, 3},   {"%", Unit::None, -2},
+    {"m", Unit::Length, 0},
+    {"cm", Unit::Length, -2},
+    {"mm", Unit::Length, -3},
+    {"um", Unit::Length, -6},
+    {"s", Unit::Time, 0},
+    {"ms", Unit::Time, -3},
+    {"us", Unit::Time, -6},
+    {"min", Unit::Time, 0, 60.0},
+    {"h", Unit::Time, 0, 3600.0},
+    {"kg", Unit::Mass, 0},
+    {"g", Unit::Mass, -3},
+    {"t", Unit::Mass, 3},
+    {"N", Unit::Force, 0},
+    {"kN", Unit::Force, 3},
+    {"MN", Unit::Force, 6},
+    {"N*m", Unit::Moment, 0},
+    {"N m", Unit::Moment, 0},
+    {"kN*m", Unit::Moment, 3},
+    {"kN m", Unit::Moment, 3},
+    {"Pa", Unit::Pressure, 0},
+    {"kPa", Unit::Pressure, 3},
+    {"MPa", Unit::Pressure, 6},
+    {"GPa", Unit::Pressure, 9},
+    {"kg/m3", Unit::Density, 0},
+    {"g/cm3", Unit::Density, 3},
+    {"t/m3", Unit::Density, 3},
+    {"m/s", Unit::Velocity, 0},
+    {"mm/s", Unit::Velocity, -3},
+    {"mm/min", Unit::Velocity, -3, 1.0, 60.0},
+    {"um/s", Unit::Velocity, -6},
+    {"m/s2", Unit::Acceleration, 0},
+    {"N/m", Unit::Stiffness, 0},
+    {"kN/m", Unit::Stiffness, 3},
+    {"MN/m", Unit::Stiffness, 6},
+    {"GN/m", Unit::Stiffness, 9},
+    {"N/mm", Unit::Stiffness, 3},
+    {"J", Unit::Energy, 0},
+    {"N*m", Unit::Energy, 0},
+    {"mJ", Unit::Energy, -3},
+    {"rad", Unit::Angle, 0},
+    {"deg", Unit::Angle, 0, std::numbers::pi, 180.0},
+    {"1/s", Unit::Rate, 0},
+    {"/s", Unit::Rate, 0},
+    {"Hz", Unit::Frequency, 0},
+    {"kHz", Unit::Frequency, 3},
+    {"%", Unit::None, -2},
     // Last: a unit of two kinds ("N/m") is named in messages by its first, the stiffness.
-    {"J/m2", Unit::EnergyPerArea, 0}, {"N/m", Unit::EnergyPerArea, 0},
+    {"J/m2", Unit::EnergyPerArea, 0},
+    {"N/m", Unit::EnergyPerArea, 0},
 };
 
 struct KindDef {
@@ -143,8 +174,8 @@ std::string si_unit(Unit u) { return std::string(kind_def(u).si); }
 
 std::string number_hint(Unit u) {
   const auto& k = kind_def(u);
-  return "a number" + in_si(u) + ", e.g. " + std::string(k.number_example) + " or \"" +
-         std::string(k.string_example) + "\"";
+  return "a number" + in_si(u) + ", e.g. " + std::string(k.number_example) + " or \"" + std::string(k.string_example) +
+         "\"";
 }
 
 std::string array_hint(Unit u, std::size_t n) {
@@ -162,9 +193,7 @@ std::string expected_finite_number(Unit u) { return "expected a finite number" +
 
 }  // namespace detail
 
-bool Range::contains(double v) const {
-  return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
-}
+bool Range::contains(double v) const { return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi); }
 
 std::string Range::describe(const std::string& unit) const {
   const auto bound = [&](double x) { return detail::format_number(x) + (unit.empty() ? "" : " " + unit); };

@@ -11,14 +11,20 @@ namespace mc {
 // converted to SI, and its unit must belong to the key's kind.
 enum class Unit {
   None,  // dimensionless: plain numbers, or a percentage "50 %"
-  Length, Time, Mass, Force,
+  Length,
+  Time,
+  Mass,
+  Force,
   Moment,  // N m
-  Pressure, Density, Velocity, Acceleration,
+  Pressure,
+  Density,
+  Velocity,
+  Acceleration,
   Stiffness,  // N/m
   Energy,
-  Angle,      // rad
-  Rate,       // 1/s
-  Frequency,  // Hz
+  Angle,          // rad
+  Rate,           // 1/s
+  Frequency,      // Hz
   EnergyPerArea,  // J/m2 = N/m: fracture energies
 };
 
@@ -31,10 +37,10 @@ struct Range {
 
   static Range any() { return {}; }
   static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }  // 0 < v
-  static Range non_negative() { return at_least(0.0); }                                           // 0 <= v
+  static Range non_negative() { return at_least(0.0); }                                            // 0 <= v
   static Range at_least(double lo) { return {lo, std::numeric_limits<double>::infinity(), false, false}; }
   static Range closed(double lo, double hi) { return {lo, hi, false, false}; }  // lo <= v <= hi
-  static Range open_fraction() { return {0.0, 1.0, false, true}; }             // 0 <= v < 1
+  static Range open_fraction() { return {0.0, 1.0, false, true}; }              // 0 <= v < 1
 
   bool contains(double v) const;
   std::string describe(const std::string& unit = "") const;  // e.g. "0 <= value < 1", "value > 0 Pa"
@@ -59,10 +65,10 @@ std::string format_number(double x);
 std::string si_unit(Unit u);
 
 // The phrases of messages about a number of kind u:
-std::string number_hint(Unit u);                 // a missing key: a number in kg/m3, e.g. 2600 or "2.6 g/cm3"
-std::string array_hint(Unit u, std::size_t n);   // an array of 3 numbers in m (n = 0: of any length)
-std::string expected_number(Unit u);             // a value that is no number: expected a number in Pa (or ...)
-std::string expected_finite_number(Unit u);      // inf, nan, or a quantity beyond double range
+std::string number_hint(Unit u);                // a missing key: a number in kg/m3, e.g. 2600 or "2.6 g/cm3"
+std::string array_hint(Unit u, std::size_t n);  // an array of 3 numbers in m (n = 0: of any length)
+std::string expected_number(Unit u);            // a value that is no number: expected a number in Pa (or ...)
+std::string expected_finite_number(Unit u);     // inf, nan, or a quantity beyond double range
 
 }  // namespace detail
 }  // namespace mc

@@ -7,9 +7,9 @@
 #include <sstream>
 
 #include "engine/errors.hpp"
-#include "studies/runner.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
+#include "studies/runner.hpp"
 
 namespace mc {
 
@@ -52,9 +52,9 @@ namespace {
 
 // The micro-parameters being calibrated, as factors on the scene's own values.
 struct Knobs {
-  double modulus = 1;    // E_c and Ē_c, both times this
-  double ratio = 0;      // k_n/k_s of the grains (the bonds' ratio keeps its proportion to it)
-  double strength = 1;   // every bond strength (means and spreads) times this
+  double modulus = 1;   // E_c and Ē_c, both times this
+  double ratio = 0;     // k_n/k_s of the grains (the bonds' ratio keeps its proportion to it)
+  double strength = 1;  // every bond strength (means and spreads) times this
 };
 
 // What the scene's parallel-bond entry holds.
@@ -72,19 +72,22 @@ Entry find_entry(const std::string& scene_file, const std::vector<std::string>& 
     const Table& t = contacts[i];
     if (t.string("model", "") != "parallel_bond") continue;
     if (e.index >= 0)
-      t.fail("model", "calibrate works on one parallel-bonded phase pair; this scene has several [[contacts]] with "
-                      "model = \"parallel_bond\" (calibrate each material in its own scene)");
+      t.fail("model",
+             "calibrate works on one parallel-bonded phase pair; this scene has several [[contacts]] with "
+             "model = \"parallel_bond\" (calibrate each material in its own scene)");
     e.index = static_cast<int>(i);
     e.modulus = t.number("modulus", Unit::Pressure, Range::positive());
     e.bond_modulus = t.number("bond_modulus", Unit::Pressure, Range::positive());
     e.ratio = t.number("kn_ks_ratio", Unit::None, Range::positive(), 1.0);
     e.bond_ratio = t.number("bond_kn_ks_ratio", Unit::None, Range::positive(), 1.0);
-    for (const char* k : {"bond_tensile_strength", "bond_tensile_strength_std", "bond_shear_strength", "bond_shear_strength_std"})
+    for (const char* k :
+         {"bond_tensile_strength", "bond_tensile_strength_std", "bond_shear_strength", "bond_shear_strength_std"})
       if (t.has(k)) e.strengths.push_back({k, t.number(k, Unit::Pressure, Range::non_negative())});
   }
   if (e.index < 0)
-    throw InputError(scene_file + ": calibrate needs a [[contacts]] entry with model = \"parallel_bond\" (Tang §6.3 "
-                                  "calibrates a parallel-bonded material)");
+    throw InputError(scene_file +
+                     ": calibrate needs a [[contacts]] entry with model = \"parallel_bond\" (Tang §6.3 "
+                     "calibrates a parallel-bonded material)");
   return e;
 }
 
@@ -95,8 +98,9 @@ std::string set(const Entry& e, const std::string& key, double v) {
 }
 
 std::vector<std::string> knob_overrides(const Entry& e, const Knobs& k, double strength) {
-  std::vector<std::string> o{set(e, "modulus", e.modulus * k.modulus), set(e, "bond_modulus", e.bond_modulus * k.modulus),
-                             set(e, "kn_ks_ratio", k.ratio), set(e, "bond_kn_ks_ratio", e.bond_ratio / e.ratio * k.ratio)};
+  std::vector<std::string> o{set(e, "modulus", e.modulus * k.modulus),
+                             set(e, "bond_modulus", e.bond_modulus * k.modulus), set(e, "kn_ks_ratio", k.ratio),
+                             set(e, "bond_kn_ks_ratio", e.bond_ratio / e.ratio * k.ratio)};
   for (const auto& [key, v] : e.strengths) o.push_back(set(e, key, v * strength));
   return o;
 }
@@ -121,8 +125,13 @@ class Calibration {
  public:
   Calibration(const std::string& scene_file, const std::vector<std::string>& overrides, const CalibrationTarget& target,
               const CalibrationOptions& options, std::FILE* log)
-      : scene_file_(scene_file), overrides_(overrides), target_(target), options_(options), log_(log),
-        entry_(find_entry(scene_file, overrides)), base_(read_scene(TomlDoc::load(scene_file, overrides), scene_file)) {
+      : scene_file_(scene_file),
+        overrides_(overrides),
+        target_(target),
+        options_(options),
+        log_(log),
+        entry_(find_entry(scene_file, overrides)),
+        base_(read_scene(TomlDoc::load(scene_file, overrides), scene_file)) {
     if (!base_.analysis<UniaxialAnalysis>())
       throw InputError(scene_file + ": calibrate needs a [uniaxial] table: it matches the E, ν and UCS it reports");
     knobs_.ratio = entry_.ratio;
@@ -171,11 +180,13 @@ class Calibration {
   Trial trial(int it) {
     constexpr double strong = 1e3;  // bond strengths times this cannot break in the elastic runs
     std::vector<std::string> o = overrides_;
-    const std::vector<std::string> knobs = knob_overrides(entry_, knobs_, elastic_ ? knobs_.strength * strong : knobs_.strength);
+    const std::vector<std::string> knobs =
+        knob_overrides(entry_, knobs_, elastic_ ? knobs_.strength * strong : knobs_.strength);
     o.insert(o.end(), knobs.begin(), knobs.end());
     Scene scene = read_scene(TomlDoc::load(scene_file_, o), scene_file_);
     if (elastic_)
-      scene.stops = {StopSpec{scene.analysis<UniaxialAnalysis>()->axial_strain, StopSpec::Kind::MagnitudeAbove, elastic_stop_, 0.0}};
+      scene.stops = {StopSpec{scene.analysis<UniaxialAnalysis>()->axial_strain, StopSpec::Kind::MagnitudeAbove,
+                              elastic_stop_, 0.0}};
     const std::filesystem::path out(options_.output);
     RunOptions ro;
     ro.output = (out.parent_path() / (out.stem().string() + "_it" + std::to_string(it) + ".h5")).string();
@@ -185,8 +196,8 @@ class Calibration {
     char ucs[32] = "-";  // an elastic run has no peak
     if (!elastic_) std::snprintf(ucs, sizeof ucs, "%.4g", u.ucs * 1e-6);
     std::fprintf(log_, "%3d %-8s %10.4g %7.4g %9.4g | %9.4g %7.4g %9s | %.1f\n", it, elastic_ ? "elastic" : "full",
-                 entry_.modulus * knobs_.modulus * 1e-9, knobs_.ratio, knobs_.strength, u.modulus * 1e-9, u.poisson, ucs,
-                 t.run.wall_seconds);
+                 entry_.modulus * knobs_.modulus * 1e-9, knobs_.ratio, knobs_.strength, u.modulus * 1e-9, u.poisson,
+                 ucs, t.run.wall_seconds);
     std::fflush(log_);
     if (!std::isfinite(u.modulus) || !std::isfinite(u.poisson) || (!elastic_ && !std::isfinite(u.ucs)))
       throw InputError(t.file + ": the uniaxial test gave no E, ν or UCS (" + t.run.status +
@@ -205,8 +216,10 @@ class Calibration {
     prev_lnr_ = lnr, prev_nu_ = u.poisson;
     const double ratio = std::clamp(std::exp(lnr + (target_.poisson - u.poisson) / slope_), 0.25, 20.0);
     if (ratio == knobs_.ratio)
-      throw InputError("calibrate: ν = " + std::to_string(target_.poisson) + " is out of reach for this packing: "
-                       "k_n/k_s at its bound " + std::to_string(ratio) + " gives ν = " + std::to_string(u.poisson));
+      throw InputError("calibrate: ν = " + std::to_string(target_.poisson) +
+                       " is out of reach for this packing: "
+                       "k_n/k_s at its bound " +
+                       std::to_string(ratio) + " gives ν = " + std::to_string(u.poisson));
     const int d = base_.dimension;
     knobs_.modulus *= target_.modulus / u.modulus * modulus_shape(d, knobs_.ratio) / modulus_shape(d, ratio);
     knobs_.ratio = ratio;

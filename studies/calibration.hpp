@@ -18,9 +18,9 @@ struct CalibrationTarget {
 CalibrationTarget parse_targets(const std::string& text);
 
 struct CalibrationOptions {
-  double tolerance = 0.05;   // relative, on each target
+  double tolerance = 0.05;  // relative, on each target
   int max_iterations = 12;
-  std::string output;        // the calibrated scene (TOML); its runs go beside it as <stem>_itK.h5
+  std::string output;  // the calibrated scene (TOML); its runs go beside it as <stem>_itK.h5
 };
 
 struct CalibrationResult {

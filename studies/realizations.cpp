@@ -6,9 +6,9 @@
 
 #include "engine/errors.hpp"
 #include "scene/json.hpp"
-#include "studies/runner.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
+#include "studies/runner.hpp"
 
 namespace mc {
 
@@ -37,9 +37,11 @@ RealizationSet run_realizations(const std::string& scene_file, const std::vector
   // Read and validate once, before any output exists.
   const Scene base = read_scene(TomlDoc::load(scene_file, overrides), scene_file);
   if (!base.analysis<UniaxialAnalysis>())
-    throw InputError(scene_file + ": --realizations needs a [uniaxial] table: it compares E, ν and UCS across packings");
+    throw InputError(scene_file +
+                     ": --realizations needs a [uniaxial] table: it compares E, ν and UCS across packings");
   RealizationSet set;
-  std::fprintf(log, "%4s %12s %10s %8s %10s %10s %9s\n", "k", "seed", "E [GPa]", "nu", "UCS [MPa]", "init/UCS", "wall [s]");
+  std::fprintf(log, "%4s %12s %10s %8s %10s %10s %9s\n", "k", "seed", "E [GPa]", "nu", "UCS [MPa]", "init/UCS",
+               "wall [s]");
   for (int k = 0; k < n; ++k) {
     std::vector<std::string> o = overrides;
     const std::uint64_t seed = base.seed + static_cast<std::uint64_t>(k);
@@ -86,8 +88,8 @@ std::string realizations_json(const RealizationSet& set) {
     std::vector<double> x;
     for (const auto& u : set.results) x.push_back(c.get(u));
     const Statistic s = statistic(x);
-    o << (first ? "" : ",") << "\n    \"" << c.name << "\": {\"mean\": " << json_number(s.mean) << ", \"std\": " << json_number(s.std)
-      << ", \"cv\": " << json_number(s.cv) << "}";
+    o << (first ? "" : ",") << "\n    \"" << c.name << "\": {\"mean\": " << json_number(s.mean)
+      << ", \"std\": " << json_number(s.std) << ", \"cv\": " << json_number(s.cv) << "}";
     first = false;
   }
   o << "\n  }\n}\n";

@@ -16,7 +16,7 @@ Statistic statistic(const std::vector<double>& x);
 
 struct RealizationSet {
   std::vector<std::uint64_t> seeds;
-  std::vector<std::string> files;        // one output file per realization
+  std::vector<std::string> files;  // one output file per realization
   std::vector<UniaxialResult> results;
   std::vector<double> wall_seconds;
 };

@@ -163,13 +163,16 @@ class Runner {
     st.peak = std::max(st.peak, v);
     std::ostringstream m;
     m << "stopped: " << st.spec.quantity;
-    if (st.spec.kind == StopSpec::Kind::Below && v < st.spec.value) m << " = " << v << " < " << st.spec.value;
-    else if (st.spec.kind == StopSpec::Kind::Above && v > st.spec.value) m << " = " << v << " > " << st.spec.value;
+    if (st.spec.kind == StopSpec::Kind::Below && v < st.spec.value)
+      m << " = " << v << " < " << st.spec.value;
+    else if (st.spec.kind == StopSpec::Kind::Above && v > st.spec.value)
+      m << " = " << v << " > " << st.spec.value;
     else if (st.spec.kind == StopSpec::Kind::MagnitudeAbove && std::abs(v) > st.spec.value)
       m << " = " << v << ", beyond ±" << st.spec.value;
     else if (st.spec.kind == StopSpec::Kind::PostPeak && st.peak > 0 && v < st.spec.value * st.peak)
       m << " fell to " << v / st.peak << " of its peak " << st.peak;
-    else return;
+    else
+      return;
     if (stop_reason_.empty()) stop_reason_ = m.str();
   }
 
@@ -212,7 +215,8 @@ class Runner {
     const double el = std::chrono::duration<double>(now - t0).count();
     const double rate = (system_->step_count() - first_step_) / std::max(el, 1e-9);
     double left = -1;
-    if (scene_.steps > 0) left = (scene_.steps - system_->step_count()) / std::max(rate, 1e-9);
+    if (scene_.steps > 0)
+      left = (scene_.steps - system_->step_count()) / std::max(rate, 1e-9);
     else if (scene_.duration > 0 && system_->timestep() > 0)
       left = (scene_.duration - system_->time()) / system_->timestep() / std::max(rate, 1e-9);
     std::fprintf(stderr, "\rstep %lld  t = %.4g s  %.0f steps/s", static_cast<long long>(system_->step_count()),
@@ -231,7 +235,7 @@ class Runner {
   std::unique_ptr<RunOutput> out_;
   std::int64_t first_step_ = 0;
   bool crack_log_ = false;
-  std::size_t cracks_written_ = 0;  // entries of the crack log already in the file
+  std::size_t cracks_written_ = 0;                             // entries of the crack log already in the file
   std::int64_t last_record_step_ = -1, last_frame_step_ = -1;  // step of the newest history row and frame
   bool progress_shown_ = false;
 };

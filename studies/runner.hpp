@@ -11,13 +11,13 @@
 namespace mc {
 
 struct RunOptions {
-  std::string output;      // OUT.h5
-  bool resume = false;     // continue `output` from its last checkpoint
-  bool progress = true;    // progress line on stderr (only when it is a terminal)
+  std::string output;    // OUT.h5
+  bool resume = false;   // continue `output` from its last checkpoint
+  bool progress = true;  // progress line on stderr (only when it is a terminal)
 };
 
 struct RunResult {
-  std::string status;      // "finished", "stopped: <condition>", "unstable: <message>"
+  std::string status;  // "finished", "stopped: <condition>", "unstable: <message>"
   std::int64_t steps = 0;
   double time = 0, wall_seconds = 0;
 };

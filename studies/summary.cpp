@@ -19,8 +19,10 @@ double duration_positive(const std::vector<double>& t, const std::vector<double>
   double total = 0;
   for (std::size_t k = 1; k < y.size(); ++k) {
     const double a = y[k - 1], b = y[k], dt = t[k] - t[k - 1];
-    if (a > 0 && b > 0) total += dt;
-    else if (a > 0 || b > 0) total += dt * std::max(a, b) / std::abs(b - a);
+    if (a > 0 && b > 0)
+      total += dt;
+    else if (a > 0 || b > 0)
+      total += dt * std::max(a, b) / std::abs(b - a);
   }
   return total;
 }
@@ -61,8 +63,7 @@ std::string summary_json(const std::string& output_file) {
   std::ostringstream o;
   o << "{\n  \"file\": " << json_quote(output_file) << ",\n  \"title\": " << json_quote(scene.title)
     << ",\n  \"dimension\": " << scene.dimension << ",\n  \"status\": " << json_quote(run.status)
-    << ",\n  \"status_message\": " << json_quote(run.status_message)
-    << ",\n  \"particles\": " << run.particles
+    << ",\n  \"status_message\": " << json_quote(run.status_message) << ",\n  \"particles\": " << run.particles
     << ",\n  \"steps\": " << json_number(h["step"].empty() ? 0.0 : h["step"].back())
     << ",\n  \"time\": " << json_number(t.empty() ? 0.0 : t.back()) << ",\n  \"history_rows\": " << t.size()
     << ",\n  \"density_scaling\": " << json_number(scene.density_scaling);  // 1: off; else the inertia was scaled by it

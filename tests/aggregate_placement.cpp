@@ -130,8 +130,9 @@ double distance_to(const Polyhedron& p, const Vec<3>& x) {
     const Vec<3> foot = x - n.dot(x - a) * n;
     const bool in = (b - a).cross(foot - a).dot(n) >= 0 && (c - b).cross(foot - b).dot(n) >= 0 &&
                     (a - c).cross(foot - c).dot(n) >= 0;
-    best = std::min(best, in ? std::abs(n.dot(x - a))
-                             : std::min({segment_distance(x, a, b), segment_distance(x, b, c), segment_distance(x, c, a)}));
+    best = std::min(best,
+                    in ? std::abs(n.dot(x - a))
+                       : std::min({segment_distance(x, a, b), segment_distance(x, b, c), segment_distance(x, c, a)}));
   }
   return best;
 }

@@ -60,8 +60,8 @@ void free_fall(const Vec<D>& g, const Vec<D>& x0, const Vec<D>& v0, int steps) {
     worst_x = std::max(worst_x, (w.particles.x[0] - x_exact).norm() / x_exact.norm());
     worst_v = std::max(worst_v, (w.particles.v[0] - v_exact).norm() / v_exact.norm());
   }
-  MESSAGE("D = " << D << ", " << steps << " steps of " << dt << " s: worst relative error of x " << worst_x
-                 << ", of v " << worst_v);
+  MESSAGE("D = " << D << ", " << steps << " steps of " << dt << " s: worst relative error of x " << worst_x << ", of v "
+                 << worst_v);
   // Round-off only: each step adds one rounded increment to v and one to x, each off by at most u = 2^-53 ≈
   // 1.1·10⁻¹⁶ of the result. Adding the same g Δt every step makes these roundings systematic rather than a
   // random walk, so the bound is n u = 5.5·10⁻¹³ for n = 5000 steps, under the 10⁻¹² asked. Positions are

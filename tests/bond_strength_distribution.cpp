@@ -35,7 +35,6 @@ ParallelBondParams params() {
   return p;
 }
 
-
 }  // namespace
 
 TEST_CASE("weibull_bond_strengths_have_the_mean_and_variance_of_tang_8_4") {
@@ -74,7 +73,7 @@ TEST_CASE("weibull_bond_moduli_have_the_moments_of_tang_8_4_and_set_each_bonds_s
   w.particles.v[1][0] = v;
   w.step();
   const auto& st = static_cast<const ContactSet<ParallelBond, 2>&>(*w.sets[0]).states()[0];
-  const double area = 2 * r;  // 2D, λ̄ = 1, Tang (3.39)
+  const double area = 2 * r;                    // 2D, λ̄ = 1, Tang (3.39)
   CHECK(st.stiffness != doctest::Approx(1.0));  // this bond drew its own modulus
   CHECK(-st.bond_fn == doctest::Approx(st.stiffness * lambda / (2 * r) * area * v * w.dt).epsilon(1e-12));
 }

@@ -68,9 +68,10 @@ Outcome pull_to_failure(const typename Model::Params& prm, double r, double spee
   o.bonds_left = w.bond_count();
   o.cracks = w.cracks.size();
   const auto& e = w.energy;
-  MESSAGE(D, "D ", std::string(Model::name), ": ", w.step_count, " steps, peak pull ", o.peak, " N, final ", o.final, " N, bonds ", o.bonds0, " → ", o.bonds_left, ", work ", e.boundary_work, " J, kinetic ",
-          e.kinetic, ", strain ", e.strain, ", contacts (friction, dashpots, bonds) ", e.dissipated_contacts,
-          ", local damping ", e.dissipated_local, ", residual ", o.residual / o.work);
+  MESSAGE(D, "D ", std::string(Model::name), ": ", w.step_count, " steps, peak pull ", o.peak, " N, final ", o.final,
+          " N, bonds ", o.bonds0, " → ", o.bonds_left, ", work ", e.boundary_work, " J, kinetic ", e.kinetic,
+          ", strain ", e.strain, ", contacts (friction, dashpots, bonds) ", e.dissipated_contacts, ", local damping ",
+          e.dissipated_local, ", residual ", o.residual / o.work);
   return o;
 }
 
@@ -96,7 +97,7 @@ ParallelBondParams parallel_bond() {
 // the energy released at a break it was 1.2–2.3 %), so 0.5 % is asserted: wide enough for other packings,
 // narrow enough to catch a break that books ½F²/K instead of ½F(t−Δt)·F(t)/K.
 void check_failed_and_balanced(const Outcome& o) {
-  CHECK(o.cracks > 20);                          // it cracked ...
+  CHECK(o.cracks > 20);  // it cracked ...
   // ... right across: the top hangs free (what is left is broken pieces still rattling, lightly damped)
   CHECK(std::abs(o.final) < 0.05 * o.peak);
   CHECK(o.bonds_left + o.cracks == o.bonds0);    // every lost bond is in the crack log

@@ -17,14 +17,17 @@ TEST_CASE("crack_log_of_a_bonded_bar_pulled_apart_is_complete_and_survives_resum
   {
     const mc::H5File f((d / "whole.h5").string(), mc::H5File::Mode::ReadOnly);
     CHECK(f.attr_string("/", "status") == "stopped");  // by the post-peak condition: the bar broke
-    const auto mode = f.read_ints("/cracks/mode"), kind = f.read_ints("/cracks/kind"), step = f.read_ints("/cracks/step");
-    const auto tensile = f.read_doubles("/history/cracks.tensile").back(), shear = f.read_doubles("/history/cracks.shear").back();
+    const auto mode = f.read_ints("/cracks/mode"), kind = f.read_ints("/cracks/kind"),
+               step = f.read_ints("/cracks/step");
+    const auto tensile = f.read_doubles("/history/cracks.tensile").back(),
+               shear = f.read_doubles("/history/cracks.shear").back();
     REQUIRE(mode.size() > 50);
     CHECK(static_cast<double>(std::count(mode.begin(), mode.end(), 1)) == tensile);
     CHECK(static_cast<double>(std::count(mode.begin(), mode.end(), 2)) == shear);
     CHECK(std::count(kind.begin(), kind.end(), 0) == static_cast<long>(mode.size()));  // parallel bonds only break
     CHECK(std::is_sorted(step.begin(), step.end()));
-    const double bonds0 = f.read_doubles("/history/bonds.intact").front(), bonds1 = f.read_doubles("/history/bonds.intact").back();
+    const double bonds0 = f.read_doubles("/history/bonds.intact").front(),
+                 bonds1 = f.read_doubles("/history/bonds.intact").back();
     CHECK(bonds0 - bonds1 == tensile + shear);
     std::vector<hsize_t> dims;
     const auto x = f.read_doubles("/cracks/position", &dims), n = f.read_doubles("/cracks/normal");
@@ -64,7 +67,8 @@ TEST_CASE("generate_writes_a_mesostructure_packing_that_a_scene_loads") {
              "[[contacts]]\nphase_a = \"mortar\"\nphase_b = \"aggregate\"\nmodel = \"linear\"\nmodulus = \"20 GPa\"\n"
              "[specimen]\nkind = \"packing\"\nlo = [0, 0]\nhi = [\"20 mm\", \"20 mm\"]\nradius_min = \"0.3 mm\"\n"
              "modulus = \"20 GPa\"\nphase = \"mortar\"\n"
-             "[mesostructure]\nfraction = 0.3\ngrading = \"ranges\"\nmortar_phase = \"mortar\"\naggregate_phase = \"aggregate\"\n"
+             "[mesostructure]\nfraction = 0.3\ngrading = \"ranges\"\nmortar_phase = \"mortar\"\naggregate_phase = "
+             "\"aggregate\"\n"
              "[[mesostructure.ranges]]\nlo = \"3 mm\"\nhi = \"6 mm\"\nshare = 1\n"
              "[run]\nsteps = 1\n");
   const Result g = mesocrack({"generate", "gen.toml", "-o", "specimen.h5"}, d.dir);
@@ -84,19 +88,21 @@ TEST_CASE("generate_writes_a_mesostructure_packing_that_a_scene_loads") {
     const auto phase = f.read_ints("/specimen/phase");
     CHECK(std::count(phase.begin(), phase.end(), 1) > 0);
   }
-  write_file(d / "use.toml",
-             "title = \"use\"\ndimension = 2\n"
-             "[[phases]]\nname = \"mortar\"\ndensity = \"2200 kg/m3\"\n"
-             "[[phases]]\nname = \"aggregate\"\ndensity = \"2700 kg/m3\"\n"
-             "[[contacts]]\nphase_a = \"mortar\"\nmodel = \"parallel_bond\"\nmodulus = \"20 GPa\"\nbond_modulus = \"20 GPa\"\n"
-             "bond_tensile_strength = \"8 MPa\"\nbond_shear_strength = \"16 MPa\"\n"
-             "[[contacts]]\nphase_a = \"aggregate\"\nmodel = \"parallel_bond\"\nmodulus = \"40 GPa\"\nbond_modulus = \"40 GPa\"\n"
-             "bond_tensile_strength = \"30 MPa\"\nbond_shear_strength = \"60 MPa\"\n"
-             "[[contacts]]\nphase_a = \"mortar\"\nphase_b = \"aggregate\"\nmodel = \"parallel_bond\"\nmodulus = \"15 GPa\"\n"
-             "bond_modulus = \"15 GPa\"\nbond_tensile_strength = \"4 MPa\"\nbond_shear_strength = \"8 MPa\"\n"
-             "[bonds]\ngap_tolerance = 0.01\n"
-             "[specimen]\nkind = \"output\"\nfile = \"specimen.h5\"\n"
-             "[run]\nsteps = 50\n");
+  write_file(
+      d / "use.toml",
+      "title = \"use\"\ndimension = 2\n"
+      "[[phases]]\nname = \"mortar\"\ndensity = \"2200 kg/m3\"\n"
+      "[[phases]]\nname = \"aggregate\"\ndensity = \"2700 kg/m3\"\n"
+      "[[contacts]]\nphase_a = \"mortar\"\nmodel = \"parallel_bond\"\nmodulus = \"20 GPa\"\nbond_modulus = \"20 GPa\"\n"
+      "bond_tensile_strength = \"8 MPa\"\nbond_shear_strength = \"16 MPa\"\n"
+      "[[contacts]]\nphase_a = \"aggregate\"\nmodel = \"parallel_bond\"\nmodulus = \"40 GPa\"\nbond_modulus = \"40 "
+      "GPa\"\n"
+      "bond_tensile_strength = \"30 MPa\"\nbond_shear_strength = \"60 MPa\"\n"
+      "[[contacts]]\nphase_a = \"mortar\"\nphase_b = \"aggregate\"\nmodel = \"parallel_bond\"\nmodulus = \"15 GPa\"\n"
+      "bond_modulus = \"15 GPa\"\nbond_tensile_strength = \"4 MPa\"\nbond_shear_strength = \"8 MPa\"\n"
+      "[bonds]\ngap_tolerance = 0.01\n"
+      "[specimen]\nkind = \"output\"\nfile = \"specimen.h5\"\n"
+      "[run]\nsteps = 50\n");
   const Result r = mesocrack({"run", "use.toml", "-o", "run.h5"}, d.dir);
   REQUIRE_MESSAGE(r.code == 0, r.describe());
   const mc::H5File f((d / "run.h5").string(), mc::H5File::Mode::ReadOnly);
@@ -113,7 +119,8 @@ TEST_CASE("uniaxial_compression_E_scales_with_E_c_and_nu_rises_with_kn_over_ks")
   // One packing for all runs (a genesis is chaotic: two of them differ like two random specimens, by several %
   // in E at this size), generated once and loaded by a copy of the scene.
   const std::string scene = (kScenes / "uniaxial_2d.toml").string();
-  const Result g = mesocrack({"generate", scene, "-o", "packing.h5", "--set", "specimen.hi=[\"25 mm\", \"50 mm\"]"}, d.dir);
+  const Result g =
+      mesocrack({"generate", scene, "-o", "packing.h5", "--set", "specimen.hi=[\"25 mm\", \"50 mm\"]"}, d.dir);
   REQUIRE_MESSAGE(g.code == 0, g.describe());
   std::string text = slurp(scene);
   const auto from = text.find("[specimen]"), to = text.find("[bonds]");
@@ -127,27 +134,39 @@ TEST_CASE("uniaxial_compression_E_scales_with_E_c_and_nu_rises_with_kn_over_ks")
   auto run = [&](const std::string& name, double scale, const std::string& ratio) {
     auto num = [](double x) { return std::to_string(x); };
     const std::string speed = num(10e-3 * std::sqrt(scale)), ramp = num(2e-3 / std::sqrt(scale));
-    const Result r = mesocrack(
-        {"run", "uniaxial.toml", "-o", name,
-         "--set", "contacts[0].modulus=" + num(20e9 * scale), "--set", "contacts[0].bond_modulus=" + num(20e9 * scale),
-         "--set", "contacts[0].bond_tensile_strength=" + num(18e6 * scale),
-         "--set", "contacts[0].bond_tensile_strength_std=" + num(2e6 * scale),
-         "--set", "contacts[0].bond_shear_strength=" + num(36e6 * scale),
-         "--set", "contacts[0].bond_shear_strength_std=" + num(4e6 * scale),
-         "--set", "contacts[0].kn_ks_ratio=" + ratio, "--set", "contacts[0].bond_kn_ks_ratio=" + ratio,
-         "--set", "walls[0].kn=" + num(4e10 * scale), "--set", "walls[1].kn=" + num(4e10 * scale),
-         "--set", "walls[0].ramp_time=" + ramp, "--set", "walls[1].ramp_time=" + ramp, "--set", "run.stop[0].after_time=" + ramp,
-         "--set", "walls[0].b=[\"45 mm\", 0]", "--set", "walls[0].inside=[\"12.5 mm\", \"25 mm\"]", "--set",
-         "walls[0].area=25 mm", "--set", "walls[1].a=[\"-20 mm\", \"50 mm\"]", "--set", "walls[1].b=[\"45 mm\", \"50 mm\"]",
-         "--set", "walls[1].inside=[\"12.5 mm\", \"25 mm\"]", "--set", "walls[1].area=25 mm", "--set",
-         "measure[0].centre=[\"12.5 mm\", \"25 mm\"]", "--set", "measure[0].radius=10 mm", "--set",
-         "walls[0].velocity=[0, " + speed + "]", "--set", "walls[1].velocity=[0, -" + speed + "]"},
-        d.dir);
+    const Result r = mesocrack({"run",   "uniaxial.toml",
+                                "-o",    name,
+                                "--set", "contacts[0].modulus=" + num(20e9 * scale),
+                                "--set", "contacts[0].bond_modulus=" + num(20e9 * scale),
+                                "--set", "contacts[0].bond_tensile_strength=" + num(18e6 * scale),
+                                "--set", "contacts[0].bond_tensile_strength_std=" + num(2e6 * scale),
+                                "--set", "contacts[0].bond_shear_strength=" + num(36e6 * scale),
+                                "--set", "contacts[0].bond_shear_strength_std=" + num(4e6 * scale),
+                                "--set", "contacts[0].kn_ks_ratio=" + ratio,
+                                "--set", "contacts[0].bond_kn_ks_ratio=" + ratio,
+                                "--set", "walls[0].kn=" + num(4e10 * scale),
+                                "--set", "walls[1].kn=" + num(4e10 * scale),
+                                "--set", "walls[0].ramp_time=" + ramp,
+                                "--set", "walls[1].ramp_time=" + ramp,
+                                "--set", "run.stop[0].after_time=" + ramp,
+                                "--set", "walls[0].b=[\"45 mm\", 0]",
+                                "--set", "walls[0].inside=[\"12.5 mm\", \"25 mm\"]",
+                                "--set", "walls[0].area=25 mm",
+                                "--set", "walls[1].a=[\"-20 mm\", \"50 mm\"]",
+                                "--set", "walls[1].b=[\"45 mm\", \"50 mm\"]",
+                                "--set", "walls[1].inside=[\"12.5 mm\", \"25 mm\"]",
+                                "--set", "walls[1].area=25 mm",
+                                "--set", "measure[0].centre=[\"12.5 mm\", \"25 mm\"]",
+                                "--set", "measure[0].radius=10 mm",
+                                "--set", "walls[0].velocity=[0, " + speed + "]",
+                                "--set", "walls[1].velocity=[0, -" + speed + "]"},
+                               d.dir);
     REQUIRE_MESSAGE(r.code == 0, r.describe());
     const Json j = summary_of(name, d.dir);
     REQUIRE(j["uniaxial"].kind == Json::Kind::Object);
-    MESSAGE(name, ": E = ", j["uniaxial"]["E"].number, " Pa, nu = ", j["uniaxial"]["nu"].number, ", UCS = ",
-            j["uniaxial"]["ucs"].number, " Pa, crack initiation / UCS = ", j["uniaxial"]["crack_initiation_ratio"].number);
+    MESSAGE(name, ": E = ", j["uniaxial"]["E"].number, " Pa, nu = ", j["uniaxial"]["nu"].number,
+            ", UCS = ", j["uniaxial"]["ucs"].number,
+            " Pa, crack initiation / UCS = ", j["uniaxial"]["crack_initiation_ratio"].number);
     CHECK(j["status"].text == "stopped");  // past the peak
     return j["uniaxial"];
   };
@@ -162,4 +181,3 @@ TEST_CASE("uniaxial_compression_E_scales_with_E_c_and_nu_rises_with_kn_over_ks")
   CHECK(a["nu"].number < e["nu"].number);
   CHECK(c["E"].number > e["E"].number);  // softer shear springs, softer specimen
 }
-

@@ -40,11 +40,13 @@ TEST_CASE("bad_scene_input_gives_message_and_exit_2") {
   }
   SUBCASE("wrong type") {
     scene(edit(base, "x = [\"2.01 mm\", 0, 0]\nradius = \"1 mm\"", "x = [\"2.01 mm\", 0, 0]\nradius = true"));
-    check_refused(d.dir, run, 2, {"scene.toml: ", "key 'specimen.particles[1].radius' = true", "expected a number in m"});
+    check_refused(d.dir, run, 2,
+                  {"scene.toml: ", "key 'specimen.particles[1].radius' = true", "expected a number in m"});
   }
   SUBCASE("wrong vector length") {
     scene(edit(base, "x = [\"2.01 mm\", 0, 0]", "x = [\"2.01 mm\", 0]"));
-    check_refused(d.dir, run, 2, {"scene.toml: ", "key 'specimen.particles[1].x' = [\"2.01 mm\", 0]", "3 numbers in m, got 2"});
+    check_refused(d.dir, run, 2,
+                  {"scene.toml: ", "key 'specimen.particles[1].x' = [\"2.01 mm\", 0]", "3 numbers in m, got 2"});
   }
   SUBCASE("out-of-range value") {
     scene(edit(base, "safety = 0.05", "safety = 1.5"));
@@ -52,7 +54,8 @@ TEST_CASE("bad_scene_input_gives_message_and_exit_2") {
   }
   SUBCASE("out-of-range quantity with a unit") {
     scene(edit(base, "density = \"2600 kg/m3\"", "density = \"-2.6 g/cm3\""));
-    check_refused(d.dir, run, 2, {"scene.toml: ", "key 'phases[0].density' = \"-2.6 g/cm3\"", "out of range", "value > 0"});
+    check_refused(d.dir, run, 2,
+                  {"scene.toml: ", "key 'phases[0].density' = \"-2.6 g/cm3\"", "out of range", "value > 0"});
   }
   SUBCASE("bad unit") {
     scene(edit(base, "x = [\"2.01 mm\", 0, 0]\nradius = \"1 mm\"", "x = [\"2.01 mm\", 0, 0]\nradius = \"1 kg\""));
@@ -72,19 +75,22 @@ TEST_CASE("bad_scene_input_gives_message_and_exit_2") {
   }
   SUBCASE("unreadable scene file") {
     // The scene reader reports an unreadable scene as bad input (InputError, exit 2), unlike the other files.
-    check_refused(d.dir, {"run", "absent.toml"}, 2, {"cannot read scene file 'absent.toml'", "No such file or directory"});
+    check_refused(d.dir, {"run", "absent.toml"}, 2,
+                  {"cannot read scene file 'absent.toml'", "No such file or directory"});
     fs::create_directory(d / "folder.toml");
     check_refused(d.dir, {"run", "folder.toml"}, 2, {"cannot read scene file 'folder.toml'", "directory"});
     fs::remove(d / "folder.toml");
   }
   SUBCASE("unreadable sphere-list file named by the scene") {
-    const std::string sl = "dimension = 3\n[[phases]]\nname = \"grain\"\ndensity = 2600\n[[contacts]]\nphase_a = \"grain\"\n"
-                           "model = \"linear\"\nmodulus = \"50 MPa\"\n[specimen]\nkind = \"sphere_list\"\nfile = \"grains.spheres\"\n"
-                           "[run]\nsteps = 10\n";
+    const std::string sl =
+        "dimension = 3\n[[phases]]\nname = \"grain\"\ndensity = 2600\n[[contacts]]\nphase_a = \"grain\"\n"
+        "model = \"linear\"\nmodulus = \"50 MPa\"\n[specimen]\nkind = \"sphere_list\"\nfile = \"grains.spheres\"\n"
+        "[run]\nsteps = 10\n";
     scene(sl);
     // A file error (IoError): exit 3; the message names the scene, its key and the resolved path.
-    check_refused(d.dir, run, 3, {"scene.toml: ", "'specimen.file'", "cannot read particle list 'grains.spheres'",
-                                  "No such file or directory"});
+    check_refused(
+        d.dir, run, 3,
+        {"scene.toml: ", "'specimen.file'", "cannot read particle list 'grains.spheres'", "No such file or directory"});
     // A readable list with a bad line is bad input: exit 2, naming the list, the line and the value.
     write_file(d / "grains.spheres", "# id x y z r tag\n0 0 0 0 0.001 0\n1 0.003 0 0 -1 0\n");
     check_refused(d.dir, run, 2, {"grains.spheres:3", "'-1'"});
@@ -92,20 +98,24 @@ TEST_CASE("bad_scene_input_gives_message_and_exit_2") {
   SUBCASE("TOML syntax error") {
     const std::string bad = edit(base, "dimension = 3", "dimension = = 3");
     scene(bad);
-    check_refused(d.dir, run, 2, {"scene.toml:" + std::to_string(line_of(bad, "dimension = = 3")) + ": TOML syntax error",
-                                  "'dimension = = 3'"});
+    check_refused(
+        d.dir, run, 2,
+        {"scene.toml:" + std::to_string(line_of(bad, "dimension = = 3")) + ": TOML syntax error", "'dimension = = 3'"});
   }
   SUBCASE("bad --set") {
     scene(base);
     auto with = [&](const std::string& set) { return std::vector<std::string>{"run", "scene.toml", "--set", set}; };
-    check_refused(d.dir, with("walls[0].kn=5"), 2, {"scene.toml: ", "--set 'walls[0].kn=5'", "'walls' is not an array"});
+    check_refused(d.dir, with("walls[0].kn=5"), 2,
+                  {"scene.toml: ", "--set 'walls[0].kn=5'", "'walls' is not an array"});
     check_refused(d.dir, with("run..duration=1"), 2, {"scene.toml: ", "--set 'run..duration=1'", "is not a key path"});
     check_refused(d.dir, with("specimen.particles[5].radius=1"), 2,
-                  {"scene.toml: ", "--set 'specimen.particles[5].radius=1'", "index 5 is past the end of 'specimen.particles'",
-                   "2 entries"});
+                  {"scene.toml: ", "--set 'specimen.particles[5].radius=1'",
+                   "index 5 is past the end of 'specimen.particles'", "2 entries"});
     check_refused(d.dir, with("run.duration"), 2, {"scene.toml: ", "--set 'run.duration'", "expected key=value"});
-    check_refused(d.dir, with("run.duraton=1 ms"), 2, {"scene.toml: ", "unknown key 'run.duraton' (from --set)", "duration"});
-    check_refused(d.dir, with("timestep.safety=2"), 2, {"scene.toml: ", "key 'timestep.safety' (from --set) = 2", "out of range"});
+    check_refused(d.dir, with("run.duraton=1 ms"), 2,
+                  {"scene.toml: ", "unknown key 'run.duraton' (from --set)", "duration"});
+    check_refused(d.dir, with("timestep.safety=2"), 2,
+                  {"scene.toml: ", "key 'timestep.safety' (from --set) = 2", "out of range"});
     check_refused(d.dir, with("contacts[0].model=lineer"), 2,
                   {"scene.toml: ", "key 'contacts[0].model' (from --set) = \"lineer\"", "hertz_mindlin"});
     check_refused(d.dir, with("run.duration=0.3 parsecs"), 2,
@@ -135,7 +145,7 @@ TEST_CASE("killed_run_leaves_readable_file_and_resume_matches_uninterrupted_run"
   // 1000 steps and checkpoints every 3000, so the killed file nearly always holds frames and history rows written
   // after its last checkpoint, which the resume must drop and write again.
   const std::string scene = (kScenes / "deposition_2d.toml").string();
-  const std::vector<std::string> sets{"--set", "run.duration=0.12 s", "--set", "output.checkpoint_every=3000",
+  const std::vector<std::string> sets{"--set", "run.duration=0.12 s",    "--set", "output.checkpoint_every=3000",
                                       "--set", "output.frame_every=1000"};
   auto args = [&](std::vector<std::string> a) {
     a.insert(a.end(), sets.begin(), sets.end());
@@ -173,7 +183,8 @@ TEST_CASE("killed_run_leaves_readable_file_and_resume_matches_uninterrupted_run"
     }
   }
   const Result killed = b.wait();
-  REQUIRE_MESSAGE(killed.code == -SIGKILL, "run B was not killed mid-run (last step seen ", seen_step, "): ", killed.describe());
+  REQUIRE_MESSAGE(killed.code == -SIGKILL, "run B was not killed mid-run (last step seen ", seen_step,
+                  "): ", killed.describe());
   MESSAGE("run B killed after ", killed.seconds, " s at step >= ", seen_step);
 
   // The killed file is readable: summary exits 0 with valid JSON and status "running".
@@ -247,8 +258,10 @@ TEST_CASE("summary_json_matches_histories") {
   double duration = 0;
   for (std::size_t k = 1; k < overlap.size(); ++k) {
     const double a = overlap[k - 1], b = overlap[k], dt = t[k] - t[k - 1];
-    if (a > 0 && b > 0) duration += dt;
-    else if (a > 0 || b > 0) duration += dt * std::max(a, b) / std::abs(b - a);
+    if (a > 0 && b > 0)
+      duration += dt;
+    else if (a > 0 || b > 0)
+      duration += dt * std::max(a, b) / std::abs(b - a);
   }
   CHECK(res["contact_duration_s"].number == doctest::Approx(duration).epsilon(1e-9));
   CHECK(res["restitution"].number == doctest::Approx(std::abs(speed.back()) / std::abs(speed.front())).epsilon(1e-9));
@@ -291,8 +304,8 @@ TEST_CASE("every_scene_in_scenes_folder_runs") {
     const TempDir d;
     // 200 steps whatever the scene says: a duration is lifted (0: no limit), the step count ends the run;
     // a scene's own stop condition may end it sooner.
-    std::vector<std::string> args{"run", s.string(), "-o", "out.h5", "--threads", "2", "--set", "run.steps=200", "--set",
-                                  "run.duration=0"};
+    std::vector<std::string> args{"run",   s.string(),      "-o",    "out.h5",        "--threads", "2",
+                                  "--set", "run.steps=200", "--set", "run.duration=0"};
     const auto coarse = coarse_packing(s);
     args.insert(args.end(), coarse.begin(), coarse.end());
     const Result r = mesocrack(args, d.dir);
@@ -324,7 +337,9 @@ TEST_CASE("report_writes_pngs") {
     std::vector<std::string> sets, expected;  // expected: PNG name suffixes that must be among those printed
   };
   const std::vector<Case> cases{
-      {"deposition_2d.toml", "dep2.h5", {"--set", "run.steps=400", "--set", "output.frame_every=200"},
+      {"deposition_2d.toml",
+       "dep2.h5",
+       {"--set", "run.steps=400", "--set", "output.frame_every=200"},
        {"_history.png", "_energy.png", "_specimen.png"}},
       {"collision_3d.toml", "col3.h5", {}, {"_history.png", "_slice.png"}},
   };
@@ -351,8 +366,9 @@ TEST_CASE("report_writes_pngs") {
     }
     const std::string stem = fs::path(c.output).stem().string();
     for (const auto& suffix : c.expected)
-      CHECK_MESSAGE(std::any_of(printed.begin(), printed.end(), [&](const std::string& p) { return p.ends_with(stem + suffix); }),
-                    (stem + suffix), " not printed");
+      CHECK_MESSAGE(
+          std::any_of(printed.begin(), printed.end(), [&](const std::string& p) { return p.ends_with(stem + suffix); }),
+          (stem + suffix), " not printed");
   }
 }
 
@@ -367,8 +383,10 @@ TEST_CASE("resume_extends_a_finished_run_like_one_long_run") {
   std::sort(scenes.begin(), scenes.end());
   REQUIRE(!scenes.empty());
   // Rows every 50 steps and frames every 100, so the step where the short run ends has both, like the long run.
-  const std::vector<std::string> common{"--threads", "2", "--set", "run.duration=0", "--set", "output.history_every=50",
-                                        "--set", "output.frame_every=100"};
+  const std::vector<std::string> common{"--threads", "2",
+                                        "--set",     "run.duration=0",
+                                        "--set",     "output.history_every=50",
+                                        "--set",     "output.frame_every=100"};
   for (const auto& s : scenes) {
     CAPTURE(s.string());
     const auto coarse = coarse_packing(s);
@@ -416,12 +434,15 @@ TEST_CASE("resume_with_servo_walls_in_contact_matches_uninterrupted_run") {
     walls += std::string("[[walls]]\nname = \"") + x[0] + "\"\nshape = \"segment\"\na = " + x[1] + "\nb = " + x[2] +
              "\ninside = [\"10 mm\", \"10 mm\"]\nkn = \"2e8 N/m\"\nmotion = \"servo\"\nstress = \"100 kPa\"\n"
              "max_speed = \"1 m/s\"\ngain = 0.2\n";
-  write_file(d / "servo.toml",
-             "title = \"servo box\"\ndimension = 2\nseed = 5\n[[phases]]\nname = \"grain\"\ndensity = \"2600 kg/m3\"\n"
-             "[[contacts]]\nphase_a = \"grain\"\nmodel = \"linear\"\nmodulus = \"100 MPa\"\nkn_ks_ratio = 2.0\nfriction = 0.3\n"
-             "[specimen]\nkind = \"random_box\"\nlo = [0, 0]\nhi = [\"20 mm\", \"20 mm\"]\ncount = 180\n"
-             "radius_min = \"0.4 mm\"\nradius_max = \"0.6 mm\"\n" +
-                 walls + "[physics]\nlocal_damping = 0.7\n[run]\nsteps = 2000\n[output]\nhistory_every = 50\nframe_every = 500\n");
+  write_file(
+      d / "servo.toml",
+      "title = \"servo box\"\ndimension = 2\nseed = 5\n[[phases]]\nname = \"grain\"\ndensity = \"2600 kg/m3\"\n"
+      "[[contacts]]\nphase_a = \"grain\"\nmodel = \"linear\"\nmodulus = \"100 MPa\"\nkn_ks_ratio = 2.0\nfriction = "
+      "0.3\n"
+      "[specimen]\nkind = \"random_box\"\nlo = [0, 0]\nhi = [\"20 mm\", \"20 mm\"]\ncount = 180\n"
+      "radius_min = \"0.4 mm\"\nradius_max = \"0.6 mm\"\n" +
+          walls +
+          "[physics]\nlocal_damping = 0.7\n[run]\nsteps = 2000\n[output]\nhistory_every = 50\nframe_every = 500\n");
   const Result whole = mesocrack({"run", "servo.toml", "-o", "whole.h5"}, d.dir);
   REQUIRE_MESSAGE(whole.code == 0, whole.describe());
   const Result half = mesocrack({"run", "servo.toml", "-o", "halves.h5", "--set", "run.steps=1000"}, d.dir);

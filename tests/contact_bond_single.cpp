@@ -15,7 +15,9 @@ namespace {
 
 constexpr double kR = 1e-3;
 
-ContactBondParams params(double normal, double shear) { return test::glued_bond_params<ContactBondParams>(normal, shear); }
+ContactBondParams params(double normal, double shear) {
+  return test::glued_bond_params<ContactBondParams>(normal, shear);
+}
 
 template <int D>
 void tension_break() {

@@ -33,7 +33,9 @@ LinearParams linear_params() {
   return p;
 }
 template <>
-LinearParams sample_params<Linear>() { return linear_params(); }
+LinearParams sample_params<Linear>() {
+  return linear_params();
+}
 template <>
 HertzMindlinParams sample_params<HertzMindlin>() {
   HertzMindlinParams p;
@@ -73,10 +75,10 @@ CpmParams sample_params<Cpm>() {
   return p;
 }
 
-constexpr double kR = 1e-3;      // both radii [m]
-constexpr double kU0 = 2e-5;     // the contact's overlap when loading starts (≥ 1 % of R, where Hertz–Mindlin
-                                 // reports its tangent stiffness rather than a floor)
-constexpr double kDt = 1e-7;     // [s]
+constexpr double kR = 1e-3;   // both radii [m]
+constexpr double kU0 = 2e-5;  // the contact's overlap when loading starts (≥ 1 % of R, where Hertz–Mindlin
+                              // reports its tangent stiffness rather than a floor)
+constexpr double kDt = 1e-7;  // [s]
 
 // One contact on the x axis, A at rest, B moving with v_rel and spinning relative to A with w_rel for one step.
 template <class M, int D>
@@ -148,7 +150,8 @@ void stiffness_matches_force() {
     const Rot<D> m1 = c.last.moment;
     twist = -(c.step(Vec<D>::Zero(), about<D>(0, dtheta)).moment - m1)[0] / dtheta;
   }
-  MESSAGE(std::string(M::name), " ", D, "D: k_n ", k.normal, ", k_s ", k.shear, ", rotational ", rot, " = bending ", bend, " + twisting ", twist);
+  MESSAGE(std::string(M::name), " ", D, "D: k_n ", k.normal, ", k_s ", k.shear, ", rotational ", rot, " = bending ",
+          bend, " + twisting ", twist);
   CHECK(bend + twist == doctest::Approx(rot).epsilon(1e-6).scale(1e-30));
 }
 
@@ -173,11 +176,11 @@ void stored_energy_is_work_done() {
     }
   };
   const Vec<D> in = -1e-8 * Vec<D>::UnitX(), across = 1e-9 * Vec<D>::UnitY();
-  go(in, Rot<D>::Zero(), 100);                        // compress by half the starting overlap
-  go(across, Rot<D>::Zero(), 50), go(-across, Rot<D>::Zero(), 50);       // shear there and back
-  go(Vec<D>::Zero(), about<D>(2, 1e-7), 50), go(Vec<D>::Zero(), about<D>(2, -1e-7), 50);  // bend
+  go(in, Rot<D>::Zero(), 100);                                      // compress by half the starting overlap
+  go(across, Rot<D>::Zero(), 50), go(-across, Rot<D>::Zero(), 50);  // shear there and back
+  go(Vec<D>::Zero(), about<D>(2, 1e-7), 50), go(Vec<D>::Zero(), about<D>(2, -1e-7), 50);                        // bend
   if constexpr (D == 3) go(Vec<D>::Zero(), about<D>(0, 1e-7), 50), go(Vec<D>::Zero(), about<D>(0, -1e-7), 50);  // twist
-  go(-in, Rot<D>::Zero(), 100);                       // release
+  go(-in, Rot<D>::Zero(), 100);  // release
   MESSAGE(std::string(M::name), " ", D, "D: work ", work, " J, stored ", c.stored() - e0, " J, dissipated ", dissipated,
           " J, worst imbalance ", worst, " J of a largest work ", scale, " J");
   REQUIRE(scale > 0);
@@ -236,7 +239,8 @@ template <class Models>
 struct Planar;
 template <class... Models>
 struct Planar<std::tuple<Models...>> {
-  using type = decltype(std::tuple_cat(std::conditional_t<requires { Models::only_3d; }, std::tuple<>, std::tuple<Models>>{}...));
+  using type = decltype(std::tuple_cat(
+      std::conditional_t<requires { Models::only_3d; }, std::tuple<>, std::tuple<Models>>{}...));
 };
 
 TEST_CASE_TEMPLATE_DEFINE("contact_model_conformance_2d", M, conformance_2d) { conformance<M, 2>(); }

@@ -15,7 +15,8 @@ TEST_CASE("cpm calibration: nu from kT/kN and back, and E/kN from (25)") {
   CHECK(poisson_from_kt_kn(1.0) == 0.0);
   CHECK(poisson_from_kt_kn(0.0) == 0.25);
   CHECK(poisson_from_kt_kn(0.2) == doctest::Approx(0.8 / 4.2).epsilon(1e-15));
-  for (double r : {0.0, 0.1, 0.2, 0.5, 1.0}) CHECK(kt_kn_from_poisson(poisson_from_kt_kn(r)) == doctest::Approx(r).epsilon(1e-14).scale(1));
+  for (double r : {0.0, 0.1, 0.2, 0.5, 1.0})
+    CHECK(kt_kn_from_poisson(poisson_from_kt_kn(r)) == doctest::Approx(r).epsilon(1e-14).scale(1));
   // (25) at k_T/k_N = 1 is Σ A L/(3V) (the (2 + 3)/(4 + 1) factor is 1); at 0.2, Σ A L/(3V) · 2.6/4.2.
   CHECK(modulus_ratio(3.0, 1.0, 1.0) == doctest::Approx(1.0).epsilon(1e-15));
   CHECK(modulus_ratio(1.2, 2.0, 0.2) == doctest::Approx(0.2 * 2.6 / 4.2).epsilon(1e-15));

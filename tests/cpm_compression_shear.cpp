@@ -21,11 +21,11 @@ TEST_CASE("cpm: compression never damages and hardens from eps_s with modulus K_
   const CpmParams p = test::cpm_params();
   const double es = p.hardening_strain, kn = p.modulus, ks = p.hardening_ratio;
   auto c = test::cpm_pair(p);
-  c.strain_to(3 * es, 2e-6);          // loading: elastic to ε_s, then the hardening line
+  c.strain_to(3 * es, 2e-6);  // loading: elastic to ε_s, then the hardening line
   const std::size_t unload = c.eps.size();
-  c.strain_to(2 * es, 2e-6);          // unloading: elastic with k_N
+  c.strain_to(2 * es, 2e-6);  // unloading: elastic with k_N
   const std::size_t reload = c.eps.size();
-  c.strain_to(4 * es, 2e-6);          // reloading: elastic back to the line, then along it
+  c.strain_to(4 * es, 2e-6);  // reloading: elastic back to the line, then along it
   auto line = [&](double e) { return kn * (es + ks * (e - es)); };
   const double scale = std::abs(kn * es);
   double dev = 0;

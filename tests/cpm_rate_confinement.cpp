@@ -80,8 +80,8 @@ TEST_CASE("cpm: confinement shifts the response by sigma_0 and its strain") {
     dev = std::max(dev, std::abs(c.sigma_n[k] - (s - p.confinement)));
   }
   const auto ip = std::max_element(c.sigma_n.begin(), c.sigma_n.end()) - c.sigma_n.begin();
-  MESSAGE("confined (-3 MPa): first stress ", c.sigma_n[0], " Pa, peak ", c.sigma_n[ip], " Pa at eps = ", c.eps[ip] / e0,
-          " eps_0; max deviation ", dev, " Pa");
+  MESSAGE("confined (-3 MPa): first stress ", c.sigma_n[0], " Pa, peak ", c.sigma_n[ip],
+          " Pa at eps = ", c.eps[ip] / e0, " eps_0; max deviation ", dev, " Pa");
   CHECK(std::abs(c.sigma_n[0]) < 1e-9 * kn * e0);  // stress-free where it was made
   CHECK(dev < 1e-9 * kn * e0);
   CHECK(c.sigma_n[ip] == doctest::Approx(kn * e0 - p.confinement).epsilon(2e-3));
@@ -97,8 +97,8 @@ TEST_CASE("cpm: confinement shifts the response by sigma_0 and its strain") {
   d.strain_to(-0.5e-3, 1e-6);
   const double tangent = (d.sigma_n[back - 1] - d.sigma_n[back / 2]) / (d.eps[back - 1] - d.eps[back / 2]);
   const double unload = (d.sigma_n.back() - d.sigma_n[back + 10]) / (d.eps.back() - d.eps[back + 10]);
-  MESSAGE("confined on the hardening branch (-120 MPa): first stress ", d.sigma_n[0], " Pa, tangent / k_N = ",
-          tangent / kn, ", unloading / k_N = ", unload / kn);
+  MESSAGE("confined on the hardening branch (-120 MPa): first stress ", d.sigma_n[0],
+          " Pa, tangent / k_N = ", tangent / kn, ", unloading / k_N = ", unload / kn);
   CHECK(std::abs(d.sigma_n[0]) < 1e-9 * std::abs(h.confinement));
   CHECK(tangent == doctest::Approx(h.hardening_ratio * kn).epsilon(1e-8));
   CHECK(unload == doctest::Approx(kn).epsilon(1e-8));

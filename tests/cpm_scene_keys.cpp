@@ -4,10 +4,10 @@
 
 #include <string>
 
-#include "tests/common/errors.hpp"
 #include "engine/errors.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
+#include "tests/common/errors.hpp"
 
 using namespace mc;
 
@@ -26,7 +26,8 @@ crack_onset_strain = 1e-4
 relative_ductility = 30
 cohesion = "3.5 MPa"
 friction_angle = "38.66 deg"
-)" + extra + R"(
+)" + extra +
+         R"(
 [specimen]
 kind = "particles"
 [[specimen.particles]]

@@ -57,7 +57,7 @@ TEST_CASE("cpm: the tensile stress-strain curve is (1 - omega) k_N eps with omeg
   CHECK(dev < 1e-9 * ft);
   // The peak is k_N ε_0 (the local tensile strength), reached at ε_0, then the exponential softening.
   CHECK(peak == doctest::Approx(ft).epsilon(2e-3));  // the sampling: strain steps of 2e-3 ε_0
-  const double e_last = c.eps.back();  // σ = k_N ε_0 exp(−(κ − ε_0)/ε_f) on the envelope
+  const double e_last = c.eps.back();                // σ = k_N ε_0 exp(−(κ − ε_0)/ε_f) on the envelope
   CHECK(c.sigma_n.back() == doctest::Approx(ft * std::exp(-(e_last - p.crack_onset_strain) / 3e-3)).epsilon(1e-9));
   CHECK(c.state().kappa == doctest::Approx(c.eps.back()).epsilon(1e-12));
   // No shear was imposed, so none appears.
@@ -73,19 +73,21 @@ TEST_CASE("cpm: unloading is secant to the origin, compression undamaged, reload
   const CpmParams p = test::cpm_params();
   const double e0 = p.crack_onset_strain;
   auto c = test::cpm_pair(p);
-  c.strain_to(3 * e0, 2e-7);    // into softening: κ = 3 ε_0
+  c.strain_to(3 * e0, 2e-7);  // into softening: κ = 3 ε_0
   const std::size_t unload = c.eps.size();
-  c.strain_to(-2 * e0, 2e-7);   // back through the origin into compression
+  c.strain_to(-2 * e0, 2e-7);  // back through the origin into compression
   const std::size_t reload = c.eps.size();
-  c.strain_to(6 * e0, 2e-7);    // past the old κ, onto the envelope again
+  c.strain_to(6 * e0, 2e-7);  // past the old κ, onto the envelope again
   const auto expected = closed_form(p, c.eps);
   const double ft = p.modulus * e0;
   CHECK(max_deviation(c.sigma_n, expected) < 1e-9 * ft);
   // The unloading branch is one straight line through the origin, of slope (1 − g(3 ε_0)) k_N.
   const double secant = (1 - g_of(p, 3 * e0)) * p.modulus;
   for (std::size_t k = unload; k < reload; ++k)
-    if (c.eps[k] > 0) CHECK(c.sigma_n[k] == doctest::Approx(secant * c.eps[k]).epsilon(1e-9));
-    else CHECK(c.sigma_n[k] == doctest::Approx(p.modulus * c.eps[k]).epsilon(1e-9));  // compression: k_N
+    if (c.eps[k] > 0)
+      CHECK(c.sigma_n[k] == doctest::Approx(secant * c.eps[k]).epsilon(1e-9));
+    else
+      CHECK(c.sigma_n[k] == doctest::Approx(p.modulus * c.eps[k]).epsilon(1e-9));  // compression: k_N
   // Reloading below κ retraces it; κ grows again only past 3 ε_0.
   double kappa_mid = 0;
   for (std::size_t k = reload; k < c.eps.size(); ++k)
@@ -101,7 +103,8 @@ TEST_CASE("cpm: never_damage keeps a cohesive contact elastic in tension") {
   auto c = test::cpm_pair(p);
   c.strain_to(10 * p.crack_onset_strain, 1e-6);
   for (std::size_t k = 0; k < c.eps.size(); ++k)
-    CHECK(c.sigma_n[k] == doctest::Approx(p.modulus * c.eps[k]).epsilon(1e-9).scale(1e-9 * p.modulus * p.crack_onset_strain));
+    CHECK(c.sigma_n[k] ==
+          doctest::Approx(p.modulus * c.eps[k]).epsilon(1e-9).scale(1e-9 * p.modulus * p.crack_onset_strain));
   CHECK(c.w.cracks.empty());
 }
 

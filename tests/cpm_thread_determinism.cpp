@@ -50,14 +50,16 @@ Outcome pull(int threads) {
 TEST_CASE("cpm: one and two threads give the same bits and the same crack log") {
   const Outcome a = pull(1), b = pull(2);
   omp_set_num_threads(1);
-  MESSAGE(a.cracks.size(), " contacts began to damage; dissipated ", a.dissipated, " J, strain energy ", a.strain, " J");
+  MESSAGE(a.cracks.size(), " contacts began to damage; dissipated ", a.dissipated, " J, strain energy ", a.strain,
+          " J");
   REQUIRE(a.cracks.size() > 100);  // the loop's events, not only its forces, are compared
   REQUIRE(a.x.size() == b.x.size());
   CHECK(std::memcmp(a.x.data(), b.x.data(), a.x.size() * sizeof(Vec<3>)) == 0);
   REQUIRE(a.cracks.size() == b.cracks.size());
   bool same = true;
   for (std::size_t k = 0; k < a.cracks.size(); ++k)
-    same = same && a.cracks[k].a == b.cracks[k].a && a.cracks[k].b == b.cracks[k].b && a.cracks[k].step == b.cracks[k].step;
+    same = same && a.cracks[k].a == b.cracks[k].a && a.cracks[k].b == b.cracks[k].b &&
+           a.cracks[k].step == b.cracks[k].step;
   CHECK(same);
   CHECK(a.dissipated == b.dissipated);
   CHECK(a.strain == b.strain);

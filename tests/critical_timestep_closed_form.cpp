@@ -61,7 +61,7 @@ double true_critical_timestep(int n, double kn_ks_ratio, double m, double inerti
   for (int i = 0; i + 1 < n; ++i) {
     const int a = 3 * i, b = 3 * (i + 1);
     Eigen::VectorXd normal = Eigen::VectorXd::Zero(dofs), shear = Eigen::VectorXd::Zero(dofs);
-    normal(b) = 1, normal(a) = -1;                                                        // x_b − x_a
+    normal(b) = 1, normal(a) = -1;                                                          // x_b − x_a
     shear(b + 1) = 1, shear(b + 2) = -kRadius, shear(a + 1) = -1, shear(a + 2) = -kRadius;  // the stretch above
     k += c.kn * normal * normal.transpose() + c.ks * shear * shear.transpose();
   }
@@ -94,7 +94,8 @@ void lattice_chain(int n, double kn_ks_ratio) {
   const Linear::Coeffs c = springs<D>(kn_ks_ratio);
   const double m = w.particles.mass[0], inertia = w.particles.inertia[0];
   const double exact = true_critical_timestep<D>(n, kn_ks_ratio, m, inertia);
-  const double infinite = std::min(2.0 / std::sqrt(4 * c.kn / m), 2.0 / std::sqrt(4 * c.ks * kRadius * kRadius / inertia));
+  const double infinite =
+      std::min(2.0 / std::sqrt(4 * c.kn / m), 2.0 / std::sqrt(4 * c.ks * kRadius * kRadius / inertia));
   // An interior particle has two contacts: Tang (3.22)–(3.23) with twice the springs.
   const double tang = std::min(std::sqrt(m / (2 * (c.kn + c.ks))), std::sqrt(inertia / (2 * c.ks * kRadius * kRadius)));
   MESSAGE(D, "D chain of ", n, ", k_n/k_s = ", kn_ks_ratio, ": estimate ", w.dt_critical, " s, exact ", exact,

@@ -12,7 +12,6 @@ using namespace mc;
 
 namespace {
 
-
 // Simple cubic lattice of n³ spheres of radius r at spacing 2 r (1 − c), in a box of six fixed planes. Each
 // contact between spheres starts with the overlap 2 r c; with walls as stiff as a sphere (series stiffness
 // k_ball/2, as between two spheres) the walls are placed to overlap the outer spheres by 2 r c too, so every
@@ -38,8 +37,8 @@ TEST_CASE("undamped_elastic_assembly_conserves_energy") {
   LinearParams prm;
   prm.modulus = 1e8;
   prm.kn_ks_ratio = 2;
-  prm.friction = 10;  // the shear springs work, but never slip
-  const double r = 1e-3, c = 1e-3;  // pre-compression: overlaps of 2 µm between spheres
+  prm.friction = 10;                     // the shear springs work, but never slip
+  const double r = 1e-3, c = 1e-3;       // pre-compression: overlaps of 2 µm between spheres
   auto w = cubic_box(prm, 10, 5, r, c);  // 125 spheres
   // Perturb every position by up to ±0.05 of the overlap in each direction, at rest: the lattice then vibrates
   // in all its modes (translation and, through the shear springs, rotation) without any contact opening.
@@ -73,13 +72,13 @@ TEST_CASE("undamped_elastic_assembly_conserves_energy") {
       kept = kept && w.contact_count() == contacts;
     }
   }
-  MESSAGE("125 spheres, " << contacts << " contacts, " << steps << " steps: E0 = " << e0 << " J (vibration "
-                          << e_vib << " J, peak kinetic " << ke_max << " J); worst |residual| / E0 = " << worst / e0
-                          << ", / E_vib = " << worst / e_vib << "; slip dissipation "
-                          << w.energy.dissipated_contacts << " J");
-  CHECK(kept);                                      // no contact opened or closed
-  CHECK(w.energy.dissipated_contacts == 0.0);       // no slip
-  CHECK(ke_max > 0.1 * e_vib);                      // it did vibrate
+  MESSAGE("125 spheres, " << contacts << " contacts, " << steps << " steps: E0 = " << e0 << " J (vibration " << e_vib
+                          << " J, peak kinetic " << ke_max << " J); worst |residual| / E0 = " << worst / e0
+                          << ", / E_vib = " << worst / e_vib << "; slip dissipation " << w.energy.dissipated_contacts
+                          << " J");
+  CHECK(kept);                                 // no contact opened or closed
+  CHECK(w.energy.dissipated_contacts == 0.0);  // no slip
+  CHECK(ke_max > 0.1 * e_vib);                 // it did vibrate
   // For a linear system central differences conserve ½ m v(t−Δt/2)·v(t+Δt/2) + U(x(t)) exactly. What remains
   // is not linear: the contact normals turn and the shear spring is incremental (its force is carried with the
   // turning contact plane, Tang 3.5–3.10), so it is not exactly a potential. That error grows with the
@@ -108,7 +107,8 @@ TEST_CASE("damped_wall_loaded_assembly_energy_balance_closes") {
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j)
       for (int k = 0; k < n; ++k)
-        for (const auto& b : basis) w.particles.add(a * (Vec<3>(i, j, k) + b), r * (0.9 + 0.1 * rng.uniform()), 2600, 0);
+        for (const auto& b : basis)
+          w.particles.add(a * (Vec<3>(i, j, k) + b), r * (0.9 + 0.1 * rng.uniform()), 2600, 0);
   const double lo = -r, hi = (n - 0.5) * a + r;
   WallMaterial wm;
   wm.kn = wm.ks = Linear::ball_kn<3>(prm, r);
@@ -149,9 +149,9 @@ TEST_CASE("damped_wall_loaded_assembly_energy_balance_closes") {
   // 3.76), one step ahead of the kinetic and strain terms, an offset ~½ F_wall·Δu that does not accumulate.
   // It weighs most at the first touch of the wall (F Δu ≈ 3·10⁻⁹ J against W ≈ 5·10⁻⁷ J: 0.6 %). Later what
   // remains grows slowly from the friction bookkeeping (Tang 3.77–3.78 is first order in the slip increment,
-  // and the incremental shear force is not exactly a potential): 3·10⁻⁴ of W at the end. (Pairing the local damping force at t with x(t+Δt) − x(t) instead of v(t) Δt, as
-  // the engine did before, gave a worst of 2.8 % here: the error per step, ½ Δt² f_d·a, holds a part
-  // α² F² Δt² / 2m that never cancels.)
+  // and the incremental shear force is not exactly a potential): 3·10⁻⁴ of W at the end. (Pairing the local damping
+  // force at t with x(t+Δt) − x(t) instead of v(t) Δt, as the engine did before, gave a worst of 2.8 % here: the error
+  // per step, ½ Δt² f_d·a, holds a part α² F² Δt² / 2m that never cancels.)
   CHECK(worst < 0.01);
   CHECK(std::abs(e.residual()) < 1e-3 * e.boundary_work);
   // The terms are all at work: friction and local damping each take a visible share.

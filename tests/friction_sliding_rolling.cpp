@@ -138,8 +138,8 @@ void block_sticks(double press) {
   const double ft = w.walls[0].force[0];
   // Elastic scale of the problem: the shear spring stretch under the whole push.
   const double ks = row.kn_wall;  // k_s = k_n here (ratio 1, wall ks = kn)
-  MESSAGE("D = " << D << ": stuck row, drift after the transient " << drift / (T / ks)
-                 << " of T/k_s, max |v| " << vmax << " m/s, F_t/T − 1 = " << ft / T - 1);
+  MESSAGE("D = " << D << ": stuck row, drift after the transient " << drift / (T / ks) << " of T/k_s, max |v| " << vmax
+                 << " m/s, F_t/T − 1 = " << ft / T - 1);
   // Stuck: after the elastic transient (damped by the dashpots) the row does not move on, and the floor
   // holds the whole push by static friction. The drift allowed, 10⁻⁶ of the elastic stretch T/k_s, is what
   // the decaying transient can still add; sliding at any rate would move it by orders of magnitude more.
@@ -226,8 +226,8 @@ InclineResult<D> incline(const Vec<D>& normal, double mu, int transient, int win
 }  // namespace
 
 TEST_CASE("block_slides_on_wall_at_mu_fn") {
-  block_slides<2>(1.0);    // P = 1 N per metre of thickness (≈ 12 m g)
-  block_slides<3>(1e-3);   // P = 1 mN (≈ 9 m g)
+  block_slides<2>(1.0);   // P = 1 N per metre of thickness (≈ 12 m g)
+  block_slides<3>(1e-3);  // P = 1 mN (≈ 9 m g)
   block_sticks<2>(1.0);
   block_sticks<3>(1e-3);
 }
@@ -239,7 +239,7 @@ TEST_CASE("sphere_rolls_down_incline_as_closed_form") {
   {
     const auto r = incline<3>(n, 0.5, 2000, 4000);
     MESSAGE("sphere, μ = 0.5: a / (5/7 g sin θ) − 1 = " << r.a / r.a_roll_exact - 1 << ", ω R / v − 1 = "
-                                                       << r.omega_over_v - 1 << ", slip speed / v = " << r.slip_speed);
+                                                        << r.omega_over_v - 1 << ", slip speed / v = " << r.slip_speed);
     // The engine's lever is R − U/2 (contact point at mid-overlap, Tang 3.4), not R: rolling gives
     // a = g sin θ / (1 + I/(m (R − U/2)²)) and ω (R − U/2) = v. With U/R ≈ 4·10⁻⁷ both differ from the
     // textbook forms by < 2·10⁻⁷; the shear–rotation transient is damped (ζ_eff ≈ 0.56, e-fold in ~2 steps)
@@ -270,7 +270,7 @@ TEST_CASE("disc_rolls_down_incline_as_closed_form") {
   {
     const auto r = incline<2>(n, 0.5, 2000, 4000);
     MESSAGE("disc, μ = 0.5: a / (2/3 g sin θ) − 1 = " << r.a / r.a_roll_exact - 1 << ", ω R / v − 1 = "
-                                                     << r.omega_over_v - 1 << ", slip speed / v = " << r.slip_speed);
+                                                      << r.omega_over_v - 1 << ", slip speed / v = " << r.slip_speed);
     // As for the sphere; U/R ≈ 5·10⁻⁷ here.
     CHECK(r.a == doctest::Approx(r.a_roll_exact).epsilon(1e-6));
     CHECK(r.omega_over_v == doctest::Approx(1.0).epsilon(1e-6));
@@ -279,9 +279,9 @@ TEST_CASE("disc_rolls_down_incline_as_closed_form") {
   {
     const auto r = incline<2>(n, 0.05, 200, 4000);
     const double alpha_exact_over_a = 0.05 * 9.81 * std::cos(theta) / 0.5 / r.a_slide_exact;
-    MESSAGE("disc, μ = 0.05: a / (g (sin θ − μ cos θ)) − 1 = " << r.a / r.a_slide_exact - 1 << ", α R / a = "
-                                                               << r.alpha_over_a << " (exact " << alpha_exact_over_a
-                                                               << ")");
+    MESSAGE("disc, μ = 0.05: a / (g (sin θ − μ cos θ)) − 1 = " << r.a / r.a_slide_exact - 1
+                                                               << ", α R / a = " << r.alpha_over_a << " (exact "
+                                                               << alpha_exact_over_a << ")");
     CHECK(r.a == doctest::Approx(r.a_slide_exact).epsilon(1e-6));
     CHECK(r.alpha_over_a == doctest::Approx(alpha_exact_over_a).epsilon(1e-6));
   }

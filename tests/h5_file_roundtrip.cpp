@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
-#include "tests/common/errors.hpp"
-#include "tests/common/temp_dir.hpp"
 #include "engine/errors.hpp"
 #include "io/h5_file.hpp"
+#include "tests/common/errors.hpp"
+#include "tests/common/temp_dir.hpp"
 
 using mc::H5File;
 using Dims = std::vector<hsize_t>;
@@ -24,7 +24,6 @@ using mc::test::TempDir;
 
 // Open files, groups, datasets, attributes and named types, in all files.
 ssize_t open_ids() { return H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL); }
-
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
@@ -89,7 +88,8 @@ TEST_CASE("groups: exists, list, create, remove; datasets are replaced, groups a
     f.write("/g/a", std::vector<std::int32_t>{1, 2, 3, 4, 5, 6}, {3, 2});
     CHECK(f.shape("/g/a") == Dims{3, 2});
     CHECK(f.read_ints("/g/a") == std::vector<std::int64_t>{1, 2, 3, 4, 5, 6});
-    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.write("/g/sub", std::vector<double>{1}, {1}); }), "a group has that path"));
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.write("/g/sub", std::vector<double>{1}, {1}); }),
+                   "a group has that path"));
     CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.create_group("/g/a"); }), "a dataset has that path"));
     CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.list("/g/a"); }), "not a group"));
 
@@ -122,8 +122,10 @@ TEST_CASE("tables grow in several appends, truncate, and grow again") {
     const std::int64_t steps[] = {10, 20, 30, 40};
     f.append_rows("/history/step", steps, 2);
     f.append_rows("/history/step", steps + 2, 2);
-    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.append_rows("/history/step", first, 1); }), "the table holds integers"));
-    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.append_rows("/history/forces", steps, 1); }), "the table holds doubles"));
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.append_rows("/history/step", first, 1); }),
+                   "the table holds integers"));
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.append_rows("/history/forces", steps, 1); }),
+                   "the table holds doubles"));
     f.flush();
 
     std::vector<double> expected{1, 2, 3};
@@ -138,7 +140,8 @@ TEST_CASE("tables grow in several appends, truncate, and grow again") {
     H5File f(path, H5File::Mode::ReadWrite);  // as on resume
     f.truncate_rows("/history/forces", 2);
     f.truncate_rows("/history/step", 3);
-    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.truncate_rows("/history/step", 5); }), "it has 3 rows, fewer than 5"));
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.truncate_rows("/history/step", 5); }),
+                   "it has 3 rows, fewer than 5"));
     const double more[] = {7, 8, 9, 10, 11, 12};
     f.append_rows("/history/forces", more, 2);
     const std::int64_t step = 99;
@@ -169,7 +172,8 @@ TEST_CASE("attributes and strings") {
     f.set_attr("/frames/0000/x", "unit", std::string("m"));
     f.set_attr("/frames/0000/x", "unit", std::string("metre"));  // overwritten, longer
     f.set_attr("/frames/0000", "step", 3.5);                     // overwritten, another type
-    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.set_attr("/nowhere", "a", 1.0); }), "no such group or dataset"));
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.set_attr("/nowhere", "a", 1.0); }),
+                   "no such group or dataset"));
   }
   CHECK(open_ids() == before);
 
@@ -184,9 +188,11 @@ TEST_CASE("attributes and strings") {
   CHECK(f.has_attr("/frames/0000", "time"));
   CHECK_FALSE(f.has_attr("/frames/0000", "nope"));
   CHECK_FALSE(f.has_attr("/nowhere", "time"));
-  CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.attr_int("/frames/0000", "step"); }), "stored as floating point"));
+  CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.attr_int("/frames/0000", "step"); }),
+                 "stored as floating point"));
   CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.read_doubles("/scene"); }), "stored as string"));
-  CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.read_string("/frames/0000/x"); }), "stored as floating point"));
+  CHECK(
+      contains(mc::test::error_of<mc::IoError>([&] { f.read_string("/frames/0000/x"); }), "stored as floating point"));
   const std::string missing = mc::test::error_of<mc::IoError>([&] { f.attr_double("/frames/0000", "pressure"); });
   CHECK(missing == path + ": cannot read attribute 'pressure' of '/frames/0000': no such attribute");
 }
@@ -234,7 +240,8 @@ TEST_CASE("errors name the file, the object and the reason") {
 
     H5File moved = std::move(f);
     CHECK(moved.read_ints("/history/step") == std::vector<std::int64_t>{1});
-    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.exists("/history"); }), "moved from"));  // NOLINT(bugprone-use-after-move)
+    CHECK(contains(mc::test::error_of<mc::IoError>([&] { f.exists("/history"); }),
+                   "moved from"));  // NOLINT(bugprone-use-after-move)
   }
   CHECK(open_ids() == before);
   const std::string missing_file = tmp.file("absent.h5");

@@ -10,26 +10,26 @@
 #include <memory>
 #include <string>
 
-#include "tests/common/errors.hpp"
 #include "contact_models/contact_bond.hpp"
 #include "engine/errors.hpp"
 #include "engine/measure.hpp"
 #include "preprocess/regular_packing.hpp"
+#include "tests/common/errors.hpp"
 #include "tests/common/test_worlds.hpp"
 
 using namespace mc;
 
 namespace {
 
-constexpr double kR = 1e-3;          // disc radius [m]
-constexpr double kDensity = 2500;    // [kg/m³]
+constexpr double kR = 1e-3;        // disc radius [m]
+constexpr double kDensity = 2500;  // [kg/m³]
 
 // What the virtual tension test measured: the in-plane (2D) constants of the lattice plate, and checks.
 struct Tension {
   double young_2d = 0, poisson_2d = 0;
-  double region_stress = 0;   // σ_yy of the measurement circle (Tang 3.63), beside the force over the width
-  double whole_strain = 0;    // top-row displacement / height, beside the central fit
-  double unbalanced = 0;      // mean unbalanced force / mean contact force at the end
+  double region_stress = 0;  // σ_yy of the measurement circle (Tang 3.63), beside the force over the width
+  double whole_strain = 0;   // top-row displacement / height, beside the central fit
+  double unbalanced = 0;     // mean unbalanced force / mean contact force at the end
   std::int64_t steps = 0;
 };
 
@@ -78,10 +78,10 @@ Tension virtual_tension(const LatticeStiffness& k, int per_row, int rows, double
   REQUIRE(w.sets[1]->pairs().size() == static_cast<std::size_t>(2 * (per_row - 1)));
   auto& P = w.particles;
   const double H = pk.x[top0][1] - pk.x[0][1];
-  for (int i = 0; i < per_row; ++i) P.fix[i] = 0b010;                 // bottom row: y
-  P.fix[per_row / 2] = 0b011;                                          // … and one disc in x
+  for (int i = 0; i < per_row; ++i) P.fix[i] = 0b010;  // bottom row: y
+  P.fix[per_row / 2] = 0b011;                          // … and one disc in x
   const double v = strain * H / (ramp * w.dt);
-  for (int i = top0; i < n; ++i) P.fix[i] = 0b010, P.v[i][1] = v;     // top row: y, moving up
+  for (int i = top0; i < n; ++i) P.fix[i] = 0b010, P.v[i][1] = v;  // top row: y, moving up
 
   Tension out;
   auto unbalanced = [&] {
@@ -160,9 +160,9 @@ TEST_CASE("hex_lattice_virtual_tension_gives_plane_stress_E_and_nu_of_tang_8_3")
     const LatticeStiffness k = hex_lattice_stiffness_plane_stress(E, nu);
     CHECK(lattice_poisson_2d(k) == doctest::Approx(nu).epsilon(1e-12));  // ν₂D = ν in plane stress
     const Tension t = virtual_tension(k, kPerRow, kRows, kStrain, kRamp);
-    MESSAGE("plane stress, target E = " << E << " Pa, ν = " << nu << ": measured E = " << t.young_2d
-                                        << " Pa (ratio " << t.young_2d / E << "), ν = " << t.poisson_2d
-                                        << " (ratio " << t.poisson_2d / nu << ")");
+    MESSAGE("plane stress, target E = " << E << " Pa, ν = " << nu << ": measured E = " << t.young_2d << " Pa (ratio "
+                                        << t.young_2d / E << "), ν = " << t.poisson_2d << " (ratio "
+                                        << t.poisson_2d / nu << ")");
     CHECK(t.young_2d == doctest::Approx(E).epsilon(0.02));
     CHECK(t.poisson_2d == doctest::Approx(nu).epsilon(0.02));
   }
@@ -195,8 +195,10 @@ std::vector<int> touching(const Packing<D>& pk, double R, double& next_nearest) 
   for (int i = 0; i < n; ++i)
     for (int j = i + 1; j < n; ++j) {
       const double d = (pk.x[j] - pk.x[i]).norm();
-      if (std::abs(d - 2 * R) <= 1e-9 * R) ++count[i], ++count[j];
-      else next_nearest = std::min(next_nearest, d);
+      if (std::abs(d - 2 * R) <= 1e-9 * R)
+        ++count[i], ++count[j];
+      else
+        next_nearest = std::min(next_nearest, d);
     }
   return count;
 }
@@ -209,8 +211,7 @@ TEST_CASE("regular_packings_have_the_expected_contacts") {
     // (2N + 1) R wide: N discs in every row; 2R + (M − 1)√3 R high: M rows.
     const int N = 12, M = 9;
     const Vec<2> lo(-0.05, 0.3);
-    const Packing<2> pk =
-        hexagonal_packing(lo, lo + Vec<2>((2 * N + 1) * R, 2 * R + (M - 1) * std::sqrt(3.0) * R), R);
+    const Packing<2> pk = hexagonal_packing(lo, lo + Vec<2>((2 * N + 1) * R, 2 * R + (M - 1) * std::sqrt(3.0) * R), R);
     REQUIRE(static_cast<int>(pk.x.size()) == N * M);
     for (int j = 0; j < M; ++j)
       for (int i = 0; i < N; ++i) {  // row by row, left to right, odd rows offset by R

@@ -158,8 +158,8 @@ void circle_stress_equals_wall_stress(int per_side) {
   for (int i = 0; i < w.particles.size(); ++i) inside += region.contains(w.particles.x[i]);
   MESSAGE(D << "D: " << w.particles.size() << " particles, " << pk.steps << " steps, unbalanced force ratio "
             << pk.unbalanced << ", kinetic/strain energy " << ke / strain);
-  MESSAGE("region: " << inside << " particle centres, porosity " << porosity(w, region)
-                     << ", coordination number " << coordination_number(w, region));
+  MESSAGE("region: " << inside << " particle centres, porosity " << porosity(w, region) << ", coordination number "
+                     << coordination_number(w, region));
   MESSAGE("region stress [Pa] (tension positive):\n" << sigma << "\nwhole box:\n" << box);
   double wall_mean = 0, region_mean = 0;
   for (int k = 0; k < D; ++k) {
@@ -225,8 +225,8 @@ void lattice_stress(int per_side) {
   const Tensor<D> sigma = average_stress(w, region);
   const double solid = 1 - porosity(w, region);
   MESSAGE(D << "D lattice: exact " << exact << " Pa, walls " << w.walls[0].normal_stress() << " Pa, region "
-            << -sigma(0, 0) << " Pa (ratio " << -sigma(0, 0) / exact << "), solid fraction " << solid
-            << " (lattice " << Dim<D>::volume(r) / std::pow(s, D) << ")");
+            << -sigma(0, 0) << " Pa (ratio " << -sigma(0, 0) / exact << "), solid fraction " << solid << " (lattice "
+            << Dim<D>::volume(r) / std::pow(s, D) << ")");
   // Each wall carries n^(D−1) forces F over (n s − δ)^(D−1): exact arithmetic.
   for (const auto& wl : w.walls)
     CHECK(wl.normal_stress() == doctest::Approx(exact * std::pow(per_side * s / L, D - 1)).epsilon(1e-9));
@@ -331,11 +331,19 @@ double single_particle_porosity(double R, double r, double d) {
 
 }  // namespace
 
-TEST_CASE("measurement_circle_stress_tracks_wall_stress_in_a_random_packing_2d") { circle_stress_equals_wall_stress<2>(30); }
-TEST_CASE("measurement_sphere_stress_tracks_wall_stress_in_a_random_packing_3d") { circle_stress_equals_wall_stress<3>(10); }
+TEST_CASE("measurement_circle_stress_tracks_wall_stress_in_a_random_packing_2d") {
+  circle_stress_equals_wall_stress<2>(30);
+}
+TEST_CASE("measurement_sphere_stress_tracks_wall_stress_in_a_random_packing_3d") {
+  circle_stress_equals_wall_stress<3>(10);
+}
 
-TEST_CASE("measurement_circle_stress_equals_wall_stress_in_a_uniformly_compressed_lattice_2d") { lattice_stress<2>(20); }
-TEST_CASE("measurement_sphere_stress_equals_wall_stress_in_a_uniformly_compressed_lattice_3d") { lattice_stress<3>(10); }
+TEST_CASE("measurement_circle_stress_equals_wall_stress_in_a_uniformly_compressed_lattice_2d") {
+  lattice_stress<2>(20);
+}
+TEST_CASE("measurement_sphere_stress_equals_wall_stress_in_a_uniformly_compressed_lattice_3d") {
+  lattice_stress<3>(10);
+}
 
 TEST_CASE("best_fit_strain_rate_recovers_affine_field_2d") { affine_field<2>(5000); }
 TEST_CASE("best_fit_strain_rate_recovers_affine_field_3d") { affine_field<3>(5000); }

@@ -91,8 +91,8 @@ Outcome drive(const ParallelBondParams& p, Load load) {
     // The incremental law uses the prescribed rate in every force pass, this one included.
     if (step == 1000) out.stiffness_ratio = last / (stiffness * motion);
   }
-  MESSAGE(D, "D: stiffness / beam theory = ", out.stiffness_ratio, ", last load before the break / capacity = ",
-          out.break_ratio);
+  MESSAGE(D, "D: stiffness / beam theory = ", out.stiffness_ratio,
+          ", last load before the break / capacity = ", out.break_ratio);
   return out;
 }
 
@@ -100,7 +100,8 @@ template <int D>
 void tension() {
   const Outcome o = drive<D>(params(20e6, 1e12), Load::Tension);
   CHECK(o.stiffness_ratio == doctest::Approx(1.0).epsilon(1e-9));  // exact increments: only round-off
-  CHECK(o.break_ratio == doctest::Approx(1.0).epsilon(5e-3));      // 0.5 %: one step's overshoot at most; the scheme gives 0.025 %
+  CHECK(o.break_ratio ==
+        doctest::Approx(1.0).epsilon(5e-3));  // 0.5 %: one step's overshoot at most; the scheme gives 0.025 %
   CHECK(o.break_ratio <= 1.0);
   CHECK(o.mode == CrackMode::Tensile);
   CHECK(o.crack_x == doctest::Approx(kR).epsilon(1e-2));  // the crack sits at the contact point, midway

@@ -31,7 +31,8 @@ void series_springs() {
   w.init();
   w.step();
   const double fa = 0.5, fb = 2.0;
-  const double kn = D == 2 ? 2 * p.modulus * fa * fb / (fa + fb) : 4 * p.modulus * (ra * fa) * (rb * fb) / (ra * fa + rb * fb);
+  const double kn =
+      D == 2 ? 2 * p.modulus * fa * fb / (fa + fb) : 4 * p.modulus * (ra * fa) * (rb * fb) / (ra * fa + rb * fb);
   // Overlap 1e-7 m out of coordinates ~ 1e-3 m: round-off ~ 1e-9 relative.
   CHECK(w.slot_force(0)[0] == doctest::Approx(kn * overlap).epsilon(1e-6));
 }
@@ -48,16 +49,20 @@ TEST_CASE("particle_stiffness_factors_drawn_per_phase_have_the_weibull_moments_o
       "[[contacts]]\nphase_a = \"mortar\"\nmodel = \"linear\"\nmodulus = \"20 GPa\"\n"
       "[[contacts]]\nphase_a = \"aggregate\"\nmodel = \"linear\"\nmodulus = \"40 GPa\"\n"
       "[[contacts]]\nphase_a = \"mortar\"\nphase_b = \"aggregate\"\nmodel = \"linear\"\nmodulus = \"15 GPa\"\n"
-      "[specimen]\nkind = \"lattice\"\nlo = [0, 0]\nhi = [\"40 mm\", \"40 mm\"]\nradius = \"0.3 mm\"\nphase = \"mortar\"\n"
-      "[mesostructure]\nfraction = 0.3\ngrading = \"ranges\"\nmortar_phase = \"mortar\"\naggregate_phase = \"aggregate\"\n"
+      "[specimen]\nkind = \"lattice\"\nlo = [0, 0]\nhi = [\"40 mm\", \"40 mm\"]\nradius = \"0.3 mm\"\nphase = "
+      "\"mortar\"\n"
+      "[mesostructure]\nfraction = 0.3\ngrading = \"ranges\"\nmortar_phase = \"mortar\"\naggregate_phase = "
+      "\"aggregate\"\n"
       "[[mesostructure.ranges]]\nlo = \"4 mm\"\nhi = \"8 mm\"\nshare = 1\n[run]\nsteps = 1\n";
   const Scene s = read_scene(TomlDoc::parse_text(text, "h.toml"), "h.toml");
   SpecimenInfo info;
   const World<2> w = build_world<2>(s, info);
   std::vector<double> mortar;
   for (int i = 0; i < w.particles.size(); ++i) {
-    if (w.particles.phase[i] == 1) CHECK(w.particles.stiffness[i] == 1.0);  // the aggregate declares none
-    else mortar.push_back(w.particles.stiffness[i]);
+    if (w.particles.phase[i] == 1)
+      CHECK(w.particles.stiffness[i] == 1.0);  // the aggregate declares none
+    else
+      mortar.push_back(w.particles.stiffness[i]);
   }
   REQUIRE(mortar.size() > 2000);
   const double k = 6, g1 = std::tgamma(1 + 1 / k), g2 = std::tgamma(1 + 2 / k);  // Weibull, scale 1

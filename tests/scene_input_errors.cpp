@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "tests/common/errors.hpp"
 #include "engine/errors.hpp"
 #include "scene/toml_reader.hpp"
+#include "tests/common/errors.hpp"
 
 using mc::InputError;
 using mc::Range;
@@ -41,17 +41,21 @@ TEST_CASE("scene input: a missing key names the key and what it takes") {
   CHECK(error_of([&] { d.root().table("material").number("density", Unit::Density, Range::positive()); }) ==
         "scenes/a.toml: missing key 'material.density' (a number in kg/m3, e.g. 2600 or \"2.6 g/cm3\")");
   check_names(error_of([&] { d.root().table("contact"); }), {kFile, "'contact'", "a table"});
-  check_names(error_of([&] { d.root().table("material").choice("model", {"a", "b"}); }),
+  check_names(error_of([&] {
+                d.root().table("material").choice("model", {"a", "b"});
+              }),
               {kFile, "'material.model'", "one of: a, b"});
 }
 
 TEST_CASE("scene input: an out-of-range value names the range, never clamps") {
-  CHECK(error_of([] { doc("[damping]\nlocal = 1.5\n").root().table("damping").number("local", Unit::None, Range::open_fraction()); }) ==
-        "scenes/a.toml: key 'damping.local' = 1.5 is out of range: allowed 0 <= value < 1");
+  CHECK(error_of([] {
+          doc("[damping]\nlocal = 1.5\n").root().table("damping").number("local", Unit::None, Range::open_fraction());
+        }) == "scenes/a.toml: key 'damping.local' = 1.5 is out of range: allowed 0 <= value < 1");
   // A quantity is checked in SI, and the message shows both what was written and its SI value.
   CHECK(error_of([] { doc("E = \"-30 GPa\"").root().number("E", Unit::Pressure, Range::positive()); }) ==
         "scenes/a.toml: key 'E' = \"-30 GPa\" (-3e+10 Pa) is out of range: allowed value > 0 Pa");
-  check_names(error_of([] { doc("n = -2").root().integer("n", Range::at_least(1)); }), {kFile, "'n' = -2", "value >= 1"});
+  check_names(error_of([] { doc("n = -2").root().integer("n", Range::at_least(1)); }),
+              {kFile, "'n' = -2", "value >= 1"});
   check_names(error_of([] { doc("r = 0.0").root().number("r", Unit::Length, Range::closed(0.001, 0.01)); }),
               {kFile, "'r' = 0.0", "0.001 m <= value <= 0.01 m"});
 }
@@ -65,13 +69,16 @@ TEST_CASE("scene input: non-finite numbers are refused") {
 TEST_CASE("scene input: a value of the wrong type names the expected type") {
   const auto d = doc("[[walls]]\nvelocity = 0.0\n[[walls]]\nvelocity = \"abc\"\n");
   CHECK(error_of([&] { d.root().tables("walls").at(1).number("velocity", Unit::Velocity, Range::any()); }) ==
-        "scenes/a.toml: key 'walls[1].velocity' = \"abc\": expected a number in m/s (or a string with a unit such as \"5 mm/s\")");
+        "scenes/a.toml: key 'walls[1].velocity' = \"abc\": expected a number in m/s (or a string with a unit such as "
+        "\"5 mm/s\")");
   check_names(error_of([] { doc("x = true").root().number("x", Unit::None, Range::any()); }),
               {kFile, "'x' = true", "expected a number"});
-  check_names(error_of([] { doc("n = 2.5").root().integer("n", Range::any()); }), {kFile, "'n' = 2.5", "expected an integer"});
+  check_names(error_of([] { doc("n = 2.5").root().integer("n", Range::any()); }),
+              {kFile, "'n' = 2.5", "expected an integer"});
   check_names(error_of([] { doc("b = 1").root().boolean("b"); }), {kFile, "'b' = 1", "expected true or false"});
   check_names(error_of([] { doc("s = [1, 2]").root().string("s"); }), {kFile, "'s' = [1, 2]", "expected a string"});
-  check_names(error_of([] { doc("material = 5").root().table("material"); }), {kFile, "'material' = 5", "expected a table"});
+  check_names(error_of([] { doc("material = 5").root().table("material"); }),
+              {kFile, "'material' = 5", "expected a table"});
   check_names(error_of([] { doc("walls = 5").root().tables("walls"); }), {kFile, "'walls' = 5", "[[walls]]"});
 }
 
@@ -81,8 +88,10 @@ TEST_CASE("scene input: arrays of numbers check their length and each element") 
               {kFile, "'g' = [0, 0]", "expected an array of 3 numbers in m/s2, got 2"});
   check_names(error_of([&] { root.numbers("h", Unit::Acceleration, Range::any(), 3); }),
               {kFile, "'h[2]' = \"x\"", "expected a number in m/s2"});
-  check_names(error_of([&] { root.numbers("k", Unit::None, Range::any(), 0); }), {kFile, "'k' = 3", "an array of numbers"});
-  CHECK(doc("g = [1, \"2 mm\", 3.5]").root().numbers("g", Unit::Length, Range::any(), 0) == std::vector<double>{1.0, 0.002, 3.5});
+  check_names(error_of([&] { root.numbers("k", Unit::None, Range::any(), 0); }),
+              {kFile, "'k' = 3", "an array of numbers"});
+  CHECK(doc("g = [1, \"2 mm\", 3.5]").root().numbers("g", Unit::Length, Range::any(), 0) ==
+        std::vector<double>{1.0, 0.002, 3.5});
 }
 
 TEST_CASE("scene input: unknown keys are errors that list what is allowed") {
@@ -94,7 +103,8 @@ TEST_CASE("scene input: unknown keys are errors that list what is allowed") {
   contact.choice("model", {"linear", "hertz_mindlin"}, "linear");
   CHECK(error_of([&] { contact.finish(); }) ==
         "scenes/a.toml: unknown key 'contact.kn_ratoi'; allowed here: kn, kn_ks_ratio, friction, model");
-  CHECK(error_of([&] { d.finish_all(); }) == "scenes/a.toml: unknown key 'contact.kn_ratoi'; allowed here: kn, kn_ks_ratio, friction, model");
+  CHECK(error_of([&] { d.finish_all(); }) ==
+        "scenes/a.toml: unknown key 'contact.kn_ratoi'; allowed here: kn, kn_ks_ratio, friction, model");
 
   // A whole table nobody read is an unknown key of its parent.
   const auto e = doc("[material]\ndensity = 2600\n[outptu]\nevery = 10\n");
@@ -112,7 +122,9 @@ TEST_CASE("scene input: unknown keys are errors that list what is allowed") {
 }
 
 TEST_CASE("scene input: a unit of the wrong kind lists the units allowed") {
-  CHECK(error_of([] { doc("[material]\nE = \"30 GPa/s\"\n").root().table("material").number("E", Unit::Pressure, Range::positive()); }) ==
+  CHECK(error_of([] {
+          doc("[material]\nE = \"30 GPa/s\"\n").root().table("material").number("E", Unit::Pressure, Range::positive());
+        }) ==
         "scenes/a.toml: key 'material.E' = \"30 GPa/s\": unit 'GPa/s' is not a pressure; use Pa, kPa, MPa or GPa");
   CHECK(error_of([] { number_of("\"5 mm\"", Unit::Velocity); }) ==
         "scenes/a.toml: key 'x' = \"5 mm\": unit 'mm' is a length, not a velocity; use m/s, mm/s, mm/min or um/s");
@@ -121,9 +133,11 @@ TEST_CASE("scene input: a unit of the wrong kind lists the units allowed") {
 }
 
 TEST_CASE("scene input: an unknown choice lists the choices") {
-  CHECK(error_of([] { doc("[contact]\nmodel = \"lineer\"\n").root().table("contact").choice("model", {"linear", "hertz_mindlin"}); }) ==
-        "scenes/a.toml: key 'contact.model' = \"lineer\": allowed: linear, hertz_mindlin");
-  check_names(error_of([] { doc("model = 1").root().choice("model", {"linear"}); }), {kFile, "'model' = 1", "one of: linear"});
+  CHECK(error_of([] {
+          doc("[contact]\nmodel = \"lineer\"\n").root().table("contact").choice("model", {"linear", "hertz_mindlin"});
+        }) == "scenes/a.toml: key 'contact.model' = \"lineer\": allowed: linear, hertz_mindlin");
+  check_names(error_of([] { doc("model = 1").root().choice("model", {"linear"}); }),
+              {kFile, "'model' = 1", "one of: linear"});
 }
 
 TEST_CASE("scene input: a TOML syntax error names the file, the line and toml11's message on one line") {
@@ -145,18 +159,24 @@ TEST_CASE("scene input: a bad --set names the override and why") {
   const std::string walls = "[[walls]]\nvelocity = 0\n[[walls]]\nvelocity = 0\n[material]\ndensity = 2600\n";
   check_names(error_of([&] { doc(walls, {"walls[5].velocity=1"}); }),
               {kFile, "--set 'walls[5].velocity=1'", "past the end of 'walls'", "has 2 entries"});
-  check_names(error_of([&] { doc(walls, {"walls..velocity=1"}); }), {kFile, "--set 'walls..velocity=1'", "not a key path"});
+  check_names(error_of([&] { doc(walls, {"walls..velocity=1"}); }),
+              {kFile, "--set 'walls..velocity=1'", "not a key path"});
   check_names(error_of([&] { doc(walls, {"walls.velocity"}); }), {kFile, "--set 'walls.velocity'", "key=value"});
   check_names(error_of([&] { doc(walls, {"material.density.x=1"}); }), {kFile, "'material.density' is not a table"});
   check_names(error_of([&] { doc(walls, {"material[0].density=1"}); }), {kFile, "'material' is not an array"});
   // An overridden value is validated like any other, and the message says where it came from.
-  CHECK(error_of([&] { doc(walls, {"material.density=-1"}).root().table("material").number("density", Unit::Density, Range::positive()); }) ==
-        "scenes/a.toml: key 'material.density' (from --set) = -1 is out of range: allowed value > 0 kg/m3");
+  CHECK(error_of([&] {
+          doc(walls, {"material.density=-1"})
+              .root()
+              .table("material")
+              .number("density", Unit::Density, Range::positive());
+        }) == "scenes/a.toml: key 'material.density' (from --set) = -1 is out of range: allowed value > 0 kg/m3");
 }
 
 TEST_CASE("scene input: fail() reports a check across keys on the key's value") {
   const auto root = doc("lo = 2.0\nhi = 1.0\n").root();
-  CHECK(error_of([&] { root.fail("hi", "must exceed lo = 2"); }) == "scenes/a.toml: key 'hi' = 1.0: must exceed lo = 2");
+  CHECK(error_of([&] { root.fail("hi", "must exceed lo = 2"); }) ==
+        "scenes/a.toml: key 'hi' = 1.0: must exceed lo = 2");
 }
 
 TEST_CASE("scene input: unit strings convert to SI exactly") {
@@ -212,9 +232,9 @@ TEST_CASE("scene input: --set overrides scalars, array-of-table entries and miss
   const std::string text =
       "# a scene\n\n[material]\ndensity = 2600 # rock\nE = \"30 GPa\"\n[contact]\nmodel = \"linear\"\n"
       "[[walls]]\nvelocity = 0.1\n[[walls]]\nvelocity = 0.0\n";
-  const std::vector<std::string> overrides = {"material.density=2.7e3", "contact.model=hertz_mindlin",
+  const std::vector<std::string> overrides = {"material.density=2.7e3",       "contact.model=hertz_mindlin",
                                               "walls[1].velocity=\"5 mm/s\"", "output.every=100",
-                                              "gravity=[0, 0, -9.81]", "material.E=40 GPa"};
+                                              "gravity=[0, 0, -9.81]",        "material.E=40 GPa"};
   const auto d = doc(text, overrides);
   const auto check_values = [](const TomlDoc& x) {
     const auto root = x.root();

@@ -18,7 +18,9 @@ namespace {
 
 constexpr double kR = 1e-3;
 
-SofteningBondParams params(double normal, double shear) { return test::glued_bond_params<SofteningBondParams>(normal, shear); }
+SofteningBondParams params(double normal, double shear) {
+  return test::glued_bond_params<SofteningBondParams>(normal, shear);
+}
 
 template <int D>
 const SofteningBond::State<D>& bond_of(const World<D>& w) {
@@ -37,7 +39,8 @@ struct Pull {
 
 template <int D>
 Pull<D> pull_apart(const SofteningBondParams& p, double rb) {
-  Pull<D> r{test::held_bonded_pair<D, SofteningBond>(p, kR, rb, -0.002 * kR)};  // bonded across a small gap: the bond starts unstrained there
+  Pull<D> r{test::held_bonded_pair<D, SofteningBond>(
+      p, kR, rb, -0.002 * kR)};  // bonded across a small gap: the bond starts unstrained there
   World<D>& w = r.w;
   const auto c = SofteningBond::pair<D>(p, kR, rb);
   r.kn = c.kn;
@@ -77,9 +80,10 @@ void pulled_apart_dissipates_the_area_under_its_softening_curve() {
   const World<D>& w = r.w;
   const double peak = *std::max_element(r.force.begin(), r.force.end());
   const double area = 0.5 * r.strength * r.limit;  // under the softening curve, Tang (3.48)
-  MESSAGE("peak / F_c^n - 1 = ", peak / r.strength - 1, ", dissipated / (½ F_c^n U_p,max) - 1 = ",
-          w.energy.dissipated_contacts / area - 1, ", residual / boundary work = ",
-          w.energy.residual() / w.energy.boundary_work, ", loading steps = ", r.force.size());
+  MESSAGE("peak / F_c^n - 1 = ", peak / r.strength - 1,
+          ", dissipated / (½ F_c^n U_p,max) - 1 = ", w.energy.dissipated_contacts / area - 1,
+          ", residual / boundary work = ", w.energy.residual() / w.energy.boundary_work,
+          ", loading steps = ", r.force.size());
   // Each step adds 1/1000 of the strength: the force passes the peak within 0.1 % of it, never above.
   CHECK(peak / r.strength == doctest::Approx(1.0).epsilon(1e-3));
   CHECK(peak <= r.strength);
@@ -164,8 +168,10 @@ void in_compression_slips_at_mu_fn_plus_softened_cohesion() {
     // The shear spring advances by v_s Δt with the velocity that brought the particles where they are: its
     // first pass already counts one step of slide.
     const Sample s{d[1] + rate * w.dt, f.dot(n), (f - f.dot(n) * n).norm()};
-    if (SofteningBond::bonded<D>(bond_of(w))) bonded.push_back(s);
-    else after = s;
+    if (SofteningBond::bonded<D>(bond_of(w)))
+      bonded.push_back(s);
+    else
+      after = s;
   }
   REQUIRE(!SofteningBond::bonded<D>(bond_of(w)));
   REQUIRE(w.cracks.size() == 2);

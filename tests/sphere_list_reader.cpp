@@ -9,16 +9,16 @@
 #include <set>
 #include <string>
 
-#include "tests/common/errors.hpp"
 #include "engine/errors.hpp"
 #include "io/sphere_list.hpp"
+#include "tests/common/errors.hpp"
 
 namespace {
 
 // A private folder under the system temp directory, removed with everything in it.
 struct ListDir {
-  std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                              ("mesocrack_sphere_list_test_" + std::to_string(getpid()));
+  std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("mesocrack_sphere_list_test_" + std::to_string(getpid()));
   ListDir() { std::filesystem::create_directories(dir); }
   ~ListDir() { std::filesystem::remove_all(dir); }
   std::string write(const std::string& name, const std::string& text) const {
@@ -27,7 +27,6 @@ struct ListDir {
     return path;
   }
 };
-
 
 template <int D>
 std::string input_error(const ListDir& d, const std::string& text) {

@@ -16,7 +16,6 @@ using namespace mc;
 
 namespace {
 
-
 // 4356 spheres of radii 0.95–1.05 r on a face-centred cubic lattice of 11 × 11 × 9 cells compressed by 0.5 %
 // (most neighbours overlap, some do not touch), in a box of six planes; the top and one side wall move in.
 // Friction, local damping, gravity and energy tracing are all on, so every optional path of the cycle runs.
@@ -36,7 +35,8 @@ World<3> compressed_packing() {
   for (int i = 0; i < n[0]; ++i)
     for (int j = 0; j < n[1]; ++j)
       for (int k = 0; k < n[2]; ++k)
-        for (const auto& b : basis) w.particles.add(a * (Vec<3>(i, j, k) + b), r * (0.95 + 0.1 * rng.uniform()), 2600, 0);
+        for (const auto& b : basis)
+          w.particles.add(a * (Vec<3>(i, j, k) + b), r * (0.95 + 0.1 * rng.uniform()), 2600, 0);
   WallMaterial wm;
   wm.kn = Linear::ball_kn<3>(prm, r);
   wm.ks = wm.kn / prm.kn_ks_ratio;

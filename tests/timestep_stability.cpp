@@ -15,7 +15,6 @@ using namespace mc;
 
 namespace {
 
-
 // Six fixed planes around [lo, hi]³, as stiff as a sphere, with friction μ.
 void box_walls(World<3>& w, const LinearParams& prm, double r, double lo, double hi) {
   WallMaterial wm;
@@ -97,8 +96,8 @@ TEST_CASE("step_just_under_critical_estimate_is_stable") {
     if (s % 100 == 0) REQUIRE_NOTHROW(w.check_stability());
   }
   w.update_energy();
-  MESSAGE("32 spheres (fcc), " << w.contact_count() << " contacts, Δt = 0.99 × " << w.dt_critical << " s, "
-                               << steps << " steps: peak kinetic energy " << ke_max / e0
+  MESSAGE("32 spheres (fcc), " << w.contact_count() << " contacts, Δt = 0.99 × " << w.dt_critical << " s, " << steps
+                               << " steps: peak kinetic energy " << ke_max / e0
                                << " of the initial strain energy; friction took " << w.energy.dissipated_contacts / e0
                                << ", energy residual " << w.energy.residual() / e0 << " (not asserted here)");
   // Nothing puts energy in (fixed walls, no gravity), so the kinetic energy stays below what was stored at the

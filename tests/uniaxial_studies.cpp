@@ -47,9 +47,9 @@ TEST_CASE("realization_statistics_with_a_fixed_seed_are_identical_twice") {
 // within the 5 % tolerance asked for (it is the same deterministic run as the last iteration).
 TEST_CASE("calibration_converges_on_a_small_2d_specimen") {
   const TempDir d;
-  const Result r = mesocrack({"calibrate", kSmall, "--target", "E=25 GPa,nu=0.2,ucs=25 MPa", "-o", "calibrated.toml",
-                              "--max-iterations", "8"},
-                             d.dir);
+  const Result r = mesocrack(
+      {"calibrate", kSmall, "--target", "E=25 GPa,nu=0.2,ucs=25 MPa", "-o", "calibrated.toml", "--max-iterations", "8"},
+      d.dir);
   MESSAGE(r.err);
   REQUIRE_MESSAGE(r.code == 0, r.describe());
   CHECK(contains(r.err, "converged after"));
@@ -77,9 +77,9 @@ TEST_CASE("calibration_refuses_targets_it_cannot_read") {
 TEST_CASE("density_scaling_lengthens_the_critical_timestep_by_its_square_root") {
   const TempDir d;
   auto first_dt = [&](const std::string& name, const std::string& factor) {
-    const Result r = mesocrack({"run", kSmall, "-o", name, "--set", "physics.density_scaling=" + factor, "--set",
-                                "run.duration=0.2 ms"},
-                               d.dir);
+    const Result r = mesocrack(
+        {"run", kSmall, "-o", name, "--set", "physics.density_scaling=" + factor, "--set", "run.duration=0.2 ms"},
+        d.dir);
     REQUIRE_MESSAGE(r.code == 0, r.describe());
     CHECK(summary_of(name, d.dir)["density_scaling"].number == std::stod(factor));
     const mc::H5File f((d / name).string(), mc::H5File::Mode::ReadOnly);
@@ -87,9 +87,9 @@ TEST_CASE("density_scaling_lengthens_the_critical_timestep_by_its_square_root") 
   };
   const double dt1 = first_dt("f1.h5", "1"), dt4 = first_dt("f4.h5", "4");
   CHECK(dt4 / dt1 == doctest::Approx(2.0).epsilon(1e-12));
-  const Result bad = mesocrack({"run", kSmall, "-o", "g.h5", "--set", "physics.density_scaling=4", "--set",
-                                "physics.gravity=[0, -9.81]"},
-                               d.dir);
+  const Result bad = mesocrack(
+      {"run", kSmall, "-o", "g.h5", "--set", "physics.density_scaling=4", "--set", "physics.gravity=[0, -9.81]"},
+      d.dir);
   CHECK(bad.code == 2);
   CHECK(contains(bad.err, "density_scaling"));
   CHECK(!fs::exists(d / "g.h5"));

@@ -21,16 +21,17 @@ std::shared_ptr<const Analysis> read_uniaxial(const Table& t, const Scene& s) {
     std::stringstream ss(t.string("supports"));
     std::vector<std::string> two;
     for (std::string n; ss >> n;) two.push_back(n);
-    if (two.size() != 2) t.fail("supports", "give the names of two groups, the negative end first, separated by a space");
+    if (two.size() != 2)
+      t.fail("supports", "give the names of two groups, the negative end first, separated by a space");
     for (int k = 0; k < 2; ++k) {
       for (std::size_t g = 0; g < s.groups.size(); ++g)
         if (s.groups[g].name == two[k]) u->supports[k] = static_cast<int>(g);
       if (u->supports[k] < 0) t.fail("supports", "'" + two[k] + "' is not the name of a [[groups]] entry");
       u->support_names[k] = two[k];
     }
-    const std::string axis = t.choice("axis", s.dimension == 2 ? std::vector<std::string>{"x", "y"}
-                                                               : std::vector<std::string>{"x", "y", "z"},
-                                      s.dimension == 2 ? "y" : "z");
+    const std::string axis = t.choice(
+        "axis", s.dimension == 2 ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"},
+        s.dimension == 2 ? "y" : "z");
     u->axis = axis[0] - 'x';
     u->area = t.number("area", s.dimension == 2 ? Unit::Length : Unit::None, Range::positive(), 0.0);
     u->stress = "uniaxial.stress", u->axial_strain = "uniaxial.strain", u->lateral_strain = {"uniaxial.lateral_strain"};
@@ -146,7 +147,8 @@ void UniaxialAnalysis::add_support_histories(std::vector<Series>& out, const Obs
     for (int i : st->lo) rm -= b->f[i][ax];
     return sense * 0.5 * (rp - rm) / st->area;
   });
-  add("uniaxial.length", "m", [b, st, ax] { return mean_along<D>(st->hi, b->x, ax) - mean_along<D>(st->lo, b->x, ax); });
+  add("uniaxial.length", "m",
+      [b, st, ax] { return mean_along<D>(st->hi, b->x, ax) - mean_along<D>(st->lo, b->x, ax); });
   add("uniaxial.strain", "-", [b, st, ax, sense] {
     const double l = mean_along<D>(st->hi, b->x, ax) - mean_along<D>(st->lo, b->x, ax);
     return sense * (l - st->length0) / st->length0;
@@ -243,12 +245,14 @@ std::string UniaxialAnalysis::summary_json(const Histories& h) const {
   if (!std::isfinite(r.ucs)) return "null";
   std::ostringstream o;
   o << "{\n    \"loading\": " << (tension ? "\"tension\"" : "\"compression\"");
-  o << ",\n    \"E\": " << json_number(r.modulus) << ",\n    \"E_definition\": \"secant between 25 % and 50 % of the peak stress\""
+  o << ",\n    \"E\": " << json_number(r.modulus)
+    << ",\n    \"E_definition\": \"secant between 25 % and 50 % of the peak stress\""
     << ",\n    \"nu\": " << json_number(r.poisson);
   if (tension)
     o << ",\n    \"f_t\": " << json_number(r.ucs) << ",\n    \"G_f\": " << json_number(r.fracture_energy)
       << ",\n    \"G_f_definition\": \"area under stress-strain to 0.2 f_t post-peak, times the gauge length\""
-      << ",\n    \"gauge_length\": " << json_number(r.gauge_length) << ",\n    \"strain_at_0.2_f_t\": " << json_number(r.strain_at_02ft);
+      << ",\n    \"gauge_length\": " << json_number(r.gauge_length)
+      << ",\n    \"strain_at_0.2_f_t\": " << json_number(r.strain_at_02ft);
   else
     o << ",\n    \"ucs\": " << json_number(r.ucs) << ",\n    \"f_c\": " << json_number(r.ucs);
   o << ",\n    \"strain_at_peak\": " << json_number(r.strain_at_peak)
@@ -256,7 +260,8 @@ std::string UniaxialAnalysis::summary_json(const Histories& h) const {
     << ",\n    \"crack_initiation_ratio\": " << json_number(r.initiation_stress / r.ucs)
     << ",\n    \"cracks_counted\": " << (r.cracks_by_yield ? "\"first yields\"" : "\"breaks\"")
     << ",\n    \"cracks_at_peak\": " << json_number(r.cracks_at_peak)
-    << ",\n    \"cracks_tensile\": " << json_number(r.cracks_tensile) << ",\n    \"cracks_shear\": " << json_number(r.cracks_shear) << "\n  }";
+    << ",\n    \"cracks_tensile\": " << json_number(r.cracks_tensile)
+    << ",\n    \"cracks_shear\": " << json_number(r.cracks_shear) << "\n  }";
   return o.str();
 }
 

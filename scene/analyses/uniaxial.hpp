@@ -15,32 +15,32 @@ namespace mc {
 
 // What a uniaxial test gives; NaN where the curve does not tell.
 struct UniaxialResult {
-  double modulus = kNaN;            // E [Pa], secant between 25 % and 50 % of the peak
-  double poisson = kNaN;            // ν
-  double ucs = kNaN;                // peak axial stress [Pa]: f_c, or in tension f_t
+  double modulus = kNaN;  // E [Pa], secant between 25 % and 50 % of the peak
+  double poisson = kNaN;  // ν
+  double ucs = kNaN;      // peak axial stress [Pa]: f_c, or in tension f_t
   double strain_at_peak = kNaN;
   double initiation_stress = kNaN;  // when the cracks reach 1 % of their count at the peak [Pa]
   double cracks_at_peak = kNaN, cracks_tensile = kNaN, cracks_shear = kNaN;
-  bool cracks_by_yield = false;     // no break at all: the first yields (damage onsets) were counted instead
+  bool cracks_by_yield = false;  // no break at all: the first yields (damage onsets) were counted instead
   // In tension (Šmilauer Fig. 19): G_f [J/m²], the gauge length [m] and the strain where the stress fell to 0.2 f_t.
   double fracture_energy = kNaN, gauge_length = kNaN, strain_at_02ft = kNaN;
 };
 
 class UniaxialAnalysis final : public Analysis {
  public:
-  std::string stress, axial_strain;          // history names
-  std::vector<std::string> lateral_strain;   // their mean is the lateral strain (3D: the two lateral axes)
-  bool tension = false;                      // loading = "tension"
+  std::string stress, axial_strain;         // history names
+  std::vector<std::string> lateral_strain;  // their mean is the lateral strain (3D: the two lateral axes)
+  bool tension = false;                     // loading = "tension"
   // Straining by two support groups (supports = "bottom top") along `axis`: the analysis then records
   // uniaxial.stress (the mean of both supports' axial reactions over `area`), uniaxial.strain (their mean
   // displacements over their initial distance), uniaxial.length (that distance) and uniaxial.lateral_strain
   // (regression of the inner particles' lateral displacements on their positions), each positive in the loading
   // sense but the lateral strain (expansion positive), and reads them.
-  std::array<int, 2> supports = {-1, -1};    // indices into Scene::groups; −1: not used
+  std::array<int, 2> supports = {-1, -1};  // indices into Scene::groups; −1: not used
   std::array<std::string, 2> support_names;
   int axis = 2;
-  double area = 0;                           // [m²] (3D) or [m] (2D); 0: the specimen's bounding box
-  std::string scene_file;                    // for messages
+  double area = 0;         // [m²] (3D) or [m] (2D); 0: the specimen's bounding box
+  std::string scene_file;  // for messages
 
   std::string name() const override { return "uniaxial"; }
   void add_histories(std::vector<Series>& out, const Observed<2>& o) const override;

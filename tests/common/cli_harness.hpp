@@ -80,7 +80,9 @@ struct Result {
   int code = -1000;  // exit status, or minus the signal that ended it
   std::string out, err;
   double seconds = 0;
-  std::string describe() const { return "exit " + std::to_string(code) + ", stderr: " + err + ", stdout: " + out.substr(0, 2000); }
+  std::string describe() const {
+    return "exit " + std::to_string(code) + ", stderr: " + err + ", stdout: " + out.substr(0, 2000);
+  }
 };
 
 class Child {
@@ -242,7 +244,9 @@ class JsonParser {
       if (i_ >= s_.size()) fail("unterminated escape");
       const char e = s_[i_++];
       switch (e) {
-        case '"': case '\\': case '/': o += e; break;
+        case '"':
+        case '\\':
+        case '/': o += e; break;
         case 'n': o += '\n'; break;
         case 't': o += '\t'; break;
         case 'r': o += '\r'; break;
@@ -349,7 +353,8 @@ void check_no_repeated_rows(const fs::path& file) {
   const auto fsteps = f.read_ints("/frames/step");
   CHECK(hs.size() >= 2);
   CHECK(fsteps.size() >= 2);
-  for (std::size_t k = 1; k < hs.size(); ++k) CHECK_MESSAGE(hs[k] > hs[k - 1], "history row ", k, " repeats step ", hs[k]);
+  for (std::size_t k = 1; k < hs.size(); ++k)
+    CHECK_MESSAGE(hs[k] > hs[k - 1], "history row ", k, " repeats step ", hs[k]);
   for (std::size_t k = 1; k < fsteps.size(); ++k)
     CHECK_MESSAGE(fsteps[k] > fsteps[k - 1], "frame ", k, " repeats step ", fsteps[k]);
 }
@@ -369,8 +374,8 @@ void check_same_run(const fs::path& a, const fs::path& b) {
   REQUIRE(names.size() >= 4);
   for (const auto& n : names) {
     const auto ya = fa.read_doubles("/history/" + n), yb = fb.read_doubles("/history/" + n);
-    CHECK_MESSAGE(same_bits(ya, yb), "/history/", n, ": ", ya.size(), " vs ", yb.size(), " rows, first difference at row ",
-                  first_difference(ya, yb));
+    CHECK_MESSAGE(same_bits(ya, yb), "/history/", n, ": ", ya.size(), " vs ", yb.size(),
+                  " rows, first difference at row ", first_difference(ya, yb));
   }
   CHECK(fa.read_ints("/frames/step") == fb.read_ints("/frames/step"));
   for (const char* ds : {"/frames/time", "/frames/x", "/frames/v", "/frames/force"}) {
@@ -394,8 +399,8 @@ void check_same_run(const fs::path& a, const fs::path& b) {
   if (fa.exists("/cracks"))
     for (const auto& n : fa.list("/cracks")) {
       const auto ca = fa.read_doubles("/cracks/" + n), cb = fb.read_doubles("/cracks/" + n);
-      CHECK_MESSAGE(same_bits(ca, cb), "/cracks/", n, ": ", ca.size(), " vs ", cb.size(), " values, first difference at ",
-                    first_difference(ca, cb));
+      CHECK_MESSAGE(same_bits(ca, cb), "/cracks/", n, ": ", ca.size(), " vs ", cb.size(),
+                    " values, first difference at ", first_difference(ca, cb));
     }
 }
 
@@ -427,4 +432,3 @@ int line_of(const std::string& text, const std::string& what) {
 }
 
 }  // namespace
-

@@ -27,7 +27,7 @@ inline CpmParams cpm_params() {
 
 struct CpmPair {
   World<3> w;
-  double length = 0, area = 0;  // L (centre distance at bonding), A = π r²
+  double length = 0, area = 0;                // L (centre distance at bonding), A = π r²
   std::vector<double> eps, sigma_n, sigma_t;  // per force pass: ε_N, σ_N (tension positive), |σ_T|
 
   const Cpm::State<3>& state() const { return static_cast<const ContactSet<Cpm, 3>&>(*w.sets[0]).states()[0]; }

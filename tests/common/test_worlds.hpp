@@ -4,9 +4,9 @@
 
 #include <cmath>
 #include <cstdint>
-#include <vector>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 #include "contact_models/hertz_mindlin.hpp"
 #include "contact_models/linear.hpp"
