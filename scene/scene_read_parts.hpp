@@ -1,0 +1,27 @@
+// The parts of reading a scene (scene/scene_read.cpp and the files it splits into): one function per table,
+// and the few helpers they share. Internal to scene/.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "scene/scene.hpp"
+#include "scene/toml_reader.hpp"
+
+namespace mc::scene_read {
+
+// A vector of `dim` numbers, required / optional (empty when absent).
+std::vector<double> vec(const Table& t, const std::string& key, Unit u, int dim);
+std::vector<double> opt_vec(const Table& t, const std::string& key, Unit u, int dim);
+// The index of the phase named by `key`.
+int phase_index(const Table& t, const std::string& key, const std::vector<PhaseSpec>& phases);
+// A file named in a scene is relative to the scene file's folder.
+std::string relative_to(const std::string& scene_file, const std::string& path);
+
+void read_specimen(const Table& root, Scene& s);       // scene/specimen_read.cpp
+void read_mesostructure(const Table& root, Scene& s);  // scene/specimen_read.cpp
+void read_walls(const Table& root, Scene& s);          // scene/boundary_read.cpp
+void read_groups(const Table& root, Scene& s);         // scene/boundary_read.cpp
+void read_physics(const Table& root, Scene& s);        // scene/boundary_read.cpp
+void read_observers(const Table& root, Scene& s);      // scene/observers_read.cpp
+
+}  // namespace mc::scene_read
