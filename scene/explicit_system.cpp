@@ -150,9 +150,4 @@ void ExplicitSystem<D>::restore(const Archive& a) {
 template class ExplicitSystem<2>;
 template class ExplicitSystem<3>;
 
-std::unique_ptr<System> make_system(const Scene& scene) {
-  if (scene.dimension == 2) return std::make_unique<ExplicitSystem<2>>(scene);
-  return std::make_unique<ExplicitSystem<3>>(scene);
-}
-
 }  // namespace mc

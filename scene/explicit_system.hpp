@@ -1,8 +1,6 @@
 // The explicit particle world as a System (engine/system.hpp): built from a scene (scene/build_world.hpp), with
 // the histories, the measurement regions and the crack log the scene declares.
 #pragma once
-#include <memory>
-
 #include "engine/system.hpp"
 #include "engine/world.hpp"
 #include "scene/build_world.hpp"
@@ -48,8 +46,5 @@ class ExplicitSystem final : public System {
   Observers<D> obs_;
   std::vector<Series> series_;
 };
-
-// The system a scene runs on.
-std::unique_ptr<System> make_system(const Scene& scene);
 
 }  // namespace mc

@@ -11,7 +11,7 @@
 
 #include "engine/errors.hpp"
 #include "io/run_output.hpp"
-#include "scene/explicit_system.hpp"
+#include "scene/make_system.hpp"
 
 namespace mc {
 

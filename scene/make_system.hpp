@@ -1,0 +1,14 @@
+// The system a scene runs on: the one place where a solver family is chosen (today the explicit particle world;
+// a second family adds its branch here, docs/ARCHITECTURE.md, "Add a solver family").
+#pragma once
+#include <memory>
+
+#include "engine/system.hpp"
+#include "scene/scene.hpp"
+
+namespace mc {
+
+// Builds the system (a generated specimen is generated here). The scene must outlive it.
+std::unique_ptr<System> make_system(const Scene& scene);
+
+}  // namespace mc
