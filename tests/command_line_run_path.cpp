@@ -9,7 +9,7 @@
 
 // ================================================================ 1. bad input
 
-TEST_CASE("bad_scene_input_gives_message_and_exit_2") {
+TEST_CASE("bad_scene_keys_give_message_and_exit_2") {
   const TempDir d;
   const std::string base = slurp(kScenes / "collision_3d.toml");
   REQUIRE(!base.empty());
@@ -73,6 +73,14 @@ TEST_CASE("bad_scene_input_gives_message_and_exit_2") {
     scene(edit(base, "kind = \"overlap\"\nparticles = [0, 1]", "kind = \"overlap\"\nparticles = [0, 7]"));
     check_refused(d.dir, run, 2, {"scene.toml", "probe 'overlap'", "particle 7", "2 particles"});
   }
+}
+
+TEST_CASE("unreadable_or_unwritable_files_give_message_and_exit_2_or_3") {
+  const TempDir d;
+  const std::string base = slurp(kScenes / "collision_3d.toml");
+  REQUIRE(!base.empty());
+  auto scene = [&](const std::string& text) { write_file(d / "scene.toml", text); };
+  const std::vector<std::string> run{"run", "scene.toml"};
   SUBCASE("unreadable scene file") {
     // The scene reader reports an unreadable scene as bad input (InputError, exit 2), unlike the other files.
     check_refused(d.dir, {"run", "absent.toml"}, 2,
@@ -102,25 +110,6 @@ TEST_CASE("bad_scene_input_gives_message_and_exit_2") {
         d.dir, run, 2,
         {"scene.toml:" + std::to_string(line_of(bad, "dimension = = 3")) + ": TOML syntax error", "'dimension = = 3'"});
   }
-  SUBCASE("bad --set") {
-    scene(base);
-    auto with = [&](const std::string& set) { return std::vector<std::string>{"run", "scene.toml", "--set", set}; };
-    check_refused(d.dir, with("walls[0].kn=5"), 2,
-                  {"scene.toml: ", "--set 'walls[0].kn=5'", "'walls' is not an array"});
-    check_refused(d.dir, with("run..duration=1"), 2, {"scene.toml: ", "--set 'run..duration=1'", "is not a key path"});
-    check_refused(d.dir, with("specimen.particles[5].radius=1"), 2,
-                  {"scene.toml: ", "--set 'specimen.particles[5].radius=1'",
-                   "index 5 is past the end of 'specimen.particles'", "2 entries"});
-    check_refused(d.dir, with("run.duration"), 2, {"scene.toml: ", "--set 'run.duration'", "expected key=value"});
-    check_refused(d.dir, with("run.duraton=1 ms"), 2,
-                  {"scene.toml: ", "unknown key 'run.duraton' (from --set)", "duration"});
-    check_refused(d.dir, with("timestep.safety=2"), 2,
-                  {"scene.toml: ", "key 'timestep.safety' (from --set) = 2", "out of range"});
-    check_refused(d.dir, with("contacts[0].model=lineer"), 2,
-                  {"scene.toml: ", "key 'contacts[0].model' (from --set) = \"lineer\"", "hertz_mindlin"});
-    check_refused(d.dir, with("run.duration=0.3 parsecs"), 2,
-                  {"scene.toml: ", "key 'run.duration' (from --set) = \"0.3 parsecs\"", "parsecs"});
-  }
   SUBCASE("output file that cannot be created") {
     scene(base);
     check_refused(d.dir, run, 3, {"no_such_folder/out.h5", "cannot create"}, "no_such_folder/out.h5");
@@ -135,6 +124,26 @@ TEST_CASE("bad_scene_input_gives_message_and_exit_2") {
     CHECK(slurp(d / "notes.h5") == "not hdf5");  // left as it was
     CHECK(files_in(d.dir) == std::vector<std::string>{"notes.h5", "scene.toml"});
   }
+}
+
+TEST_CASE("bad_set_overrides_give_message_and_exit_2") {
+  const TempDir d;
+  write_file(d / "scene.toml", slurp(kScenes / "collision_3d.toml"));
+  auto with = [&](const std::string& set) { return std::vector<std::string>{"run", "scene.toml", "--set", set}; };
+  check_refused(d.dir, with("walls[0].kn=5"), 2, {"scene.toml: ", "--set 'walls[0].kn=5'", "'walls' is not an array"});
+  check_refused(d.dir, with("run..duration=1"), 2, {"scene.toml: ", "--set 'run..duration=1'", "is not a key path"});
+  check_refused(d.dir, with("specimen.particles[5].radius=1"), 2,
+                {"scene.toml: ", "--set 'specimen.particles[5].radius=1'",
+                 "index 5 is past the end of 'specimen.particles'", "2 entries"});
+  check_refused(d.dir, with("run.duration"), 2, {"scene.toml: ", "--set 'run.duration'", "expected key=value"});
+  check_refused(d.dir, with("run.duraton=1 ms"), 2,
+                {"scene.toml: ", "unknown key 'run.duraton' (from --set)", "duration"});
+  check_refused(d.dir, with("timestep.safety=2"), 2,
+                {"scene.toml: ", "key 'timestep.safety' (from --set) = 2", "out of range"});
+  check_refused(d.dir, with("contacts[0].model=lineer"), 2,
+                {"scene.toml: ", "key 'contacts[0].model' (from --set) = \"lineer\"", "hertz_mindlin"});
+  check_refused(d.dir, with("run.duration=0.3 parsecs"), 2,
+                {"scene.toml: ", "key 'run.duration' (from --set) = \"0.3 parsecs\"", "parsecs"});
 }
 
 // ================================================================ 2. kill and resume
