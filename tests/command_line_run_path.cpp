@@ -9,12 +9,16 @@
 
 // ================================================================ 1. bad input
 
-TEST_CASE("bad_scene_keys_give_message_and_exit_2") {
+// A scene to spoil: collision_3d.toml's text, written as scene.toml in a fresh folder by scene().
+struct BadInput {
   const TempDir d;
   const std::string base = slurp(kScenes / "collision_3d.toml");
-  REQUIRE(!base.empty());
-  auto scene = [&](const std::string& text) { write_file(d / "scene.toml", text); };
   const std::vector<std::string> run{"run", "scene.toml"};
+  void scene(const std::string& text) const { write_file(d / "scene.toml", text); }
+};
+
+TEST_CASE_FIXTURE(BadInput, "bad_scene_keys_give_message_and_exit_2") {
+  REQUIRE(!base.empty());
 
   SUBCASE("missing key") {
     scene(edit(base, "density = \"2600 kg/m3\"\n", ""));
@@ -75,12 +79,7 @@ TEST_CASE("bad_scene_keys_give_message_and_exit_2") {
   }
 }
 
-TEST_CASE("unreadable_or_unwritable_files_give_message_and_exit_2_or_3") {
-  const TempDir d;
-  const std::string base = slurp(kScenes / "collision_3d.toml");
-  REQUIRE(!base.empty());
-  auto scene = [&](const std::string& text) { write_file(d / "scene.toml", text); };
-  const std::vector<std::string> run{"run", "scene.toml"};
+TEST_CASE_FIXTURE(BadInput, "unreadable_or_unwritable_files_give_message_and_exit_2_or_3") {
   SUBCASE("unreadable scene file") {
     // The scene reader reports an unreadable scene as bad input (InputError, exit 2), unlike the other files.
     check_refused(d.dir, {"run", "absent.toml"}, 2,
@@ -126,9 +125,8 @@ TEST_CASE("unreadable_or_unwritable_files_give_message_and_exit_2_or_3") {
   }
 }
 
-TEST_CASE("bad_set_overrides_give_message_and_exit_2") {
-  const TempDir d;
-  write_file(d / "scene.toml", slurp(kScenes / "collision_3d.toml"));
+TEST_CASE_FIXTURE(BadInput, "bad_set_overrides_give_message_and_exit_2") {
+  scene(base);
   auto with = [&](const std::string& set) { return std::vector<std::string>{"run", "scene.toml", "--set", set}; };
   check_refused(d.dir, with("walls[0].kn=5"), 2, {"scene.toml: ", "--set 'walls[0].kn=5'", "'walls' is not an array"});
   check_refused(d.dir, with("run..duration=1"), 2, {"scene.toml: ", "--set 'run..duration=1'", "is not a key path"});

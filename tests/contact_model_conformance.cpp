@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "scene/model_registry.hpp"
+#include "tests/common/cpm_pair.hpp"  // cpm_params
 #include "tests/common/test_worlds.hpp"
 
 using namespace mc;
@@ -65,14 +66,7 @@ SofteningBondParams sample_params<SofteningBond>() {
 }
 template <>
 CpmParams sample_params<Cpm>() {
-  CpmParams p;
-  p.modulus = 30e9;
-  p.kt_kn_ratio = 0.2;
-  p.crack_onset_strain = 1e-4;
-  p.relative_ductility = 30;
-  p.cohesion = 3e6;
-  p.tan_friction = 0.8;
-  return p;
+  return test::cpm_params();
 }
 
 constexpr double kR = 1e-3;   // both radii [m]
