@@ -136,7 +136,8 @@ void ExplicitSystem<D>::restore(const Archive& a) {
     throw InputError(
         "its checkpoint holds a different specimen than the scene builds; resume with the scene that wrote it");
   world_.restore(a);
-  const auto& strains = a.reals.at("region_strains");
+  std::vector<double> strains;
+  a.get("region_strains", strains);
   if (strains.size() != obs_.strain.size() * D * D)
     throw InputError("its checkpoint holds " + std::to_string(strains.size() / (D * D)) +
                      " measurement regions, the "

@@ -123,6 +123,8 @@ class Runner {
       system_->restore(a);
     } catch (const InputError& e) {
       throw InputError(opt_.output + ": " + e.what());
+    } catch (const IoError& e) {
+      throw IoError(opt_.output + ": " + e.what());
     }
     const auto& rs = a.reals.at("runner");
     std::size_t k = 0;
