@@ -9,12 +9,17 @@ namespace mc {
 
 namespace {
 
-// A fixed timestep the engine refuses, as the scene said it.
-[[noreturn]] void timestep_refused(const Scene& s, const TimestepError& e) {
-  std::ostringstream m;
-  m << s.file << ": key 'timestep.fixed' = " << s.timestep.fixed << " s: " << e.what()
-    << "; use a value below it, or leave timestep.fixed unset to let the engine choose";
-  throw InputError(m.str());
+// Runs f; a fixed timestep the engine refuses there is worded as the scene said it, naming the key.
+template <class F>
+void with_scene_timestep(const Scene& s, F&& f) {
+  try {
+    f();
+  } catch (const TimestepError& e) {
+    std::ostringstream m;
+    m << s.file << ": key 'timestep.fixed' = " << s.timestep.fixed << " s: " << e.what()
+      << "; use a value below it, or leave timestep.fixed unset to let the engine choose";
+    throw InputError(m.str());
+  }
 }
 
 }  // namespace
@@ -38,11 +43,7 @@ void ExplicitSystem<D>::check_probes() const {
 
 template <int D>
 void ExplicitSystem<D>::start() {
-  try {
-    world_.init();
-  } catch (const TimestepError& e) {
-    timestep_refused(scene_, e);
-  }
+  with_scene_timestep(scene_, [&] { world_.init(); });
   if (scene_.bond_tolerance >= 0) install_bonds();
   if (scene_.energy) {
     world_.update_energy();
@@ -53,11 +54,7 @@ void ExplicitSystem<D>::start() {
 // Bonds, and how many each phase pair got (mortar, aggregate, ITZ …): written with the specimen.
 template <int D>
 void ExplicitSystem<D>::install_bonds() {
-  try {
-    world_.install_bonds(scene_.bond_tolerance, scene_.seed);
-  } catch (const TimestepError& e) {
-    timestep_refused(scene_, e);
-  }
+  with_scene_timestep(scene_, [&] { world_.install_bonds(scene_.bond_tolerance, scene_.seed); });
   for (std::size_t c = 0; c < scene_.contacts.size(); ++c)
     if (scene_.contacts[c].model.bonds)
       info_.facts.push_back({"bonds_" + scene_.phases[scene_.contacts[c].phase_a].name + "-" +
@@ -67,11 +64,7 @@ void ExplicitSystem<D>::install_bonds() {
 
 template <int D>
 void ExplicitSystem<D>::step() {
-  try {
-    world_.step();
-  } catch (const TimestepError& e) {
-    timestep_refused(scene_, e);
-  }
+  with_scene_timestep(scene_, [&] { world_.step(); });
   if (!scene_.regions.empty()) obs_.every_step(world_, scene_);
 }
 
