@@ -1,150 +1,12 @@
-// The run path through the real `mesocrack` command (MESOCRACK_CLI): bad input is refused with one line and
-// exit 2 (3 for files that cannot be read or written) before any output exists; a killed run leaves a file
-// that `summary` reads and `run --resume` finishes bit for bit like an uninterrupted run; `summary` reports what
-// the histories hold; every shipped scene runs; `report` writes the PNGs it names; a finished run resumed with a
-// later end continues like one long run, and with the same end adds nothing.
-// Each test works in its own fresh temp folder; the command runs as a child process (fork/execve) with its
-// stdout and stderr captured to files.
+// The run path through the real `mesocrack` command (MESOCRACK_CLI; bad input: command_line_bad_input.cpp): a
+// killed run leaves a file that `summary` reads and `run --resume` finishes bit for bit like an uninterrupted run;
+// `summary` reports what the histories hold; every shipped scene runs; `report` writes the PNGs it names; a finished
+// run resumed with a later end continues like one long run, and with the same end adds nothing. Each test works in its
+// own fresh temp folder; the command runs as a child process (fork/execve) with its stdout and stderr captured to
+// files.
 #include "tests/common/cli_harness.hpp"
 
-// ================================================================ 1. bad input
-
-// A scene to spoil: collision_3d.toml's text, written as scene.toml in a fresh folder by scene().
-struct BadInput {
-  const TempDir d;
-  const std::string base = slurp(kScenes / "collision_3d.toml");
-  const std::vector<std::string> run{"run", "scene.toml"};
-  void scene(const std::string& text) const { write_file(d / "scene.toml", text); }
-};
-
-TEST_CASE_FIXTURE(BadInput, "bad_scene_keys_give_message_and_exit_2") {
-  REQUIRE(!base.empty());
-
-  SUBCASE("missing key") {
-    scene(edit(base, "density = \"2600 kg/m3\"\n", ""));
-    check_refused(d.dir, run, 2, {"scene.toml: ", "missing key 'phases[0].density'", "kg/m3"});
-  }
-  SUBCASE("a bond strength drawn from two distributions at once") {
-    const std::string lattice = (kScenes / "lattice_tension_2d.toml").string();
-    check_refused(d.dir, {"run", lattice, "--set", "contacts[0].bond_tensile_strength_weibull_shape=5"}, 2,
-                  {"lattice_tension_2d.toml: ", "'contacts[0].bond_tensile_strength_weibull_shape' (from --set) = 5",
-                   "bond_tensile_strength_std", "not both"});
-  }
-  SUBCASE("missing table") {
-    scene(edit(base, "[run]\nduration = \"0.3 ms\"\n", ""));
-    check_refused(d.dir, run, 2, {"scene.toml: ", "missing key 'run' (a table)"});
-  }
-  SUBCASE("unknown key") {
-    scene(edit(base, "density = \"2600 kg/m3\"\n", "density = \"2600 kg/m3\"\ndesnity = 2600\n"));
-    check_refused(d.dir, run, 2, {"scene.toml: ", "unknown key 'phases[0].desnity'", "allowed here: name, density"});
-  }
-  SUBCASE("unknown table") {
-    scene(base + "\n[physcs]\ngravity = [0, 0, -9.81]\n");
-    check_refused(d.dir, run, 2, {"scene.toml: ", "unknown key 'physcs'"});
-  }
-  SUBCASE("wrong type") {
-    scene(edit(base, "x = [\"2.01 mm\", 0, 0]\nradius = \"1 mm\"", "x = [\"2.01 mm\", 0, 0]\nradius = true"));
-    check_refused(d.dir, run, 2,
-                  {"scene.toml: ", "key 'specimen.particles[1].radius' = true", "expected a number in m"});
-  }
-  SUBCASE("wrong vector length") {
-    scene(edit(base, "x = [\"2.01 mm\", 0, 0]", "x = [\"2.01 mm\", 0]"));
-    check_refused(d.dir, run, 2,
-                  {"scene.toml: ", "key 'specimen.particles[1].x' = [\"2.01 mm\", 0]", "3 numbers in m, got 2"});
-  }
-  SUBCASE("out-of-range value") {
-    scene(edit(base, "safety = 0.05", "safety = 1.5"));
-    check_refused(d.dir, run, 2, {"scene.toml: ", "key 'timestep.safety' = 1.5", "out of range", "0 < value <= 1"});
-  }
-  SUBCASE("out-of-range quantity with a unit") {
-    scene(edit(base, "density = \"2600 kg/m3\"", "density = \"-2.6 g/cm3\""));
-    check_refused(d.dir, run, 2,
-                  {"scene.toml: ", "key 'phases[0].density' = \"-2.6 g/cm3\"", "out of range", "value > 0"});
-  }
-  SUBCASE("bad unit") {
-    scene(edit(base, "x = [\"2.01 mm\", 0, 0]\nradius = \"1 mm\"", "x = [\"2.01 mm\", 0, 0]\nradius = \"1 kg\""));
-    check_refused(d.dir, run, 2, {"scene.toml: ", "key 'specimen.particles[1].radius' = \"1 kg\"", "unit 'kg'", "mm"});
-  }
-  SUBCASE("unknown choice") {
-    scene(edit(base, "model = \"linear\"", "model = \"lineer\""));
-    check_refused(d.dir, run, 2, {"scene.toml: ", "key 'contacts[0].model' = \"lineer\"", "linear", "hertz_mindlin"});
-  }
-  SUBCASE("history named by a summary that the scene does not record") {
-    scene(edit(base, "of = \"approach_speed\"", "of = \"approach_sped\""));
-    check_refused(d.dir, run, 2, {"scene.toml: ", "key 'summary[2].of' = \"approach_sped\"", "overlap"});
-  }
-  SUBCASE("probe naming a particle that does not exist (checked when the world is built)") {
-    scene(edit(base, "kind = \"overlap\"\nparticles = [0, 1]", "kind = \"overlap\"\nparticles = [0, 7]"));
-    check_refused(d.dir, run, 2, {"scene.toml", "probe 'overlap'", "particle 7", "2 particles"});
-  }
-}
-
-TEST_CASE_FIXTURE(BadInput, "unreadable_or_unwritable_files_give_message_and_exit_2_or_3") {
-  SUBCASE("unreadable scene file") {
-    // The scene reader reports an unreadable scene as bad input (InputError, exit 2), unlike the other files.
-    check_refused(d.dir, {"run", "absent.toml"}, 2,
-                  {"cannot read scene file 'absent.toml'", "No such file or directory"});
-    fs::create_directory(d / "folder.toml");
-    check_refused(d.dir, {"run", "folder.toml"}, 2, {"cannot read scene file 'folder.toml'", "directory"});
-    fs::remove(d / "folder.toml");
-  }
-  SUBCASE("unreadable sphere-list file named by the scene") {
-    const std::string sl =
-        "dimension = 3\n[[phases]]\nname = \"grain\"\ndensity = 2600\n[[contacts]]\nphase_a = \"grain\"\n"
-        "model = \"linear\"\nmodulus = \"50 MPa\"\n[specimen]\nkind = \"sphere_list\"\nfile = \"grains.spheres\"\n"
-        "[run]\nsteps = 10\n";
-    scene(sl);
-    // A file error (IoError): exit 3; the message names the scene, its key and the resolved path.
-    check_refused(
-        d.dir, run, 3,
-        {"scene.toml: ", "'specimen.file'", "cannot read particle list 'grains.spheres'", "No such file or directory"});
-    // A readable list with a bad line is bad input: exit 2, naming the list, the line and the value.
-    write_file(d / "grains.spheres", "# id x y z r tag\n0 0 0 0 0.001 0\n1 0.003 0 0 -1 0\n");
-    check_refused(d.dir, run, 2, {"grains.spheres:3", "'-1'"});
-  }
-  SUBCASE("TOML syntax error") {
-    const std::string bad = edit(base, "dimension = 3", "dimension = = 3");
-    scene(bad);
-    check_refused(
-        d.dir, run, 2,
-        {"scene.toml:" + std::to_string(line_of(bad, "dimension = = 3")) + ": TOML syntax error", "'dimension = = 3'"});
-  }
-  SUBCASE("output file that cannot be created") {
-    scene(base);
-    check_refused(d.dir, run, 3, {"no_such_folder/out.h5", "cannot create"}, "no_such_folder/out.h5");
-  }
-  SUBCASE("resume of a file that is not a mesocrack output") {
-    scene(base);
-    write_file(d / "notes.h5", "not hdf5");
-    const Result r = mesocrack({"run", "scene.toml", "--resume", "notes.h5"}, d.dir);
-    CHECK_MESSAGE(r.code == 3, r.describe());
-    CHECK(contains(r.err, "notes.h5"));
-    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-    CHECK(slurp(d / "notes.h5") == "not hdf5");  // left as it was
-    CHECK(files_in(d.dir) == std::vector<std::string>{"notes.h5", "scene.toml"});
-  }
-}
-
-TEST_CASE_FIXTURE(BadInput, "bad_set_overrides_give_message_and_exit_2") {
-  scene(base);
-  auto with = [&](const std::string& set) { return std::vector<std::string>{"run", "scene.toml", "--set", set}; };
-  check_refused(d.dir, with("walls[0].kn=5"), 2, {"scene.toml: ", "--set 'walls[0].kn=5'", "'walls' is not an array"});
-  check_refused(d.dir, with("run..duration=1"), 2, {"scene.toml: ", "--set 'run..duration=1'", "is not a key path"});
-  check_refused(d.dir, with("specimen.particles[5].radius=1"), 2,
-                {"scene.toml: ", "--set 'specimen.particles[5].radius=1'",
-                 "index 5 is past the end of 'specimen.particles'", "2 entries"});
-  check_refused(d.dir, with("run.duration"), 2, {"scene.toml: ", "--set 'run.duration'", "expected key=value"});
-  check_refused(d.dir, with("run.duraton=1 ms"), 2,
-                {"scene.toml: ", "unknown key 'run.duraton' (from --set)", "duration"});
-  check_refused(d.dir, with("timestep.safety=2"), 2,
-                {"scene.toml: ", "key 'timestep.safety' (from --set) = 2", "out of range"});
-  check_refused(d.dir, with("contacts[0].model=lineer"), 2,
-                {"scene.toml: ", "key 'contacts[0].model' (from --set) = \"lineer\"", "hertz_mindlin"});
-  check_refused(d.dir, with("run.duration=0.3 parsecs"), 2,
-                {"scene.toml: ", "key 'run.duration' (from --set) = \"0.3 parsecs\"", "parsecs"});
-}
-
-// ================================================================ 2. kill and resume
+// ================================================================ 1. kill and resume
 
 TEST_CASE("killed_run_leaves_readable_file_and_resume_matches_uninterrupted_run") {
   const TempDir d;
@@ -225,7 +87,7 @@ TEST_CASE("killed_run_leaves_readable_file_and_resume_matches_uninterrupted_run"
   CHECK(slurp(d / "a_history.csv") == slurp(d / "b_history.csv"));
 }
 
-// ================================================================ 3. summary
+// ================================================================ 2. summary
 
 TEST_CASE("summary_json_matches_histories") {
   const TempDir d;
@@ -285,7 +147,7 @@ TEST_CASE("summary_json_matches_histories") {
   CHECK(speed.back() == doctest::Approx(0.1).epsilon(0.01));
 }
 
-// ================================================================ 4. every scene
+// ================================================================ 3. every scene
 
 // A genesis packing is built before the first step and costs minutes at the reference scenes' resolution
 // (8 000 spheres in uniaxial_3d): tests of the run path over every scene make its grains four times coarser,
@@ -335,7 +197,7 @@ TEST_CASE("every_scene_in_scenes_folder_runs") {
   CHECK(std::chrono::duration<double>(Clock::now() - t0).count() < 60);
 }
 
-// ================================================================ 5. report
+// ================================================================ 4. report
 
 TEST_CASE("report_writes_pngs") {
   const TempDir d;
@@ -379,7 +241,7 @@ TEST_CASE("report_writes_pngs") {
   }
 }
 
-// ================================================================ 6. resume of a finished run
+// ================================================================ 5. resume of a finished run
 
 // A finished run resumed with a later end continues from its final checkpoint exactly as one long run would; a
 // finished run resumed with the same end writes nothing new (no repeated final row or frame).
@@ -421,7 +283,7 @@ TEST_CASE("resume_extends_a_finished_run_like_one_long_run") {
   }
 }
 
-// ================================================================ 7. resume with servo walls
+// ================================================================ 6. resume with servo walls
 
 // Four servo walls squeezing a small box of discs, in contact with the discs from a few hundred steps on.
 // KNOWN BUG (engine/world.cpp, not the run path): World::save/restore do not carry the contact forces of the
