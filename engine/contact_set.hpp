@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
@@ -67,6 +68,10 @@ class ContactSetBase {
   virtual double strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const = 0;
   // Bonds that broke or first yielded in the last forces() call, in pair order (the same on any thread count).
   virtual const std::vector<PairEvent<D>>& events() const = 0;
+  // The first contact, in pair order, that the last forces() call found overlapping by more than half the smaller
+  // radius (a wall contact: by more than half the ball's): the pair (a ball–wall contact: (−1 − wall, ball)) is
+  // passing through each other, which no contact law can stop. Empty when none.
+  virtual std::optional<Pair> passing_through() const = 0;
   virtual std::size_t bond_count() const = 0;    // intact bonds
   virtual std::size_t memory_bytes() const = 0;  // pairs, histories and side arrays, as allocated
   // The whole history as bytes (checkpoints): pairs, wall pairs and states.
@@ -187,6 +192,7 @@ class ContactSet final : public ContactSetBase<D> {
   }
 
   const std::vector<PairEvent<D>>& events() const override { return events_; }
+  std::optional<Pair> passing_through() const override { return passing_; }
 
   std::size_t memory_bytes() const override {
     return (pairs_.capacity() + wall_pairs_.capacity()) * sizeof(Pair) +
@@ -293,6 +299,8 @@ class ContactSet final : public ContactSetBase<D> {
     // Events go to their block's list, joined in block order afterwards: rare, and deterministic.
     block_events_.resize(block_count(n));
     events_.clear();
+    block_passing_.assign(block_count(n), kNone);
+    passing_.reset();
 #pragma omp parallel for schedule(static) if (n > std::size_t(kParallelMin))
     for (int b = 0; b < block_count(n); ++b) {
       const std::size_t end = std::min(n, std::size_t(b + 1) * kBlock);
@@ -321,6 +329,8 @@ class ContactSet final : public ContactSetBase<D> {
         }
         Vec<D> ca, cb;
         const auto g = ball_geometry(p, i, j, dt, ca, cb);
+        if (g.overlap > 0.5 * std::min(g.r_a, g.r_b)) [[unlikely]]
+          block_passing_[b] = std::min(block_passing_[b], c);
         // The model works on a copy in registers; one store back.
         State local = st;
         const auto r =
@@ -345,6 +355,11 @@ class ContactSet final : public ContactSetBase<D> {
       events_.insert(events_.end(), be.begin(), be.end());
       be.clear();
     }
+    for (std::size_t c : block_passing_)
+      if (c != kNone) {
+        passing_ = pairs_[c];
+        break;
+      }
     double e = 0;
     for (double x : part) e += x;
     // Walls touch few balls; a serial loop keeps the order fixed.
@@ -353,6 +368,7 @@ class ContactSet final : public ContactSetBase<D> {
       const std::size_t slot = woff + c;
       Vec<D> cw, cb;
       const auto g = wall_geometry(p, walls[w], j, dt, cw, cb);
+      if (g.overlap > 0.5 * g.r_b && !passing_) [[unlikely]] passing_ = Pair{-1 - w, j};
       const auto r = Model::template force<D, Energy>(Model::template wall<D>(prm, walls[w].material, g.r_b, g.k_b), g,
                                                       wall_states_[c]);
       s.f[slot] = r.force;
@@ -424,6 +440,9 @@ class ContactSet final : public ContactSetBase<D> {
   std::vector<Vec<D>> dashpot_, wall_dashpot_;  // last step's dashpot forces, only while energy is traced
   std::vector<std::vector<PairEvent<D>>> block_events_;
   std::vector<PairEvent<D>> events_;
+  static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> block_passing_;  // per block: its first contact passing through, or kNone
+  std::optional<Pair> passing_;
 };
 
 }  // namespace mc

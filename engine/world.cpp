@@ -203,8 +203,10 @@ void World<D>::refresh_timestep() {
 template <int D>
 void World<D>::compute_forces() {
   double e = 0;
-  for (std::size_t s = 0; s < sets.size(); ++s)
+  for (std::size_t s = 0; s < sets.size(); ++s) {
     e += sets[s]->forces(particles, walls, dt, trace_energy, slots_, offset_[s], wall_offset_[s]);
+    if (const auto pr = sets[s]->passing_through()) [[unlikely]] passing_through(*pr);
+  }
   if (trace_energy) energy.dissipated_contacts += e;
   log_cracks();
 }
@@ -250,7 +252,7 @@ std::size_t World<D>::bond_count() const {
 // −α|F| sign(v) per degree of freedom, which removes energy without a viscous time scale.
 template <int D>
 template <bool Damp, bool Gravity, bool Applied, bool Energy>
-double World<D>::move_particles() {
+typename World<D>::Motion World<D>::move_particles() {
   auto& p = particles;
   const int n = p.size();
   const double h = dt, alpha = local_damping;
@@ -259,7 +261,8 @@ double World<D>::move_particles() {
   std::vector<double> body(Energy ? blocks : 0, 0.0), local(Energy ? blocks : 0, 0.0), kin(Energy ? blocks : 0, 0.0),
       held(Energy ? blocks : 0, 0.0);
   double moved2 = 0;
-#pragma omp parallel for schedule(static) reduction(max : moved2) if (n > kParallelMin)
+  int too_far = n;  // the first particle that moved more than half its radius in this step, or went non-finite
+#pragma omp parallel for schedule(static) reduction(max : moved2) reduction(min : too_far) if (n > kParallelMin)
   for (int b = 0; b < blocks; ++b) {
     const int end = std::min(n, (b + 1) * kBlock);
     for (int i = b * kBlock; i < end; ++i) {
@@ -311,6 +314,8 @@ double World<D>::move_particles() {
       p.x[i] += dx;  // Tang (3.20)
       Dim<D>::rotate(p.q[i], p.w[i], h);
       moved2 = std::max(moved2, (p.x[i] - x_at_rebuild_[i]).squaredNorm());
+      // The stability guard's every-step part, one comparison per particle (written so that NaN fails it too).
+      if (!(dx.squaredNorm() <= 0.25 * p.radius[i] * p.radius[i])) [[unlikely]] too_far = std::min(too_far, i);
       if constexpr (Energy) {
         // Forces act at t, between the half-step velocities they change: their power is F·v(t), with
         // v(t) = ½(v(t−Δt/2) + v(t+Δt/2)), which is what central differences take out of ½ m v(t−Δt/2)·v(t+Δt/2).
@@ -331,7 +336,7 @@ double World<D>::move_particles() {
     energy.dissipated_local += sl;
     ke_half_ = sk;
   }
-  return std::sqrt(moved2);
+  return {std::sqrt(moved2), too_far < n ? too_far : -1};
 }
 
 template <int D>
@@ -380,14 +385,15 @@ void World<D>::step() {
   }
   compute_forces();
   const bool damp = local_damping > 0, grav = gravity.has_value();
-  double moved = 0;
+  Motion motion;
   // One instantiation per combination of declared effects: an effect the scene leaves out is not in the loop.
   const int key = (damp ? 1 : 0) | (grav ? 2 : 0) | (applied_loads ? 4 : 0) | (trace_energy ? 8 : 0);
   [&]<int... K>(std::integer_sequence<int, K...>) {
-    ((key == K ? (moved = move_particles<bool(K & 1), bool(K & 2), bool(K & 4), bool(K & 8)>(), 0) : 0), ...);
+    ((key == K ? (motion = move_particles<bool(K & 1), bool(K & 2), bool(K & 4), bool(K & 8)>(), 0) : 0), ...);
   }
   (std::make_integer_sequence<int, 16>{});
-  moved_ = moved;
+  if (motion.too_far >= 0) [[unlikely]] moved_too_far(motion.too_far);
+  moved_ = motion.moved;
   move_walls();
   time += dt;
   ++step_count;

@@ -69,8 +69,17 @@ class World {
   // Critical timestep from the current stiffnesses, Tang (3.22)–(3.24), without the safety factor.
   double critical_timestep();
   void update_energy();  // kinetic and strain energy at the current time into `energy`
-  // Stability guard: throws InstabilityError naming the step, particle or wall and the likely cause.
+  // Stability guard. Every step (in step()): a particle that moves more than half its radius in one step or goes
+  // non-finite, and two particles (or a particle and a wall) overlapping by more than half the smaller radius,
+  // which the contact law can no longer hold apart. Here, as often as the caller likes and at the end of a run:
+  // walls, the domain and the energy balance. Each throws InstabilityError naming the step, the particle or wall
+  // and the likely cause.
   void check_stability() const;
+  // The specimen's particle ids, used to name particles in messages (empty: their indices).
+  std::vector<std::int64_t> ids;
+  std::string particle_name(int i) const {
+    return "particle " + std::to_string(ids.empty() ? std::int64_t(i) : ids[i]);
+  }
 
   // The crack log: every bond break and first yield since the start, in step order then pair order.
   std::vector<Crack<D>> cracks;
@@ -103,8 +112,16 @@ class World {
   void relink();  // slots and gather lists from the sets' current pair lists
   void compute_forces();
   void log_cracks();
+  struct Motion {
+    double moved = 0;   // the largest displacement since the last rebuild [m]
+    int too_far = -1;   // the first particle that moved more than half its radius in the step (or went non-finite)
+  };
   template <bool Damp, bool Gravity, bool Applied, bool Energy>
-  double move_particles();
+  Motion move_particles();
+  // The stability guard's every-step part: throw InstabilityError naming the particle(s) and the cause.
+  [[noreturn]] void moved_too_far(int i) const;
+  [[noreturn]] void passing_through(const Pair& pair) const;
+  void check_energy() const;
   void move_walls();
   void refresh_timestep();
 

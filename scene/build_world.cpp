@@ -1,7 +1,9 @@
 #include "scene/build_world.hpp"
 
 #include <algorithm>
+#include <sstream>
 
+#include "engine/cell_grid.hpp"
 #include "engine/errors.hpp"
 #include "engine/random.hpp"
 #include "scene/specimen_build.hpp"
@@ -88,6 +90,28 @@ void apply_groups(const Scene& s, World<D>& w, const std::vector<int>& tags, Spe
   }
 }
 
+// Particles with the same centre have no contact normal, and particles placed deeper than half the smaller radius
+// inside each other are pushed through rather than apart (the engine stops such a run): both are refused here,
+// naming the particles by the specimen's ids.
+template <int D>
+void check_spacing(const Scene& s, const Particles<D>& p, const SpecimenInfo& info) {
+  for (const Pair& pr : candidate_pairs<D>(p.x, p.radius, 0.0)) {
+    const auto [i, j] = pr;
+    const double d = (p.x[j] - p.x[i]).norm(), rmin = std::min(p.radius[i], p.radius[j]);
+    const std::string both = "particles " + std::to_string(info.ids[i]) + " and " + std::to_string(info.ids[j]);
+    if (d <= 1e-9 * (p.radius[i] + p.radius[j]))
+      throw InputError(s.file + ": " + both + " of the specimen have the same centre; move one of them");
+    const double overlap = p.radius[i] + p.radius[j] - d;
+    if (overlap > 0.5 * rmin) {
+      std::ostringstream m;
+      m << s.file << ": " << both << " of the specimen overlap by " << overlap / rmin
+        << " of the smaller radius at the start; no contact law holds particles that deep inside each other apart: "
+           "place them at most half the smaller radius into each other";
+      throw InputError(m.str());
+    }
+  }
+}
+
 // Heterogeneity of the particles' stiffness, per phase (Tang §8.1.2), after the mesostructure has set the
 // phases. Drawn from the seed and the particle's index (the order is fixed for a scene): any thread count sees
 // the same.
@@ -165,6 +189,7 @@ World<D> build_world(const Scene& s, SpecimenInfo& info) {
   World<D> w;
   std::vector<int> tags;
   add_specimen<D>(s, w.particles, tags, info);
+  check_spacing<D>(s, w.particles, info);
   if (s.mesostructure.present) apply_mesostructure<D>(s, w.particles, info);
   draw_stiffness_factors<D>(s, w.particles);
   add_contact_sets<D>(s, w);

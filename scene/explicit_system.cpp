@@ -9,16 +9,21 @@ namespace mc {
 
 namespace {
 
-// Runs f; a fixed timestep the engine refuses there is worded as the scene said it, naming the key.
+// A fixed timestep the engine refuses, worded as the scene said it, naming the key.
+std::string timestep_message(const Scene& s, const TimestepError& e) {
+  std::ostringstream m;
+  m << s.file << ": key 'timestep.fixed' = " << s.timestep.fixed << " s: " << e.what()
+    << "; use a value below it, or leave timestep.fixed unset to let the engine choose";
+  return m.str();
+}
+
+// Runs f, before the run: a refused fixed timestep is bad input.
 template <class F>
 void with_scene_timestep(const Scene& s, F&& f) {
   try {
     f();
   } catch (const TimestepError& e) {
-    std::ostringstream m;
-    m << s.file << ": key 'timestep.fixed' = " << s.timestep.fixed << " s: " << e.what()
-      << "; use a value below it, or leave timestep.fixed unset to let the engine choose";
-    throw InputError(m.str());
+    throw InputError(timestep_message(s, e));
   }
 }
 
@@ -27,6 +32,7 @@ void with_scene_timestep(const Scene& s, F&& f) {
 template <int D>
 ExplicitSystem<D>::ExplicitSystem(const Scene& scene)
     : scene_(scene), world_(build_world<D>(scene, info_)), obs_(scene) {
+  world_.ids = info_.ids;  // the engine's messages name particles as the specimen does
   check_probes();
   series_ = make_series<D>(scene, &world_, &info_, &obs_);
 }
@@ -64,7 +70,12 @@ void ExplicitSystem<D>::install_bonds() {
 
 template <int D>
 void ExplicitSystem<D>::step() {
-  with_scene_timestep(scene_, [&] { world_.step(); });
+  try {
+    world_.step();
+  } catch (const TimestepError& e) {
+    // Refused mid-run (the contacts stiffened since the start): an in-run failure like any instability.
+    throw InstabilityError(timestep_message(scene_, e));
+  }
   if (!scene_.regions.empty()) obs_.every_step(world_, scene_);
 }
 
