@@ -1,6 +1,7 @@
 // [[walls]], [[groups]], [physics] and [timestep]: what holds and loads the specimen, and the effects declared.
 #include "scene/scene_read_parts.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -29,6 +30,9 @@ WallControl read_motion(const Table& t, WallSpec& w, int d) {
       if (static_cast<int>(w.area_between.size()) != 2 * (d - 1))
         t.fail("area_between", "give " + std::to_string(2 * (d - 1)) + " wall names (" + std::to_string(d - 1) +
                                    " pair(s) of opposite walls), separated by spaces");
+      for (std::size_t j = 0; j + 1 < w.area_between.size(); j += 2)
+        if (w.area_between[j] == w.area_between[j + 1])
+          t.fail("area_between", "pairs '" + w.area_between[j] + "' with itself: each pair is two opposite walls");
       if (!std::isnan(w.servo_area)) t.fail("area", "give either 'area' or 'area_between', not both");
     }
     w.gain = t.number("gain", Unit::None, Range{0.0, 1.0, true, false}, 0.5);
@@ -36,6 +40,36 @@ WallControl read_motion(const Table& t, WallSpec& w, int d) {
     return WallControl::Servo;
   }
   return WallControl::Fixed;
+}
+
+double norm(const std::vector<double>& v) {
+  double n2 = 0;
+  for (double c : v) n2 += c * c;
+  return std::sqrt(n2);
+}
+
+// A segment has a length, and its inside point lies off its line: the side the particles are on must be
+// decidable, else the wall's normal is undefined (a zero-length segment gave NaN forces).
+void check_segment(const Table& t, const WallSpec& w) {
+  const double ux = w.b[0] - w.a[0], uy = w.b[1] - w.a[1];
+  const double length = std::hypot(ux, uy);
+  if (!(length > 0)) t.fail("b", "the segment's ends a and b are the same point: a segment needs a length");
+  const double off = (ux * (w.inside[1] - w.a[1]) - uy * (w.inside[0] - w.a[0])) / length;
+  // Relative to the segment's length: a point within 1e-9 of it is on the line to rounding.
+  if (!(std::abs(off) > 1e-9 * length))
+    t.fail("inside", "the point lies on the segment's line; give a point off the line, on the side the particles are");
+}
+
+// A rectangle's axis lies in its plane, so it must not be (nearly) parallel to the normal: the edge directions
+// come from the axis's part across the normal. Within 1e-6 of parallel that part is rounding noise.
+void check_rectangle_axes(const Table& t, const WallSpec& w) {
+  const double na = norm(w.axis), nn = norm(w.normal);
+  if (na == 0) t.fail("axis", "the axis must not be the zero vector");
+  if (nn == 0) t.fail("normal", "the normal must not be the zero vector");
+  double dot = 0;
+  for (int k = 0; k < 3; ++k) dot += w.axis[k] * w.normal[k];
+  const double sine = std::sqrt(std::max(0.0, 1.0 - dot * dot / (na * na * nn * nn)));
+  if (!(sine > 1e-6)) t.fail("axis", "the axis is parallel to the normal; it must lie in the rectangle's plane");
 }
 
 FixMask parse_fix(const Table& t, int d) {
@@ -84,6 +118,7 @@ void read_walls(const Table& root, Scene& s) {
       w.a = vec(t, "a", Unit::Length, d);
       w.b = vec(t, "b", Unit::Length, d);
       w.inside = vec(t, "inside", Unit::Length, d);
+      check_segment(t, w);
     } else {
       w.kind = WallSpec::Kind::Rectangle;
       w.point = vec(t, "centre", Unit::Length, d);
@@ -92,12 +127,9 @@ void read_walls(const Table& root, Scene& s) {
       const auto size = t.numbers("size", Unit::Length, Range::positive(), 2);
       w.size0 = size[0];
       w.size1 = size[1];
+      check_rectangle_axes(t, w);
     }
-    if (!w.normal.empty()) {
-      double n2 = 0;
-      for (double c : w.normal) n2 += c * c;
-      if (n2 == 0) t.fail("normal", "the normal must not be the zero vector");
-    }
+    if (!w.normal.empty() && norm(w.normal) == 0) t.fail("normal", "the normal must not be the zero vector");
     w.material.kn = t.number("kn", Unit::Stiffness, Range::positive());
     w.material.ks = t.number("ks", Unit::Stiffness, Range::positive(), w.material.kn);
     w.material.friction = t.number("friction", Unit::None, Range::non_negative(), 0.0);
@@ -121,16 +153,13 @@ void read_groups(const Table& root, Scene& s) {
   for (const Table& t : root.tables("groups")) {
     GroupSpec g;
     g.name = t.string("name", "group" + std::to_string(s.groups.size()));
-    if (t.has("tags"))
-      for (double x : t.numbers("tags", Unit::None, Range::closed(0, 1e9), 0))
-        g.tags.push_back(static_cast<std::int64_t>(x));
-    if (t.has("ids"))
-      for (double x : t.numbers("ids", Unit::None, Range::closed(0, 1e12), 0))
-        g.ids.push_back(static_cast<std::int64_t>(x));
+    if (t.has("tags")) g.tags = ids(t, "tags", 0);
+    if (t.has("ids")) g.ids = ids(t, "ids", 0);
     g.box_lo = opt_vec(t, "box_lo", Unit::Length, d);
     g.box_hi = opt_vec(t, "box_hi", Unit::Length, d);
     if (g.box_lo.empty() != g.box_hi.empty())
       t.fail(g.box_lo.empty() ? "box_hi" : "box_lo", "box_lo and box_hi go together");
+    if (!g.box_lo.empty()) check_box(t, "box_lo", g.box_lo, "box_hi", g.box_hi);
     if (g.tags.empty() && g.ids.empty() && g.box_lo.empty())
       t.fail("tags", "a group selects particles by 'tags', 'ids' or 'box_lo'/'box_hi'");
     g.fix = parse_fix(t, d);
@@ -157,6 +186,9 @@ void read_physics(const Table& root, Scene& s) {
     s.skin = t->number("skin", Unit::Length, Range::positive(), 0.0);
     s.domain_lo = opt_vec(*t, "domain_lo", Unit::Length, d);
     s.domain_hi = opt_vec(*t, "domain_hi", Unit::Length, d);
+    if (s.domain_lo.empty() != s.domain_hi.empty())
+      t->fail(s.domain_lo.empty() ? "domain_hi" : "domain_lo", "domain_lo and domain_hi go together");
+    if (!s.domain_lo.empty()) check_box(*t, "domain_lo", s.domain_lo, "domain_hi", s.domain_hi);
     t->finish();
   }
   if (auto t = root.optional_table("timestep")) {

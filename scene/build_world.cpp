@@ -35,6 +35,24 @@ Wall<D> make_wall(const WallSpec& w) {
   return out;
 }
 
+// A wall strain is the change of the gap between two walls over the gap at the start, along the first wall's
+// normal: the second wall must stand in front of the first, else that gap is zero or negative and the strain
+// meaningless.
+template <int D>
+void check_wall_strains(const Scene& s, const World<D>& w) {
+  for (const WallStrainSpec& g : s.wall_strains) {
+    const auto& a = w.walls[g.walls[0]];
+    const auto& b = w.walls[g.walls[1]];
+    const double gap = (b.origin - a.origin).dot(a.normal);
+    if (!(gap > 0)) {
+      std::ostringstream m;
+      m << s.file << ": wall_strains '" << g.name << "': wall '" << b.name << "' is " << gap << " m in front of wall '"
+        << a.name << "' along its normal; the walls must face each other across a gap";
+      throw InputError(m.str());
+    }
+  }
+}
+
 template <int D>
 void add_walls(const Scene& s, World<D>& w) {
   for (const WallSpec& ws : s.walls) w.walls.push_back(make_wall<D>(ws));
@@ -47,6 +65,7 @@ void add_walls(const Scene& s, World<D>& w) {
     for (std::size_t j = 0; j + 1 < s.walls[k].area_between.size(); j += 2)
       w.walls[k].area_between.push_back(
           {wall_index(s.walls[k].area_between[j]), wall_index(s.walls[k].area_between[j + 1])});
+  check_wall_strains(s, w);
 }
 
 template <int D>
@@ -147,11 +166,29 @@ void add_contact_sets(const Scene& s, World<D>& w) {
                          s.phases[b].name + "', both present in the specimen");
 }
 
+// A declared domain holds the whole specimen at the start: a particle outside it would stop the run at the
+// first check, blamed on an instability that never happened.
 template <int D>
-void set_domain(const Scene& s, World<D>& w) {
+void check_inside_domain(const Scene& s, const World<D>& w, const SpecimenInfo& info) {
+  const auto& p = w.particles;
+  for (int i = 0; i < p.size(); ++i)
+    for (int k = 0; k < D; ++k)
+      if (!(p.x[i][k] >= w.domain_lo[k] && p.x[i][k] <= w.domain_hi[k])) {
+        std::ostringstream m;
+        m << s.file << ": [physics] domain_lo/domain_hi: particle " << info.ids[i] << " lies outside ("
+          << "coordinate "
+          << "xyz"[k] << " = " << p.x[i][k] << " m, domain " << w.domain_lo[k] << " .. " << w.domain_hi[k]
+          << " m); the domain must hold the whole specimen";
+        throw InputError(m.str());
+      }
+}
+
+template <int D>
+void set_domain(const Scene& s, World<D>& w, const SpecimenInfo& info) {
   if (!s.domain_lo.empty()) {
     w.domain_lo = vec_of<D>(s.domain_lo);
     w.domain_hi = vec_of<D>(s.domain_hi);
+    check_inside_domain(s, w, info);
     return;
   }
   // The specimen's bounding box widened by its own size (at least 100 R_max) on every side: room for any
@@ -196,7 +233,7 @@ World<D> build_world(const Scene& s, SpecimenInfo& info) {
   add_walls<D>(s, w);
   apply_groups<D>(s, w, tags, info);
   set_physics<D>(s, w);
-  set_domain<D>(s, w);
+  set_domain<D>(s, w, info);
   return w;
 }
 

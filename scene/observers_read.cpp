@@ -34,6 +34,7 @@ void read_observers(const Table& root, Scene& s) {
         if (s.walls[i].name == names[k]) g.walls[k] = static_cast<int>(i);
       if (g.walls[k] < 0) t.fail("walls", "'" + names[k] + "' is not the name of a wall");
     }
+    if (g.walls[0] == g.walls[1]) t.fail("walls", "names '" + names[0] + "' twice: give two different walls");
     s.wall_strains.push_back(g);
     t.finish();
   }
@@ -50,8 +51,10 @@ void read_observers(const Table& root, Scene& s) {
              : k == "velocity"       ? K::Velocity
                                      : K::AngularVelocity;
     const bool two = p.kind == K::Overlap || p.kind == K::Gap || p.kind == K::RelativeSpeed;
-    for (double x : t.numbers("particles", Unit::None, Range::closed(0, 1e12), two ? 2 : 1))
-      p.particles.push_back(static_cast<std::int64_t>(x));
+    p.particles = ids(t, "particles", two ? 2 : 1);
+    if (two && p.particles[0] == p.particles[1])
+      t.fail("particles", "names particle " + std::to_string(p.particles[0]) + " twice: a " + k +
+                              " probe needs two different particles");
     if (t.has("component")) {
       const std::string c = t.choice(
           "component", d == 2 ? std::vector<std::string>{"x", "y", "z"} : std::vector<std::string>{"x", "y", "z"});

@@ -22,6 +22,30 @@ std::vector<double> opt_vec(const Table& t, const std::string& key, Unit u, int 
   return t.has(key) ? vec(t, key, u, dim) : std::vector<double>{};
 }
 
+std::vector<std::int64_t> ids(const Table& t, const std::string& key, std::size_t n) {
+  std::vector<std::int64_t> out;
+  for (double x : t.numbers(key, Unit::None, Range::closed(0, 9007199254740992.0), n)) {
+    if (x != std::floor(x)) {
+      std::ostringstream m;
+      m << "holds " << x << ": ids and tags are whole numbers";
+      t.fail(key, m.str());
+    }
+    out.push_back(static_cast<std::int64_t>(x));
+  }
+  return out;
+}
+
+void check_box(const Table& t, const std::string& lo_key, const std::vector<double>& lo, const std::string& hi_key,
+               const std::vector<double>& hi) {
+  const char* axis[] = {"x", "y", "z"};
+  for (std::size_t k = 0; k < lo.size(); ++k)
+    if (!(lo[k] < hi[k])) {
+      std::ostringstream m;
+      m << "its " << axis[k] << " (" << hi[k] << " m) must be above " << lo_key << "'s (" << lo[k] << " m)";
+      t.fail(hi_key, m.str());
+    }
+}
+
 int phase_index(const Table& t, const std::string& key, const std::vector<PhaseSpec>& phases) {
   std::vector<std::string> names;
   for (const auto& p : phases) names.push_back(p.name);

@@ -1,6 +1,7 @@
 // The parts of reading a scene (scene/scene_read.cpp and the files it splits into): one function per table,
 // and the few helpers they share. Internal to scene/.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,11 @@ namespace mc::scene_read {
 // A vector of `dim` numbers, required / optional (empty when absent).
 std::vector<double> vec(const Table& t, const std::string& key, Unit u, int dim);
 std::vector<double> opt_vec(const Table& t, const std::string& key, Unit u, int dim);
+// A list of `n` particle ids or tags (n = 0: any length): whole numbers from 0 to 2^53 (exact in a double).
+std::vector<std::int64_t> ids(const Table& t, const std::string& key, std::size_t n);
+// A box's low corner lies below its high corner in every direction, else fail naming hi_key.
+void check_box(const Table& t, const std::string& lo_key, const std::vector<double>& lo, const std::string& hi_key,
+               const std::vector<double>& hi);
 // The index of the phase named by `key`.
 int phase_index(const Table& t, const std::string& key, const std::vector<PhaseSpec>& phases);
 // A file named in a scene is relative to the scene file's folder.

@@ -52,8 +52,7 @@ void read_specimen(const Table& root, Scene& s) {
                                   : SpecimenSpec::Kind::RandomBox;
     sp.box_lo = vec(t, "lo", Unit::Length, d);
     sp.box_hi = vec(t, "hi", Unit::Length, d);
-    for (int k = 0; k < d; ++k)
-      if (sp.box_hi[k] <= sp.box_lo[k]) t.fail("hi", "each component must exceed the one of 'lo'");
+    check_box(t, "lo", sp.box_lo, "hi", sp.box_hi);
     if (kind == "lattice") {  // equal particles: hexagonal (2D) or face-centred cubic (3D), Tang §8.1.1
       sp.radius_min = sp.radius_max = t.number("radius", Unit::Length, Range::positive());
       for (int k = 0; k < d; ++k)
@@ -110,6 +109,7 @@ void read_mesostructure(const Table& root, Scene& s) {
   m.lo = opt_vec(*t, "lo", Unit::Length, d);
   m.hi = opt_vec(*t, "hi", Unit::Length, d);
   if (m.lo.empty() != m.hi.empty()) t->fail(m.lo.empty() ? "hi" : "lo", "lo and hi go together");
+  if (!m.lo.empty()) check_box(*t, "lo", m.lo, "hi", m.hi);
   for (const Table& k : t->tables("keep_out")) {
     if (k.has("radius")) {
       m.keep_out_centre.push_back(vec(k, "centre", Unit::Length, d));
@@ -117,6 +117,7 @@ void read_mesostructure(const Table& root, Scene& s) {
     } else {
       m.keep_out_lo.push_back(vec(k, "box_lo", Unit::Length, d));
       m.keep_out_hi.push_back(vec(k, "box_hi", Unit::Length, d));
+      check_box(k, "box_lo", m.keep_out_lo.back(), "box_hi", m.keep_out_hi.back());
     }
     k.finish();
   }
