@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scene/units.hpp"
@@ -61,6 +62,11 @@ class Table {
   std::size_t visit_;  // index of this table's entry in the state's list of visited tables
 };
 
+// One value of a document: its key path, and its TOML text exact (to compare) and as a user would write it.
+struct TomlLeaf {
+  std::string path, exact, shown;
+};
+
 // A parsed scene file with the command line's --set overrides applied.
 class TomlDoc {
  public:
@@ -73,6 +79,9 @@ class TomlDoc {
   // The exact input: the file text itself, or, with overrides, the document re-serialised (with a comment
   // listing the overrides). Stored in the output file; it re-parses to the same values.
   const std::string& text() const;
+  // Every value with its full key path, in file order; entries of [[table]] lists by index ("walls[1].kn").
+  // For comparing two scenes key by key.
+  std::vector<TomlLeaf> leaves() const;
   // finish() for every table visited; a sub-table never visited is an unknown key of its parent.
   void finish_all() const;
 

@@ -12,6 +12,7 @@
 #include "engine/errors.hpp"
 #include "io/run_output.hpp"
 #include "scene/make_system.hpp"
+#include "scene/resume_check.hpp"
 
 namespace mc {
 
@@ -117,6 +118,7 @@ class Runner {
   }
 
   void resume(const std::vector<std::string>& names, const std::vector<std::string>& units) {
+    const SceneChange change = scene_change();  // before the file is opened for writing: a refusal leaves it as is
     out_ = std::make_unique<RunOutput>(opt_.output);
     const Archive a = out_->read_checkpoint();
     try {
@@ -130,10 +132,13 @@ class Runner {
     std::size_t k = 0;
     const auto hrows = static_cast<std::int64_t>(rs[k++]), frows = static_cast<std::int64_t>(rs[k++]);
     const auto crows = static_cast<std::int64_t>(rs[k++]);
-    for (auto& st : stops_) st.peak = rs[k++];
-    // A run that stopped on a condition stays stopped: resuming it only closes the file again.
-    const auto& why = a.bytes.at("stop_reason");
-    stop_reason_.assign(why.begin(), why.end());
+    // A run that stopped on a condition stays stopped (resuming it only closes the file again), unless the
+    // conditions changed: then they start afresh, a post-peak condition from the peak after the resume.
+    if (!change.stops_changed) {
+      for (auto& st : stops_) st.peak = rs[k++];
+      const auto& why = a.bytes.at("stop_reason");
+      stop_reason_.assign(why.begin(), why.end());
+    }
     out_->create_histories(names, units);
     out_->truncate(hrows, frows, crows);
     cracks_written_ = static_cast<std::size_t>(crows);
@@ -143,6 +148,17 @@ class Runner {
     first_step_ = system_->step_count();
     out_->set_status("running");
     out_->flush();
+  }
+
+  // The scene stored in the output against the one resuming it: anything but the run's end, its stop
+  // conditions and the output cadences would continue the checkpoint under other rules.
+  SceneChange scene_change() const {
+    const std::string stored = H5File(opt_.output, H5File::Mode::ReadOnly).read_string("/scene");
+    SceneChange c = compare_for_resume(stored, scene_.text);
+    if (!c.refused.empty())
+      throw InputError(scene_.file + ": cannot resume " + opt_.output + " with this scene: " + c.refused +
+                       " (a resume may change only " + keys_a_resume_may_change() + "); the file is left as it was");
+    return c;
   }
 
   // "" while the run goes on; else why it ends.
