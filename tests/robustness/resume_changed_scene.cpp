@@ -72,7 +72,8 @@ TEST_CASE("resume refuses a changed material, contact law, specimen, wall or see
   }
 }
 
-TEST_CASE("resume accepts a later end, new cadences and a new stop condition, and every history stays as long as time") {
+TEST_CASE(
+    "resume accepts a later end, new cadences and a new stop condition, and every history stays as long as time") {
   const TempDir d;
   short_run(d);
   const Result r = mesocrack({"run", kCollision, "--resume", "a.h5", "--set", "run.duration=0.2 ms", "--set",

@@ -1,0 +1,274 @@
+// Numerically hard scenes through the real command: what can be resolved is, to its closed form; what cannot
+// stops with exit 4 (or 2, before anything runs) naming the particles and the cause, never "finished".
+#include <array>
+#include <numbers>
+
+#include "tests/common/cli_harness.hpp"
+
+namespace {
+
+const std::string kCollision = (kScenes / "collision_2d.toml").string();
+
+// The collision scene with the discs approaching at ±v (m/s), run until they have parted again.
+Result collide(const TempDir& d, double v) {
+  const std::string speed = std::to_string(v) + " m/s";
+  return mesocrack({"run", kCollision, "-o", "c.h5", "--set", "specimen.particles[0].velocity=[\"" + speed + "\", 0]",
+                    "--set", "specimen.particles[1].velocity=[\"-" + speed + "\", 0]", "--set", "run.duration=80 us"},
+                   d.dir);
+}
+
+// Contact duration of the collision scene's linear contact: π √(m*/k_n), m* = m/2 = 4.084e-3 kg, k_n = 5e7 N/m.
+const double kDuration = std::numbers::pi * std::sqrt(2600 * std::numbers::pi * 1e-6 / 2 / 5e7);
+
+std::string status_of(const TempDir& d, const std::string& file) { return summary_of(file, d.dir)["status"].text; }
+
+// One phase of discs at the given positions (2D, radius 1 mm, linear contact of 50 MPa).
+std::string discs_scene(const std::vector<std::array<double, 2>>& x_mm) {
+  std::ostringstream s;
+  s << "dimension = 2\n[[phases]]\nname = \"g\"\ndensity = 2600\n[[contacts]]\nphase_a = \"g\"\nmodel = "
+       "\"linear\"\nmodulus = \"50 MPa\"\n[specimen]\nkind = \"particles\"\n";
+  for (const auto& x : x_mm)
+    s << "[[specimen.particles]]\nx = [\"" << x[0] << " mm\", \"" << x[1] << " mm\"]\nradius = \"1 mm\"\n";
+  s << "[run]\nsteps = 100\n";
+  return s.str();
+}
+
+}  // namespace
+
+TEST_CASE("a fast impact within the springs' reach keeps the linear contact's duration and restitution 1") {
+  // At ±10 m/s the discs overlap by 0.18 R at most: still a linear spring, whose half period does not depend
+  // on the speed. 1 % on the duration: the scene resolves the contact in ~70 steps (±1 step = 1.4 %/2 at the
+  // edges of the positive-overlap window).
+  const TempDir d;
+  const Result r = collide(d, 10.0);
+  REQUIRE_MESSAGE(r.code == 0, r.describe());
+  const Json j = summary_of("c.h5", d.dir);
+  CHECK(j["results"]["contact_duration_s"].number == doctest::Approx(kDuration).epsilon(0.01));
+  CHECK(j["results"]["restitution"].number == doctest::Approx(1.0).epsilon(0.01));
+}
+
+TEST_CASE("discs too fast for their contact stop naming the pair passing through, never finished") {
+  // ±150 m/s: the kinetic energy is 7× what the springs hold at half a radius of overlap; ±1000 m/s: 300×.
+  for (const double v : {150.0, 1000.0}) {
+    CAPTURE(v);
+    const TempDir d;
+    const Result r = collide(d, v);
+    CHECK_MESSAGE(r.code == 4, r.describe());
+    CHECK_MESSAGE(contains(r.err, "particle 0 and particle 1"), r.err);
+    CHECK_MESSAGE(contains(r.err, "passing through each other"), r.err);
+    CHECK_FALSE(contains(r.err, "gap in the walls"));
+    CHECK(status_of(d, "c.h5") == "unstable");
+  }
+}
+
+TEST_CASE("discs placed deep inside each other are refused before the run, naming the pair") {
+  // Centres 0.8 mm apart: an overlap of 1.2 radii, which no contact law resolves; 1.6 mm apart (0.4 R) runs.
+  const TempDir d;
+  write_file(d / "deep.toml", discs_scene({{0, 0}, {0.8, 0}, {5, 0}}));
+  const Result r = mesocrack({"run", "deep.toml", "-o", "deep.h5"}, d.dir);
+  CHECK_MESSAGE(r.code == 2, r.describe());
+  CHECK_MESSAGE(contains(r.err, "particles 0 and 1"), r.err);
+  CHECK_FALSE(fs::exists(d / "deep.h5"));
+  write_file(d / "near.toml", discs_scene({{0, 0}, {1.6, 0}, {5, 0}}));
+  const Result ok = mesocrack({"run", "near.toml", "-o", "near.h5"}, d.dir);
+  CHECK_MESSAGE(ok.code == 0, ok.describe());
+}
+
+TEST_CASE("thirty heavily overlapping discs are refused at build, not run for 48 steps") {
+  // A 6 × 5 grid at 0.9 mm spacing: every neighbour overlaps by 1.1 radii.
+  std::vector<std::array<double, 2>> x;
+  for (int i = 0; i < 6; ++i)
+    for (int k = 0; k < 5; ++k) x.push_back({0.9 * i, 0.9 * k});
+  const TempDir d;
+  write_file(d / "pile.toml", discs_scene(x));
+  const Result r = mesocrack({"run", "pile.toml", "-o", "pile.h5"}, d.dir);
+  CHECK_MESSAGE(r.code == 2, r.describe());
+  CHECK_MESSAGE(contains(r.err, "overlap"), r.err);
+  CHECK_FALSE(fs::exists(d / "pile.h5"));
+}
+
+TEST_CASE("a small disc resting on one 100 times larger settles at the static overlap m g / k_n") {
+  // r = 1 mm on R = 100 mm (fixed): the timestep comes from the small disc, the big one only holds it. The
+  // contact is linear, k_n = t E_c = 5e7 N/m (disc stiffnesses 2 t E_c in series), so the overlap at rest is
+  // m g / k_n = 2600 π (1 mm)² · 9.81 / 5e7 = 1.602e-9 m. Local damping brings it to rest; 0.5 % covers what
+  // is left of the oscillation after 20 ms (over 200 periods at damping 0.7).
+  const std::string scene = R"(dimension = 2
+[[phases]]
+name = "g"
+density = 2600
+[[contacts]]
+phase_a = "g"
+model = "linear"
+modulus = "50 MPa"
+[specimen]
+kind = "particles"
+[[specimen.particles]]
+x = [0, 0]
+radius = "100 mm"
+[[specimen.particles]]
+x = [0, "101 mm"]
+radius = "1 mm"
+[[groups]]
+name = "base"
+ids = [0]
+fix = "all"
+[physics]
+gravity = [0, -9.81]
+local_damping = 0.7
+[[probes]]
+name = "overlap"
+kind = "overlap"
+particles = [0, 1]
+[[summary]]
+name = "overlap_at_rest"
+of = "overlap"
+reduce = "final"
+[run]
+duration = "20 ms"
+)";
+  const TempDir d;
+  write_file(d / "rest.toml", scene);
+  const Result r = mesocrack({"run", "rest.toml", "-o", "rest.h5"}, d.dir);
+  REQUIRE_MESSAGE(r.code == 0, r.describe());
+  const double expected = 2600 * std::numbers::pi * 1e-6 * 9.81 / 5e7;
+  CHECK(summary_of("rest.h5", d.dir)["results"]["overlap_at_rest"].number == doctest::Approx(expected).epsilon(0.005));
+}
+
+TEST_CASE("a chain with a stiffness contrast of 1e6 conserves energy with the stiff contacts' timestep") {
+  // Soft discs (50 kPa) between pairs of stiff ones (50 GPa): the timestep is set by the stiff pairs, the motion
+  // by the soft contacts. Undamped, the energy residual stays within 1e-3 of the energy put in: with ~100 steps
+  // per stiff oscillation, central differences conserve the energy of the linear springs to O((ωΔt)²).
+  std::ostringstream s;
+  s << R"(dimension = 2
+[[phases]]
+name = "soft"
+density = 2600
+[[phases]]
+name = "stiff"
+density = 2600
+[[contacts]]
+phase_a = "soft"
+model = "linear"
+modulus = "50 kPa"
+[[contacts]]
+phase_a = "soft"
+phase_b = "stiff"
+model = "linear"
+modulus = "50 kPa"
+[[contacts]]
+phase_a = "stiff"
+model = "linear"
+modulus = "50 GPa"
+[specimen]
+kind = "particles"
+)";
+  const char* phases[] = {"soft", "stiff", "stiff", "soft", "stiff", "stiff", "soft"};
+  for (int i = 0; i < 7; ++i)
+    s << "[[specimen.particles]]\nx = [\"" << 2 * i << " mm\", 0]\nradius = \"1 mm\"\nphase = \"" << phases[i] << "\"\n"
+      << (i == 0 ? "velocity = [\"1 m/s\", 0]\n" : "");
+  s << R"([physics]
+energy = true
+[[probes]]
+name = "last_speed"
+kind = "velocity"
+particles = [6]
+component = "x"
+[[summary]]
+name = "last_speed_max"
+of = "last_speed"
+reduce = "max"
+[[summary]]
+name = "residual_max"
+of = "energy.residual"
+reduce = "max"
+[[summary]]
+name = "residual_min"
+of = "energy.residual"
+reduce = "min"
+[[summary]]
+name = "energy_in"
+of = "energy.kinetic"
+reduce = "initial"
+[run]
+duration = "5 ms"
+[output]
+history_every = 500
+)";
+  const TempDir d;
+  write_file(d / "contrast.toml", s.str());
+  const Result r = mesocrack({"run", "contrast.toml", "-o", "contrast.h5"}, d.dir);
+  REQUIRE_MESSAGE(r.code == 0, r.describe());
+  const Json j = summary_of("contrast.h5", d.dir);
+  const double e_in = j["results"]["energy_in"].number;
+  CHECK(std::abs(j["results"]["residual_max"].number) < 1e-3 * e_in);
+  CHECK(std::abs(j["results"]["residual_min"].number) < 1e-3 * e_in);
+  // The push crossed the chain: the last soft disc moves off at a good part of the first one's 1 m/s.
+  CHECK(j["results"]["last_speed_max"].number > 0.3);
+}
+
+TEST_CASE("undamped discs bouncing between walls: resolved impacts keep the energy, unresolved ones are named") {
+  // Two discs between two walls, no damping, ~170 impacts in 0.5 s. At timestep safety 0.05 each contact lasts
+  // some 60 steps and the total energy stays within 0.5 % (measured 0.997–1.000). At 0.8 a contact lasts ~4
+  // steps: each impact opening or closing between steps gains or loses energy, the losses and gains random-walk,
+  // and the guard stops the run when the energy has doubled — naming the under-resolved impacts as the cause.
+  const std::string scene = R"(dimension = 2
+[[phases]]
+name = "g"
+density = 2600
+[[contacts]]
+phase_a = "g"
+model = "linear"
+modulus = "50 MPa"
+[specimen]
+kind = "particles"
+[[specimen.particles]]
+x = ["3 mm", 0]
+radius = "1 mm"
+velocity = ["0.5 m/s", 0]
+[[specimen.particles]]
+x = ["7 mm", 0]
+radius = "1 mm"
+velocity = ["-0.3 m/s", 0]
+[[walls]]
+name = "left"
+shape = "plane"
+point = [0, 0]
+normal = [1, 0]
+kn = 1e8
+[[walls]]
+name = "right"
+shape = "plane"
+point = ["10 mm", 0]
+normal = [-1, 0]
+kn = 1e8
+[physics]
+energy = true
+[[summary]]
+name = "residual_max"
+of = "energy.residual"
+reduce = "max"
+[[summary]]
+name = "residual_min"
+of = "energy.residual"
+reduce = "min"
+[run]
+duration = "0.5 s"
+[output]
+history_every = 200
+)";
+  const TempDir d;
+  write_file(d / "bounce.toml", scene);
+  const double e0 = 0.5 * 2600 * std::numbers::pi * 1e-6 * (0.25 + 0.09);
+  // The residual is the energy put in minus kinetic and strain energy (nothing is dissipated): the drift.
+  const Result fine = mesocrack({"run", "bounce.toml", "-o", "fine.h5", "--set", "timestep.safety=0.05"}, d.dir);
+  REQUIRE_MESSAGE(fine.code == 0, fine.describe());
+  const Json j = summary_of("fine.h5", d.dir);
+  CHECK(std::abs(j["results"]["residual_max"].number) < 0.005 * e0);
+  CHECK(std::abs(j["results"]["residual_min"].number) < 0.005 * e0);
+  const Result coarse = mesocrack({"run", "bounce.toml", "-o", "coarse.h5", "--set", "timestep.safety=0.8", "--set",
+                                   "run.duration=4.7 s", "--set", "output.history_every=2000"},
+                                  d.dir);
+  CHECK_MESSAGE(coarse.code == 4, coarse.describe());
+  CHECK_MESSAGE(contains(coarse.err, "impacts resolved in too few steps"), coarse.err);
+  CHECK(status_of(d, "coarse.h5") == "unstable");
+}
