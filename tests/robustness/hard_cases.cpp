@@ -272,3 +272,29 @@ history_every = 200
   CHECK_MESSAGE(contains(coarse.err, "impacts resolved in too few steps"), coarse.err);
   CHECK(status_of(d, "coarse.h5") == "unstable");
 }
+
+TEST_CASE("a specimen too large for any machine's memory is refused with the estimate before anything is built") {
+  // A 0.1 m cube of 1 µm spheres in fcc order: 1.77e14 particles, 315 TB at the measured 1.78 kB per sphere.
+  const TempDir d;
+  write_file(d / "big.toml", R"(dimension = 3
+[[phases]]
+name = "g"
+density = 2600
+[[contacts]]
+phase_a = "g"
+model = "linear"
+modulus = "50 MPa"
+[specimen]
+kind = "lattice"
+lo = [0, 0, 0]
+hi = ["100 mm", "100 mm", "100 mm"]
+radius = "1 um"
+[run]
+steps = 1
+)");
+  const Result r = mesocrack({"run", "big.toml", "-o", "big.h5"}, d.dir);
+  CHECK_MESSAGE(r.code == 2, r.describe());
+  CHECK_MESSAGE(contains(r.err, "'specimen.radius'"), r.err);
+  CHECK_MESSAGE(contains(r.err, "1.77e+14 particles"), r.err);
+  CHECK_FALSE(fs::exists(d / "big.h5"));
+}
