@@ -42,8 +42,8 @@ TEST_CASE("realization_statistics_with_a_fixed_seed_are_identical_twice") {
         ja["statistics"]["E"]["mean"].number);
 }
 
-// Tang §6.3 on the small specimen, from Table 5.1's micro-parameters (E ≈ 21 GPa, ν ≈ 0.16, UCS ≈ 22 MPa here)
-// to targets a calibration has to move all three knobs for. The calibrated scene, run again, gives the targets
+// Tang §6.3 on the small specimen, from Table 5.1's micro-parameters (plane strain: E ≈ 20.5 GPa, ν ≈ 0.135, UCS ≈ 22 MPa
+// here) to targets a calibration has to move all three knobs for. The calibrated scene, run again, gives the targets
 // within the 5 % tolerance asked for (it is the same deterministic run as the last iteration).
 TEST_CASE("calibration_converges_on_a_small_2d_specimen") {
   const TempDir d;

@@ -14,6 +14,11 @@ std::shared_ptr<const Analysis> read_uniaxial(const Table& t, const Scene& s) {
   auto u = std::make_shared<UniaxialAnalysis>();
   u->scene_file = s.file;
   u->tension = t.choice("loading", {"compression", "tension"}, "compression") == "tension";
+  u->dimension = s.dimension;
+  if (s.dimension == 2)
+    u->plane_strain = t.choice("plane", {"strain", "stress"}, "strain") == "strain";
+  else if (t.has("plane"))
+    t.fail("plane", "a 3D specimen gives E and ν directly; the plane reading is for 2D specimens");
   if (t.has("supports")) {
     // supports = "bottom top": the groups at the negative and the positive end of the strained axis.
     for (const char* k : {"stress", "axial_strain", "lateral_strain"})
@@ -200,10 +205,20 @@ UniaxialResult UniaxialAnalysis::result(const Histories& h) const {
     return k + 1 < n ? y[k] + f * (y[k + 1] - y[k]) : y[k];
   };
   const double r25 = crossing(0.25 * r.ucs), r50 = crossing(0.5 * r.ucs);
-  r.modulus = 0.25 * r.ucs / (at(ea, r50) - at(ea, r25));
   // Compression widens the specimen, tension narrows it: ν is the lateral expansion per axial shortening, or
   // the lateral contraction per axial elongation.
-  r.poisson = (tension ? -1.0 : 1.0) * (at(el, r50) - at(el, r25)) / (at(ea, r50) - at(ea, r25));
+  const double nu = (tension ? -1.0 : 1.0) * (at(el, r50) - at(el, r25)) / (at(ea, r50) - at(ea, r25));
+  const double e = 0.25 * r.ucs / (at(ea, r50) - at(ea, r25));
+  const double e_0_50 = (0.5 * r.ucs - s[0]) / (at(ea, r50) - ea[0]);
+  const double e_tangent = 0.1 * r.ucs / (at(ea, crossing(0.55 * r.ucs)) - at(ea, crossing(0.45 * r.ucs)));
+  // Plane strain: a 2D assembly with ratios E₂, ν₂ is the section of a material with ν = ν₂/(1 + ν₂) and
+  // E = E₂(1 − ν²) (Tang ch. 5: "the two dimensional elastic constants are obtained by assuming the plane strain
+  // condition").
+  const bool convert = dimension == 2 && plane_strain;
+  r.poisson = convert ? nu / (1 + nu) : nu;
+  const double factor = convert ? 1 - r.poisson * r.poisson : 1.0;
+  r.modulus = e * factor, r.modulus_secant_0_50 = e_0_50 * factor, r.modulus_tangent_50 = e_tangent * factor;
+  if (dimension == 2) r.modulus_raw_2d = e, r.poisson_raw_2d = nu;
   r.strain_at_peak = ea[peak];
   // Cracks: the breaks; in a run without any break but with first yields (a CPM specimen, whose contacts damage
   // without breaking by default), the first yields, i.e. the contacts that started to damage.
@@ -248,6 +263,14 @@ std::string UniaxialAnalysis::summary_json(const Histories& h) const {
   o << ",\n    \"E\": " << json_number(r.modulus)
     << ",\n    \"E_definition\": \"secant between 25 % and 50 % of the peak stress\""
     << ",\n    \"nu\": " << json_number(r.poisson);
+  if (dimension == 2)
+    o << ",\n    \"plane\": " << (plane_strain ? "\"strain\"" : "\"stress\"")
+      << ",\n    \"E_raw_2d\": " << json_number(r.modulus_raw_2d)
+      << ",\n    \"nu_raw_2d\": " << json_number(r.poisson_raw_2d)
+      << ",\n    \"raw_2d_definition\": \"the disc assembly's own ratios in its plane (the plane-stress reading)\"";
+  o << ",\n    \"E_secant_0_50\": " << json_number(r.modulus_secant_0_50)
+    << ",\n    \"E_tangent_50\": " << json_number(r.modulus_tangent_50)
+    << ",\n    \"E_tangent_50_definition\": \"secant between 45 % and 55 % of the peak stress\"";
   if (tension)
     o << ",\n    \"f_t\": " << json_number(r.ucs) << ",\n    \"G_f\": " << json_number(r.fracture_energy)
       << ",\n    \"G_f_definition\": \"area under stress-strain to 0.2 f_t post-peak, times the gauge length\""

@@ -15,9 +15,14 @@ namespace mc {
 
 // What a uniaxial test gives; NaN where the curve does not tell.
 struct UniaxialResult {
-  double modulus = kNaN;  // E [Pa], secant between 25 % and 50 % of the peak
-  double poisson = kNaN;  // ν
-  double ucs = kNaN;      // peak axial stress [Pa]: f_c, or in tension f_t
+  double modulus = kNaN;  // E [Pa], secant between 25 % and 50 % of the peak, in the declared reading (2D)
+  double poisson = kNaN;  // ν, likewise
+  // 2D: the disc assembly's own ratios (σ/ε and −ε_lat/ε_axial in its plane), before any plane reading.
+  double modulus_raw_2d = kNaN, poisson_raw_2d = kNaN;
+  // The same curve read with other windows: the secant from the start to 50 % of the peak, and the tangent at
+  // 50 % (the secant between 45 % and 55 %), in the declared reading.
+  double modulus_secant_0_50 = kNaN, modulus_tangent_50 = kNaN;
+  double ucs = kNaN;  // peak axial stress [Pa]: f_c, or in tension f_t
   double strain_at_peak = kNaN;
   double initiation_stress = kNaN;  // when the cracks reach 1 % of their count at the peak [Pa]
   double cracks_at_peak = kNaN, cracks_tensile = kNaN, cracks_shear = kNaN;
@@ -31,6 +36,10 @@ class UniaxialAnalysis final : public Analysis {
   std::string stress, axial_strain;         // history names
   std::vector<std::string> lateral_strain;  // their mean is the lateral strain (3D: the two lateral axes)
   bool tension = false;                     // loading = "tension"
+  int dimension = 3;
+  // 2D: how the disc assembly's ratios are read as a material's E and ν. Plane strain (Tang ch. 5
+  // introduction): ν = ν₂/(1 + ν₂), E = E₂(1 − ν²). Plane stress: the ratios as they are.
+  bool plane_strain = true;
   // Straining by two support groups (supports = "bottom top") along `axis`: the analysis then records
   // uniaxial.stress (the mean of both supports' axial reactions over `area`), uniaxial.strain (their mean
   // displacements over their initial distance), uniaxial.length (that distance) and uniaxial.lateral_strain

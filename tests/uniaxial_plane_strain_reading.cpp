@@ -1,0 +1,73 @@
+// How [uniaxial] reads a stress–strain curve: the plane-strain reading of 2D ratios against its closed form, and
+// the three windows for E (secant 25–50 %, secant 0–50 %, tangent at 50 %) against a parabola's exact values.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "scene/analyses/uniaxial.hpp"
+
+namespace {
+
+// A uniaxial compression history: σ(ε) rising to its peak at ε_p and falling after it, the lateral strain
+// ν₂ ε, no cracks. Rows every 1e-3 ε_p.
+mc::Histories curve(double (*stress)(double), double nu2, double eps_peak) {
+  mc::Histories h;
+  for (int k = 0; k <= 1500; ++k) {
+    const double eps = 1e-3 * k * eps_peak;
+    h["s"].push_back(stress(eps));
+    h["ea"].push_back(eps);
+    h["el"].push_back(nu2 * eps);
+    h["cracks.tensile"].push_back(0);
+    h["cracks.shear"].push_back(0);
+  }
+  return h;
+}
+
+mc::UniaxialAnalysis analysis(int dimension, bool plane_strain) {
+  mc::UniaxialAnalysis u;
+  u.stress = "s", u.axial_strain = "ea", u.lateral_strain = {"el"};
+  u.dimension = dimension, u.plane_strain = plane_strain;
+  return u;
+}
+
+constexpr double kE2 = 30e9, kNu2 = 0.25, kPeak = 1e-3;
+// Linear to the peak at ε = 1e-3, then down at the same slope.
+double linear(double e) { return e <= kPeak ? kE2 * e : kE2 * (2 * kPeak - e); }
+// σ = E₀ ε (1 − ε / 2ε_p): tangent E₀(1 − ε/ε_p), peak E₀ ε_p / 2.
+double parabola(double e) { return kE2 * e * (1 - e / (2 * kPeak)); }
+
+}  // namespace
+
+TEST_CASE("plane strain reading of a 2D assembly: nu = nu2/(1+nu2), E = E2 (1 - nu^2)") {
+  const auto h = curve(linear, kNu2, kPeak);
+  const mc::UniaxialResult strain = analysis(2, true).result(h);
+  const double nu = kNu2 / (1 + kNu2);  // 0.2
+  // Linear rows, interpolated exactly: only rounding remains (1e-9).
+  CHECK(strain.poisson == doctest::Approx(nu).epsilon(1e-9));
+  CHECK(strain.modulus == doctest::Approx(kE2 * (1 - nu * nu)).epsilon(1e-9));
+  CHECK(strain.modulus_raw_2d == doctest::Approx(kE2).epsilon(1e-9));
+  CHECK(strain.poisson_raw_2d == doctest::Approx(kNu2).epsilon(1e-9));
+  const mc::UniaxialResult stress = analysis(2, false).result(h);
+  CHECK(stress.modulus == doctest::Approx(kE2).epsilon(1e-9));
+  CHECK(stress.poisson == doctest::Approx(kNu2).epsilon(1e-9));
+  // 3D specimens give E and ν directly.
+  const mc::UniaxialResult direct = analysis(3, true).result(h);
+  CHECK(direct.modulus == doctest::Approx(kE2).epsilon(1e-9));
+  CHECK(std::isnan(direct.modulus_raw_2d));
+}
+
+TEST_CASE("the three E windows of a parabolic curve match their closed forms") {
+  // σ/σ_p = f at ε/ε_p = 1 − √(1 − f). Secant 25–50 %: 0.25 σ_p over the strain between those levels; secant
+  // 0–50 %: 0.5 σ_p over the strain at 50 %; tangent at 50 %: the secant 45–55 %, which is 1.2e-3 below the
+  // exact tangent E₀ √(1 − 0.5) on this curve (its curvature over the window).
+  const auto h = curve(parabola, kNu2, kPeak);
+  const mc::UniaxialResult r = analysis(3, true).result(h);
+  const double sp = kE2 * kPeak / 2;
+  auto at = [](double f) { return kPeak * (1 - std::sqrt(1 - f)); };
+  // Rows every 1e-3 ε_p, linearly interpolated on a curve: 1e-5 relative.
+  CHECK(r.modulus == doctest::Approx(0.25 * sp / (at(0.5) - at(0.25))).epsilon(1e-5));
+  CHECK(r.modulus_secant_0_50 == doctest::Approx(0.5 * sp / at(0.5)).epsilon(1e-5));
+  CHECK(r.modulus_tangent_50 == doctest::Approx(0.1 * sp / (at(0.55) - at(0.45))).epsilon(1e-5));
+  CHECK(r.modulus_tangent_50 == doctest::Approx(kE2 * std::sqrt(0.5)).epsilon(1.5e-3));
+  CHECK(r.ucs == doctest::Approx(sp).epsilon(1e-9));
+}
