@@ -15,6 +15,11 @@ std::shared_ptr<const Analysis> read_uniaxial(const Table& t, const Scene& s) {
   u->scene_file = s.file;
   u->tension = t.choice("loading", {"compression", "tension"}, "compression") == "tension";
   u->dimension = s.dimension;
+  const std::string axis =
+      t.choice("axis", s.dimension == 2 ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"},
+               s.dimension == 2 ? "y" : "z");
+  u->axis = axis[0] - 'x';
+  u->strain_inside = t.choice("axial_strain_from", {"platens", "inside"}, "platens") == "inside";
   if (s.dimension == 2)
     u->plane_strain = t.choice("plane", {"strain", "stress"}, "strain") == "strain";
   else if (t.has("plane"))
@@ -34,10 +39,6 @@ std::shared_ptr<const Analysis> read_uniaxial(const Table& t, const Scene& s) {
       if (u->supports[k] < 0) t.fail("supports", "'" + two[k] + "' is not the name of a [[groups]] entry");
       u->support_names[k] = two[k];
     }
-    const std::string axis = t.choice(
-        "axis", s.dimension == 2 ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"},
-        s.dimension == 2 ? "y" : "z");
-    u->axis = axis[0] - 'x';
     u->area = t.number("area", s.dimension == 2 ? Unit::Length : Unit::None, Range::positive(), 0.0);
     u->stress = "uniaxial.stress", u->axial_strain = "uniaxial.strain", u->lateral_strain = {"uniaxial.lateral_strain"};
   } else {
@@ -63,9 +64,11 @@ void UniaxialAnalysis::check(const Table& t, const Scene& s, const std::vector<s
 
 void UniaxialAnalysis::add_histories(std::vector<Series>& out, const Observed<2>& o) const {
   if (supports[0] >= 0) add_support_histories<2>(out, o);
+  add_inside_strain<2>(out, o);
 }
 void UniaxialAnalysis::add_histories(std::vector<Series>& out, const Observed<3>& o) const {
   if (supports[0] >= 0) add_support_histories<3>(out, o);
+  add_inside_strain<3>(out, o);
 }
 
 namespace {
@@ -86,29 +89,57 @@ double mean_along(const std::vector<int>& members, const std::vector<Vec<D>>& x,
   return z / static_cast<double>(members.size());
 }
 
-// The slope of the regression of the lateral displacements on the lateral positions of the inner particles,
-// averaged over the lateral axes: the lateral strain, expansion positive.
+// The slope of the regression of the displacements along `axis` on the positions along it, over `members`.
+template <int D>
+double stretch_along(const std::vector<int>& members, const std::vector<Vec<D>>& x0, const std::vector<Vec<D>>& x,
+                     int axis) {
+  double m0 = 0, md = 0;
+  for (int i : members) m0 += x0[i][axis], md += x[i][axis] - x0[i][axis];
+  m0 /= static_cast<double>(members.size()), md /= static_cast<double>(members.size());
+  double sxy = 0, sxx = 0;
+  for (int i : members) {
+    const double a = x0[i][axis] - m0, b = x[i][axis] - x0[i][axis] - md;
+    sxy += a * b, sxx += a * a;
+  }
+  return sxx > 0 ? sxy / sxx : 0.0;
+}
+
+// The lateral strain, expansion positive: the stretch along each lateral axis, averaged over them.
 template <int D>
 double lateral_strain_of(const SupportSetup<D>& st, const std::vector<Vec<D>>& x, int axis) {
   double sum = 0;
-  int n = 0;
-  for (int k = 0; k < D; ++k) {
-    if (k == axis) continue;
-    double m0 = 0, md = 0;
-    for (int i : st.inner) m0 += st.x0[i][k], md += x[i][k] - st.x0[i][k];
-    m0 /= static_cast<double>(st.inner.size()), md /= static_cast<double>(st.inner.size());
-    double sxy = 0, sxx = 0;
-    for (int i : st.inner) {
-      const double a = st.x0[i][k] - m0, b = x[i][k] - st.x0[i][k] - md;
-      sxy += a * b, sxx += a * a;
-    }
-    sum += sxx > 0 ? sxy / sxx : 0.0;
-    ++n;
-  }
-  return sum / n;
+  for (int k = 0; k < D; ++k)
+    if (k != axis) sum += stretch_along<D>(st.inner, st.x0, x, k);
+  return sum / (D - 1);
 }
 
 }  // namespace
+
+// The axial strain inside the specimen: the particles whose centres lie in the middle half of its extent along
+// the axis at the start, their axial displacements regressed on their axial positions. Positive in the loading
+// sense.
+template <int D>
+void UniaxialAnalysis::add_inside_strain(std::vector<Series>& out, const Observed<D>& o) const {
+  const Particles<D>* b = o.bodies;
+  const int ax = axis;
+  const double sense = tension ? 1.0 : -1.0;
+  auto x0 = std::make_shared<std::vector<Vec<D>>>();
+  auto inner = std::make_shared<std::vector<int>>();
+  if (b) {
+    *x0 = b->x;
+    double lo = kInf, hi = -kInf;
+    for (const auto& x : b->x) lo = std::min(lo, x[ax]), hi = std::max(hi, x[ax]);
+    for (int i = 0; i < b->size(); ++i)
+      if (std::abs(b->x[i][ax] - 0.5 * (lo + hi)) < 0.25 * (hi - lo)) inner->push_back(i);
+    if (inner->size() < 2)
+      throw InputError(scene_file + ": [uniaxial] the middle half of the specimen along " +
+                       std::string(1, char('x' + ax)) + " holds fewer than two particles: no inside strain");
+  }
+  out.push_back({"uniaxial.inside_strain", "-",
+                 b ? std::function<double()>(
+                         [b, x0, inner, ax, sense] { return sense * stretch_along<D>(*inner, *x0, b->x, ax); })
+                   : nullptr});
+}
 
 // Šmilauer, "Simulation setup": the supports at both ends strain the specimen along `axis`. Axial force: the
 // mean of the two supports' reactions, F = ½(R⁺ − R⁻); stress F/A with A the bounding box's cross-section (or
@@ -171,13 +202,20 @@ namespace mc {
 // stress and the axial strain (whatever signs the histories carry), the lateral strain keeps its sign
 // (expansion positive).
 UniaxialResult UniaxialAnalysis::result(const Histories& h) const {
+  UniaxialResult r = result_from(h, strain_inside ? "uniaxial.inside_strain" : axial_strain);
+  r.modulus_platens = strain_inside ? result_from(h, axial_strain).modulus : r.modulus;
+  r.modulus_inside = strain_inside ? r.modulus : result_from(h, "uniaxial.inside_strain").modulus;
+  return r;
+}
+
+UniaxialResult UniaxialAnalysis::result_from(const Histories& h, const std::string& axial) const {
   UniaxialResult r;
   static const std::vector<double> none;
   auto series = [&](const std::string& name) -> const std::vector<double>& {
     const auto it = h.find(name);
     return it == h.end() ? none : it->second;
   };
-  std::vector<double> s = series(stress), ea = series(axial_strain), el(s.size(), 0.0);
+  std::vector<double> s = series(stress), ea = series(axial), el(s.size(), 0.0);
   for (const auto& name : lateral_strain) {
     const std::vector<double>& y = series(name);
     el.resize(std::min(el.size(), y.size()));
@@ -268,6 +306,11 @@ std::string UniaxialAnalysis::summary_json(const Histories& h) const {
       << ",\n    \"E_raw_2d\": " << json_number(r.modulus_raw_2d)
       << ",\n    \"nu_raw_2d\": " << json_number(r.poisson_raw_2d)
       << ",\n    \"raw_2d_definition\": \"the disc assembly's own ratios in its plane (the plane-stress reading)\"";
+  o << ",\n    \"axial_strain_from\": " << (strain_inside ? "\"inside\"" : "\"platens\"")
+    << ",\n    \"E_platens\": " << json_number(r.modulus_platens)
+    << ",\n    \"E_inside\": " << json_number(r.modulus_inside)
+    << ",\n    \"E_inside_definition\": \"axial strain from the regression of the axial displacements of the "
+       "middle half of the specimen\"";
   o << ",\n    \"E_secant_0_50\": " << json_number(r.modulus_secant_0_50)
     << ",\n    \"E_tangent_50\": " << json_number(r.modulus_tangent_50)
     << ",\n    \"E_tangent_50_definition\": \"secant between 45 % and 55 % of the peak stress\"";

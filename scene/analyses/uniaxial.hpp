@@ -22,6 +22,8 @@ struct UniaxialResult {
   // The same curve read with other windows: the secant from the start to 50 % of the peak, and the tangent at
   // 50 % (the secant between 45 % and 55 %), in the declared reading.
   double modulus_secant_0_50 = kNaN, modulus_tangent_50 = kNaN;
+  // E (secant 25–50 %, declared reading) from each axial strain: the platens' (or supports') and the inside's.
+  double modulus_platens = kNaN, modulus_inside = kNaN;
   double ucs = kNaN;  // peak axial stress [Pa]: f_c, or in tension f_t
   double strain_at_peak = kNaN;
   double initiation_stress = kNaN;  // when the cracks reach 1 % of their count at the peak [Pa]
@@ -48,6 +50,10 @@ class UniaxialAnalysis final : public Analysis {
   std::array<int, 2> supports = {-1, -1};  // indices into Scene::groups; −1: not used
   std::array<std::string, 2> support_names;
   int axis = 2;
+  // The axial strain E is read from: the platens' or supports' (`axial_strain`) or the inside's
+  // (uniaxial.inside_strain: the regression of the axial displacements on the axial positions of the particles
+  // of the middle half of the length, free of the give of the platen contacts). Both are recorded.
+  bool strain_inside = false;
   double area = 0;         // [m²] (3D) or [m] (2D); 0: the specimen's bounding box
   std::string scene_file;  // for messages
 
@@ -60,6 +66,9 @@ class UniaxialAnalysis final : public Analysis {
   UniaxialResult result(const Histories& h) const;
 
  private:
+  UniaxialResult result_from(const Histories& h, const std::string& axial) const;
+  template <int D>
+  void add_inside_strain(std::vector<Series>& out, const Observed<D>& o) const;
   template <int D>
   void add_support_histories(std::vector<Series>& out, const Observed<D>& o) const;
 };
