@@ -9,21 +9,14 @@
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
 #include "tests/common/errors.hpp"
+#include "tests/common/scene_text.hpp"
 
 namespace {
 
 const std::string kFile = "tests/degenerate.toml";
 
 // Two discs between a floor and a roof, observed by a wall strain and two probes: each case edits one thing.
-const std::string kScene2d = R"(dimension = 2
-[[phases]]
-name = "grain"
-density = 2600
-[[contacts]]
-phase_a = "grain"
-model = "linear"
-modulus = "50 MPa"
-[specimen]
+const std::string kScene2d = mc::test::linear_grains(2) + R"([specimen]
 kind = "particles"
 [[specimen.particles]]
 x = ["2 mm", "2 mm"]
@@ -60,15 +53,7 @@ box_hi = ["3 mm", "10 mm"]
 steps = 10
 )";
 
-const std::string kScene3d = R"(dimension = 3
-[[phases]]
-name = "grain"
-density = 2600
-[[contacts]]
-phase_a = "grain"
-model = "linear"
-modulus = "50 MPa"
-[specimen]
+const std::string kScene3d = mc::test::linear_grains(3) + R"([specimen]
 kind = "particles"
 [[specimen.particles]]
 x = ["2 mm", "2 mm", "2 mm"]

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "tests/common/cli_harness.hpp"
+#include "tests/common/scene_text.hpp"
 
 namespace {
 
@@ -25,8 +26,7 @@ std::string status_of(const TempDir& d, const std::string& file) { return summar
 // One phase of discs at the given positions (2D, radius 1 mm, linear contact of 50 MPa).
 std::string discs_scene(const std::vector<std::array<double, 2>>& x_mm) {
   std::ostringstream s;
-  s << "dimension = 2\n[[phases]]\nname = \"g\"\ndensity = 2600\n[[contacts]]\nphase_a = \"g\"\nmodel = "
-       "\"linear\"\nmodulus = \"50 MPa\"\n[specimen]\nkind = \"particles\"\n";
+  s << mc::test::linear_grains(2) << "[specimen]\nkind = \"particles\"\n";
   for (const auto& x : x_mm)
     s << "[[specimen.particles]]\nx = [\"" << x[0] << " mm\", \"" << x[1] << " mm\"]\nradius = \"1 mm\"\n";
   s << "[run]\nsteps = 100\n";
@@ -92,15 +92,7 @@ TEST_CASE("a small disc resting on one 100 times larger settles at the static ov
   // contact is linear, k_n = t E_c = 5e7 N/m (disc stiffnesses 2 t E_c in series), so the overlap at rest is
   // m g / k_n = 2600 π (1 mm)² · 9.81 / 5e7 = 1.602e-9 m. Local damping brings it to rest; 0.5 % covers what
   // is left of the oscillation after 20 ms (over 200 periods at damping 0.7).
-  const std::string scene = R"(dimension = 2
-[[phases]]
-name = "g"
-density = 2600
-[[contacts]]
-phase_a = "g"
-model = "linear"
-modulus = "50 MPa"
-[specimen]
+  const std::string scene = mc::test::linear_grains(2) + R"([specimen]
 kind = "particles"
 [[specimen.particles]]
 x = [0, 0]
@@ -211,15 +203,7 @@ TEST_CASE("undamped discs bouncing between walls: resolved impacts keep the ener
   // some 60 steps and the total energy stays within 0.5 % (measured 0.997–1.000). At 0.8 a contact lasts ~4
   // steps: each impact opening or closing between steps gains or loses energy, the losses and gains random-walk,
   // and the guard stops the run when the energy has doubled — naming the under-resolved impacts as the cause.
-  const std::string scene = R"(dimension = 2
-[[phases]]
-name = "g"
-density = 2600
-[[contacts]]
-phase_a = "g"
-model = "linear"
-modulus = "50 MPa"
-[specimen]
+  const std::string scene = mc::test::linear_grains(2) + R"([specimen]
 kind = "particles"
 [[specimen.particles]]
 x = ["3 mm", 0]
@@ -276,15 +260,7 @@ history_every = 200
 TEST_CASE("a specimen too large for any machine's memory is refused with the estimate before anything is built") {
   // A 0.1 m cube of 1 µm spheres in fcc order: 1.77e14 particles, 315 TB at the measured 1.78 kB per sphere.
   const TempDir d;
-  write_file(d / "big.toml", R"(dimension = 3
-[[phases]]
-name = "g"
-density = 2600
-[[contacts]]
-phase_a = "g"
-model = "linear"
-modulus = "50 MPa"
-[specimen]
+  write_file(d / "big.toml", mc::test::linear_grains(3) + R"([specimen]
 kind = "lattice"
 lo = [0, 0, 0]
 hi = ["100 mm", "100 mm", "100 mm"]
