@@ -1,12 +1,13 @@
 #include "scene/overrides.hpp"
 
+#include <algorithm>
 #include <optional>
-#include <regex>
 #include <sstream>
 
 #include "engine/errors.hpp"
 #include "scene/text.hpp"
 #include "scene/toml_document.hpp"
+#include "scene/toml_nesting.hpp"
 
 namespace mc::detail {
 namespace {
@@ -27,19 +28,40 @@ struct Step {
   std::optional<std::size_t> index;
 };
 
-// "walls[1].velocity" -> {walls, 1}, {velocity}; empty when the path is malformed.
+// "walls[1]" -> {walls, 1}, "velocity" -> {velocity}; nothing when it is not a bare key with an optional index.
+std::optional<Step> parse_step(const std::string& part) {
+  static const std::string key_chars = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-";
+  const auto end = part.find_first_not_of(key_chars);
+  Step step{part.substr(0, end), std::nullopt};
+  if (step.key.empty()) return std::nullopt;
+  if (end == std::string::npos) return step;
+  const std::string digits = part.substr(end + 1, part.size() - end - 2);  // between '[' and ']'
+  const bool index = part[end] == '[' && part.back() == ']' && !digits.empty() && digits.size() <= 9 &&
+                     digits.find_first_not_of("0123456789") == std::string::npos;
+  if (!index) return std::nullopt;
+  step.index = std::stoul(digits);
+  return step;
+}
+
+// "walls[1].velocity" -> {walls, 1}, {velocity}; empty when the path is malformed. No std::regex: libstdc++'s
+// recurses once per character, and a path may be as long as the command line allows.
 std::vector<Step> parse_key_path(const std::string& path) {
-  static const std::regex segment(R"(([A-Za-z0-9_-]+)(?:\[(\d{1,9})\])?)");
   std::vector<Step> steps;
   std::istringstream in(path);
-  std::string part;
-  std::smatch m;
-  while (std::getline(in, part, '.')) {
-    if (!std::regex_match(part, m, segment)) return {};
-    steps.push_back({m[1].str(), m[2].matched ? std::optional<std::size_t>(std::stoul(m[2].str())) : std::nullopt});
+  for (std::string part; std::getline(in, part, '.');) {
+    const auto step = parse_step(part);
+    if (!step) return {};
+    steps.push_back(*step);
   }
   if (path.empty() || path.back() == '.') return {};
   return steps;
+}
+
+// The tables and arrays around the value a path names: "walls[1].velocity" sits in walls and walls[1].
+std::size_t nesting_of(const std::vector<Step>& steps) {
+  return steps.size() - 1 + static_cast<std::size_t>(std::count_if(steps.begin(), steps.end(), [](const Step& s) {
+           return s.index.has_value();
+         }));
 }
 
 // Replaces the value but keeps the comments written above it, which the re-serialised text keeps too.
@@ -59,16 +81,18 @@ class OverrideApplier {
     if (eq == std::string::npos) fail("expected key=value, e.g. --set contact.model=hertz_mindlin");
     const std::string path = trim(spec_.substr(0, eq));
     const auto steps = parse_key_path(path);
-    if (steps.empty()) fail("'" + path + "' is not a key path such as material.density or walls[1].velocity");
+    if (steps.empty()) fail("'" + shorten(path) + "' is not a key path such as material.density or walls[1].velocity");
+    const std::string value = trim(spec_.substr(eq + 1));
+    check_nesting(steps, value);
     Value* node = &st_.root;
     std::string walked;
     for (std::size_t i = 0; i < steps.size(); ++i) {
-      if (!node->is_table()) fail("'" + walked + "' is not a table");
+      if (!node->is_table()) fail("'" + shorten(walked) + "' is not a table");
       walked = join_key(walked, steps[i].key);
       node = step_into(node->as_table(), steps[i], walked, i + 1 == steps.size());
       if (steps[i].index) walked = index_key(walked, *steps[i].index);
     }
-    assign(*node, override_value(trim(spec_.substr(eq + 1))));
+    assign(*node, override_value(value));
     st_.set_paths.push_back(walked);
   }
 
@@ -79,21 +103,36 @@ class OverrideApplier {
       if (!last && table.count(s.key) == 0) table[s.key] = Value(Value::table_type{});
       return &table[s.key];
     }
-    if (table.count(s.key) == 0 || !table.at(s.key).is_array()) fail("'" + walked + "' is not an array");
+    if (table.count(s.key) == 0 || !table.at(s.key).is_array()) fail("'" + shorten(walked) + "' is not an array");
     auto& array = table.at(s.key).as_array();
     if (*s.index >= array.size())
-      fail("index " + std::to_string(*s.index) + " is past the end of '" + walked + "', which has " +
+      fail("index " + std::to_string(*s.index) + " is past the end of '" + shorten(walked) + "', which has " +
            std::to_string(array.size()) + (array.size() == 1 ? " entry" : " entries") + " (indices start at 0)");
     return &array[*s.index];
   }
 
+  // The path and the value together nest no deeper than a scene file may (scene/toml_nesting.hpp).
+  void check_nesting(const std::vector<Step>& steps, const std::string& value) const {
+    const std::size_t path = nesting_of(steps);
+    if (path <= kMaxNesting && !toml_nesting("v = " + value, kMaxNesting - path).too_deep) return;
+    fail("the key path and its value nest tables and arrays more than " + std::to_string(kMaxNesting) +
+         " levels deep; allowed: at most " + std::to_string(kMaxNesting));
+  }
+
   [[noreturn]] void fail(const std::string& what) const {
-    throw InputError(st_.file + ": --set '" + spec_ + "': " + what);
+    throw InputError(st_.file + ": --set '" + shorten(spec_) + "': " + what);
   }
 
   TomlState& st_;
   std::string spec_;
 };
+
+// A comment line cannot hold a newline: written as \n.
+std::string one_line(const std::string& s) {
+  std::string out;
+  for (const char c : s) out += c == '\n' ? std::string("\\n") : std::string(1, c);
+  return out;
+}
 
 }  // namespace
 
@@ -104,7 +143,7 @@ void apply_overrides(TomlState& st, const std::vector<std::string>& overrides) {
 std::string serialise(const TomlState& st, const std::vector<std::string>& overrides) {
   Value root = st.root;
   std::vector<std::string> head{" Re-serialised by mesocrack with these --set overrides applied:"};
-  for (const auto& o : overrides) head.push_back("   " + std::regex_replace(o, std::regex("\n"), "\\n"));
+  for (const auto& o : overrides) head.push_back("   " + one_line(o));
   root.comments().insert(root.comments().begin(), head.begin(), head.end());
   // 15 digits print what the user typed (0.1, not 0.10000000000000001); 17 digits are always exact.
   const std::string short_form = toml::format(root, 80, 15);

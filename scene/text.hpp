@@ -22,4 +22,13 @@ inline std::string trim(const std::string& s) {
   return b == std::string::npos ? "" : s.substr(b, s.find_last_not_of(" \t") - b + 1);
 }
 
+// s cut to its first max_chars characters and "..." when longer: a message stays one readable line even when the
+// input it quotes (a value, a key, a line of the file) is megabytes long.
+inline std::string shorten(const std::string& s, std::size_t max_chars = 80) {
+  if (s.size() <= max_chars) return s;
+  std::size_t cut = max_chars;
+  while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
+  return s.substr(0, cut) + "...";
+}
+
 }  // namespace mc::detail

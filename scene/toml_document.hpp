@@ -102,7 +102,9 @@ inline std::string join_key(const std::string& path, const std::string& key) {
 // "walls" + 1 -> "walls[1]": the path of an array entry.
 inline std::string index_key(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
 
-// TOML text -> Value; throws toml::exception, whose message spans several lines.
+// Throws InputError "name:line: ..." when the text nests tables and arrays deeper than kMaxNesting.
+void check_nesting(const std::string& text, const std::string& name);
+// TOML text -> Value; throws toml::exception, whose message spans several lines, or check_nesting's InputError.
 Value parse_toml(const std::string& text, const std::string& name);
 // The same, but a syntax error is an InputError of one line: "name:line: TOML syntax error: ...".
 Value parse_scene_text(const std::string& text, const std::string& name);

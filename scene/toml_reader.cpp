@@ -1,17 +1,18 @@
 #include "scene/toml_reader.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <regex>
 #include <sstream>
 
 #include "engine/errors.hpp"
 #include "scene/overrides.hpp"
 #include "scene/text.hpp"
 #include "scene/toml_document.hpp"
+#include "scene/toml_nesting.hpp"
 
 namespace mc {
 namespace detail {
@@ -35,7 +36,7 @@ namespace {
 
 using detail::array_hint, detail::expected_finite_number, detail::expected_number, detail::format_number,
     detail::number_hint, detail::quantity;
-using detail::Field, detail::Value, detail::join_key, detail::join_list, detail::trim;
+using detail::Field, detail::Value, detail::join_key, detail::join_list, detail::shorten, detail::trim;
 
 std::string quoted(const std::string& s) {
   std::string out = "\"";
@@ -66,10 +67,20 @@ std::string show_full(const Value& v) {
   return toml::format(v);  // integers, booleans, dates
 }
 
-std::string show(const Value& v) {
-  constexpr std::size_t max_chars = 80;
-  const std::string s = show_full(v);
-  return s.size() <= max_chars ? s : s.substr(0, max_chars) + "...";
+std::string show(const Value& v) { return shorten(show_full(v)); }
+
+// The section header the user should write for a key path: "walls[1].faces" -> "walls.faces".
+std::string without_indices(const std::string& path) {
+  std::string out;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const auto close = path.find_first_not_of("0123456789", i + 1);
+    if (path[i] == '[' && close != std::string::npos && close > i + 1 && path[close] == ']') {
+      i = close;
+      continue;
+    }
+    out += path[i];
+  }
+  return out;
 }
 
 double read_number(const Field& f, Unit u, const Range& r) {
@@ -130,25 +141,51 @@ std::string read_file(const std::string& file) {
   return text;
 }
 
+// "[error] toml::parse_array: message" -> "message".
+std::string without_toml_prefix(const std::string& line) {
+  const std::string error = "[error] ", toml = "toml::";
+  std::string s = line.rfind(error, 0) == 0 ? line.substr(error.size()) : line;
+  if (s.rfind(toml, 0) != 0) return s;
+  const auto colon = s.find(": ");
+  const bool word = colon != std::string::npos && std::all_of(s.begin() + toml.size(), s.begin() + colon, [](char c) {
+                      return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                    });
+  return word ? s.substr(colon + 2) : s;
+}
+
+// " 12 | dimension = = 3" -> "line 12 'dimension = = 3'" (the code shortened), or "" for another kind of line.
+std::string source_line(const std::string& line) {
+  const auto digits = line.find_first_not_of(" \t");
+  const auto bar = line.find_first_not_of("0123456789", digits);
+  if (digits == std::string::npos || bar == digits || bar == std::string::npos || line.compare(bar, 3, " | ") != 0)
+    return "";
+  return "line " + line.substr(digits, bar - digits) + " '" + shorten(trim(line.substr(bar + 3))) + "'";
+}
+
+// "    |      ^--- expected a value" -> "expected a value", or "" for another kind of line.
+std::string note_line(const std::string& line) {
+  const auto bar = line.find_first_not_of(" \t");
+  if (bar == std::string::npos || line.compare(bar, 2, "| ") != 0) return "";
+  const auto note = line.find_first_not_of(" \t~^-", bar + 2);
+  return note == std::string::npos ? "" : shorten(line.substr(note));
+}
+
 // toml11 reports a syntax error on several lines (message, source lines with ^--- notes, hints); messages here
-// are one line, so fold it: "message; line 2 'b = = 2': here; Hint: ...".
+// are one line, so fold it: "message; line 2 'b = = 2': here; Hint: ...". Plain string handling, no std::regex:
+// libstdc++'s regex recurses once per character matched, and a source line may be megabytes long.
 std::string fold_toml_message(const std::string& what) {
-  static const std::regex prefix(R"(^\[error\] (toml::\w+: )?)");
-  static const std::regex source(R"(^\s*(\d+) \| (.*)$)");
-  static const std::regex note(R"(^\s*\| [\s~^-]*(\S.*)$)");
   std::istringstream in(what);
   std::string line, code;
   std::getline(in, line);
-  std::string out = std::regex_replace(line, prefix, "");
+  std::string out = shorten(without_toml_prefix(line));
   if (!out.empty() && out.back() == '.') out.pop_back();  // a "; note" follows
-  std::smatch m;
   while (std::getline(in, line)) {
-    if (std::regex_match(line, m, source)) {
-      code = "line " + m[1].str() + " '" + trim(m[2].str()) + "'";
-    } else if (std::regex_match(line, m, note)) {
-      out += "; " + code + ": " + m[1].str();
+    if (const std::string c = source_line(line); !c.empty()) {
+      code = c;
+    } else if (const std::string n = note_line(line); !n.empty()) {
+      out += "; " + code + ": " + n;
     } else if (line.rfind("Hint: ", 0) == 0) {
-      out += "; " + line;
+      out += "; " + shorten(line);
     }
   }
   return out;
@@ -158,7 +195,15 @@ std::string fold_toml_message(const std::string& what) {
 
 namespace detail {
 
+void check_nesting(const std::string& text, const std::string& name) {
+  if (const auto line = toml_nesting(text).too_deep)
+    throw InputError(name + ":" + std::to_string(*line) + ": tables and arrays nest deeper than " +
+                     std::to_string(kMaxNesting) + " levels here (headers, dotted keys, [ ] and { } each add one); " +
+                     "allowed: at most " + std::to_string(kMaxNesting));
+}
+
 Value parse_toml(const std::string& text, const std::string& name) {
+  check_nesting(text, name);
   std::istringstream in(text);
   return toml::parse<toml::preserve_comments, OrderedMap, std::vector>(in, name);
 }
@@ -174,7 +219,7 @@ Value parse_scene_text(const std::string& text, const std::string& name) {
 
 std::string Field::label() const {
   const bool from_set = std::find(st.set_paths.begin(), st.set_paths.end(), key) != st.set_paths.end();
-  return "key '" + key + "'" + (from_set ? " (from --set)" : "");
+  return "key '" + shorten(key) + "'" + (from_set ? " (from --set)" : "");
 }
 
 void Field::missing(const std::string& hint) const {
@@ -302,9 +347,7 @@ std::optional<Table> Table::optional_table(const std::string& key) const {
 std::vector<Table> Table::tables(const std::string& key) const {
   const auto f = field(key);
   if (!f.value) return {};
-  // The section header the user should write: the key path without array indices.
-  static const std::regex index(R"(\[\d+\])");
-  const std::string header = std::regex_replace(f.key, index, "");
+  const std::string header = without_indices(f.key);
   if (!f.value->is_array()) f.bad("expected an array of tables ([[" + header + "]] sections)");
   std::vector<Table> out;
   for (std::size_t i = 0; i < f.value->as_array().size(); ++i) {

@@ -1,0 +1,138 @@
+// The scene reader at the edges of what it reads: nesting deeper than the limit is refused before the recursive
+// parser sees it (from a file, --set or calibrate --target), inputs of megabyte lines and keys give short one-line
+// messages instead of crashing, and reading stays linear in the number of keys of a table.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "engine/errors.hpp"
+#include "scene/toml_reader.hpp"
+#include "studies/calibration.hpp"
+#include "tests/common/errors.hpp"
+
+using mc::Range;
+using mc::TomlDoc;
+using mc::Unit;
+using mc::test::error_of;
+
+namespace {
+
+const std::string kFile = "scenes/deep.toml";
+
+TomlDoc doc(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  return TomlDoc::parse_text(text, kFile, overrides);
+}
+
+std::string repeat(const std::string& s, std::size_t n) {
+  std::string out;
+  for (std::size_t i = 0; i < n; ++i) out += s;
+  return out;
+}
+
+// n arrays inside each other around the number 1: "[[1]]" for n = 2.
+std::string arrays(std::size_t n) { return repeat("[", n) + "1" + repeat("]", n); }
+
+// n inline tables inside each other: "{a = {a = 1}}" for n = 2.
+std::string inline_tables(std::size_t n) { return repeat("{a = ", n) + "1" + repeat("}", n); }
+
+// "a.a.a" for n = 3.
+std::string dotted(std::size_t n) { return "a" + repeat(".a", n - 1); }
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+void check_too_deep(const std::string& message, const std::string& where) {
+  CAPTURE(message);
+  CHECK(message.rfind(where, 0) == 0);
+  CHECK(contains(message, "deeper than 64 levels"));
+  CHECK(contains(message, "at most 64"));
+  CHECK(message.size() < 300);
+}
+
+using Clock = std::chrono::steady_clock;
+
+// Wall time to parse `text` (when parse_timed) and read it with `read`: best of three, since another test may hold
+// the core for a moment.
+double seconds_to_read(const std::string& text, const std::function<void(const TomlDoc&)>& read, bool parse_timed) {
+  double best = 1e9;
+  for (int k = 0; k < 3; ++k) {
+    const auto t0 = Clock::now();
+    const TomlDoc d = doc(text);
+    const auto t1 = Clock::now();
+    read(d);
+    best = std::min(best, std::chrono::duration<double>(Clock::now() - (parse_timed ? t0 : t1)).count());
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("scene input: nesting deeper than 64 levels is refused naming the file, the line and the limit") {
+  const std::string head = "title = \"deep\"\n# [[[[ in a comment\n";  // deep lines are line 3
+  check_too_deep(error_of([&] { doc(head + "x = " + arrays(10000)); }), kFile + ":3: ");
+  check_too_deep(error_of([&] { doc(head + "x = " + inline_tables(10000)); }), kFile + ":3: ");
+  check_too_deep(error_of([&] { doc(head + dotted(10000) + " = 1"); }), kFile + ":3: ");
+  check_too_deep(error_of([&] { doc(head + "[" + dotted(10000) + "]\nx = 1"); }), kFile + ":3: ");
+  check_too_deep(error_of([&] { doc(head + "[[" + dotted(10000) + "]]\nx = 1"); }), kFile + ":3: ");
+  check_too_deep(error_of([&] { doc(head + "x = [\n" + repeat("[\n", 10000)); }), kFile + ":67: ");
+  check_too_deep(error_of([&] { doc(head + repeat("[", 100000)); }), kFile + ":3: ");
+  // Levels add up across headers, dotted keys and brackets: 30 + 30 + 5 levels.
+  check_too_deep(error_of([&] { doc(head + "[" + dotted(30) + "]\n" + dotted(31) + " = " + arrays(5)); }),
+                 kFile + ":4: ");
+}
+
+TEST_CASE("scene input: nesting up to 64 levels is read, and brackets in strings and comments do not count") {
+  CHECK(doc("x = " + arrays(64)).root().has("x"));
+  CHECK(error_of([] { doc("x = " + arrays(65)); }) != "");
+  CHECK(doc("x = " + inline_tables(64)).root().has("x"));
+  CHECK(doc(dotted(65) + " = 1").root().has("a"));  // 64 tables around the 1
+  CHECK(doc("[" + dotted(30) + "]\n" + dotted(31) + " = " + arrays(4)).root().has("a"));
+  const std::string deep = repeat("[{", 5000);
+  const auto strings = doc("a = \"" + deep + "\"\nb = '" + deep + "'\nc = \"\"\"\n" + deep + "\n\"\"\"\nd = '''" +
+                           deep + "'''\ne = \"\\\"" + deep + "\" # " + deep + "\n\"" + deep + "\" = 1\n");
+  CHECK(strings.root().string("a") == deep);
+  CHECK(strings.root().string("d") == deep);
+  CHECK(strings.root().string("e") == "\"" + deep);
+  CHECK(strings.root().integer(deep, Range::any()) == 1);
+}
+
+TEST_CASE("scene input: --set and calibrate --target are held to the same nesting limit") {
+  const std::string text = "x = 1\n";
+  const auto set_error = [&](const std::string& set) { return error_of([&] { doc(text, {set}); }); };
+  for (const std::string& set : {"x=" + arrays(10000), "x=" + inline_tables(10000), dotted(10000) + "=1",
+                                 dotted(61) + "=" + arrays(5), "x=1\ny=" + arrays(100)}) {
+    const std::string message = set_error(set);
+    CAPTURE(message);
+    CHECK(message.rfind(kFile + ": --set '", 0) == 0);
+    CHECK(contains(message, "more than 64 levels deep; allowed: at most 64"));
+    CHECK(message.size() < 300);
+  }
+  CHECK(doc(text, {dotted(61) + "=" + arrays(4)}).root().has("a"));
+  CHECK(doc(text, {"x=" + arrays(64)}).root().has("x"));
+  check_too_deep(error_of([] { mc::parse_targets(repeat("[", 10000) + "=1"); }), "--target:1: ");
+  check_too_deep(error_of([] { mc::parse_targets(dotted(10000) + "=1"); }), "--target:1: ");
+}
+
+TEST_CASE("scene input: megabyte lines, keys and paths give one short line, never a crash") {
+  const std::string mb(1 << 20, 'a');
+  // A syntax error quotes the line it is on: shortened.
+  const std::string syntax = error_of([&] { doc("x = 1\ny = " + mb + "\n"); });
+  CHECK(syntax.rfind(kFile + ":2: TOML syntax error: ", 0) == 0);
+  CHECK(syntax.size() < 400);
+  // An unknown key of a megabyte.
+  const auto d = doc(mb + " = 1\n");
+  const std::string unknown = error_of([&] { d.finish_all(); });
+  CHECK(unknown.rfind(kFile + ": unknown key 'aaaa", 0) == 0);
+  CHECK(unknown.size() < 300);
+  // A --set key path of a megabyte, and a value of a megabyte that is no TOML (a bare string).
+  const std::string path = error_of([&] { doc("x = 1\n", {mb + "[" + mb + "]=1"}); });
+  CHECK(path.rfind(kFile + ": --set 'aaaa", 0) == 0);
+  CHECK(path.size() < 400);
+  const std::string value = error_of([&] { doc("x = 1\n", {"x=" + mb}).root().number("x", Unit::None, Range::any()); });
+  CHECK(value.rfind(kFile + ": key 'x' (from --set) = \"aaaa", 0) == 0);
+  CHECK(value.size() < 400);
+}
+
