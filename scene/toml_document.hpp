@@ -8,6 +8,8 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -17,7 +19,9 @@ namespace mc::detail {
 
 // toml11 3.7 stores tables in std::unordered_map unless told otherwise and has no ordered map of its own
 // (its docs suggest tsl::ordered_map, which is not installed). This insertion-ordered map keeps the file's
-// key order for keys(), unknown-key reports and the re-serialised text. Lookup is linear: scene tables are small.
+// key order for keys(), unknown-key reports and the re-serialised text. Small tables are searched linearly; from
+// kIndexFrom keys on, a hash index beside the entries finds a key at once, so a table of n keys is built in O(n)
+// (a scene may hold 10^5 keys in one table, or 10^5 [[specimen.particles]] entries in one array).
 template <class Key, class T, class... Unused>
 class OrderedMap {
  public:
@@ -34,12 +38,8 @@ class OrderedMap {
   const_iterator end() const { return items_.end(); }
   size_type size() const { return items_.size(); }
 
-  iterator find(const Key& k) {
-    return std::find_if(begin(), end(), [&](const auto& kv) { return kv.first == k; });
-  }
-  const_iterator find(const Key& k) const {
-    return std::find_if(begin(), end(), [&](const auto& kv) { return kv.first == k; });
-  }
+  iterator find(const Key& k) { return begin() + static_cast<std::ptrdiff_t>(position(k)); }
+  const_iterator find(const Key& k) const { return begin() + static_cast<std::ptrdiff_t>(position(k)); }
   size_type count(const Key& k) const { return find(k) == end() ? 0 : 1; }
   T& at(const Key& k) { return checked(find(k))->second; }
   const T& at(const Key& k) const { return checked(find(k))->second; }
@@ -49,6 +49,11 @@ class OrderedMap {
     const auto it = find(kv.first);
     if (it != end()) return {it, false};
     items_.push_back(kv);
+    if (items_.size() == kIndexFrom) {
+      for (std::size_t i = 0; i < items_.size(); ++i) index_.emplace(items_[i].first, i);
+    } else if (items_.size() > kIndexFrom) {
+      index_.emplace(kv.first, items_.size() - 1);
+    }
     return {std::prev(end()), true};
   }
 
@@ -61,12 +66,26 @@ class OrderedMap {
   }
 
  private:
+  // Below this many keys a linear search is as fast as hashing and spares every small table an index.
+  static constexpr std::size_t kIndexFrom = 16;
+
+  // The key's place in items_, or items_.size() when absent. Keys are never erased or changed (toml11 only
+  // inserts), so the index stays valid.
+  std::size_t position(const Key& k) const {
+    if (items_.size() >= kIndexFrom) {
+      const auto it = index_.find(k);
+      return it == index_.end() ? items_.size() : it->second;
+    }
+    const auto it = std::find_if(items_.begin(), items_.end(), [&](const auto& kv) { return kv.first == k; });
+    return static_cast<std::size_t>(it - items_.begin());
+  }
   template <class It>
   It checked(It it) const {
     if (it == items_.end()) throw std::out_of_range("toml table: no such key");
     return it;
   }
   std::vector<value_type> items_;
+  std::unordered_map<Key, std::size_t> index_;  // key -> place in items_, once there are kIndexFrom keys
 };
 
 using Value = toml::basic_value<toml::preserve_comments, OrderedMap, std::vector>;
@@ -75,7 +94,13 @@ using Value = toml::basic_value<toml::preserve_comments, OrderedMap, std::vector
 struct Visit {
   std::string path;
   const Value* table;
-  std::vector<std::string> known;  // keys the code asked for, in asking order: the "allowed here" list
+  std::vector<std::string> known;           // keys the code asked for, in asking order: the "allowed here" list
+  std::unordered_set<std::string> asked{};  // the same keys, to check each key of a large table at once
+
+  void ask(const std::string& key) {
+    if (asked.insert(key).second) known.push_back(key);
+  }
+  bool was_asked(const std::string& key) const { return asked.count(key) > 0; }
 };
 
 // The document and its bookkeeping, shared by a TomlDoc and every Table view of it.
@@ -83,14 +108,14 @@ struct TomlState {
   std::string file;
   std::string text;
   Value root;
-  std::vector<std::string> set_paths;  // full key paths given by --set, to say so in messages
-  std::deque<Visit> visits;            // a deque: Table::path() hands out references into it
+  std::vector<std::string> set_paths;                     // full key paths given by --set, to say so in messages
+  std::deque<Visit> visits;                               // a deque: Table::path() hands out references into it
+  std::unordered_map<std::string, std::size_t> visit_of;  // path -> its entry in visits
 
   std::size_t visit(const std::string& path, const Value& table) {
-    const auto it = std::find_if(visits.begin(), visits.end(), [&](const Visit& v) { return v.path == path; });
-    if (it != visits.end()) return static_cast<std::size_t>(it - visits.begin());
-    visits.push_back({path, &table, {}});
-    return visits.size() - 1;
+    const auto [it, added] = visit_of.emplace(path, visits.size());
+    if (added) visits.push_back({path, &table, {}});
+    return it->second;
   }
 };
 

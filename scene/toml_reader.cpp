@@ -247,7 +247,7 @@ Table::Table(std::shared_ptr<detail::TomlState> state, std::size_t visit) : stat
 
 detail::Field Table::field(const std::string& key) const {
   auto& visit = state_->visits[visit_];
-  if (std::find(visit.known.begin(), visit.known.end(), key) == visit.known.end()) visit.known.push_back(key);
+  visit.ask(key);
   const auto& table = visit.table->as_table();
   const auto it = table.find(key);
   return {*state_, join_key(visit.path, key), it == table.end() ? nullptr : &it->second};
@@ -367,7 +367,7 @@ void Table::fail(const std::string& key, const std::string& what) const {
 void Table::finish() const {
   const auto& visit = state_->visits[visit_];
   for (const auto& kv : visit.table->as_table()) {
-    if (std::find(visit.known.begin(), visit.known.end(), kv.first) != visit.known.end()) continue;
+    if (visit.was_asked(kv.first)) continue;
     const Field f{*state_, join_key(visit.path, kv.first), &kv.second};
     const std::string allowed =
         visit.known.empty() ? "no keys are allowed here" : "allowed here: " + join_list(visit.known, ", ");
