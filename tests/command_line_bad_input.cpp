@@ -75,11 +75,19 @@ TEST_CASE_FIXTURE(BadInput, "bad_scene_keys_give_message_and_exit_2") {
 
 TEST_CASE_FIXTURE(BadInput, "unreadable_or_unwritable_files_give_message_and_exit_2_or_3") {
   SUBCASE("unreadable scene file") {
-    // The scene reader reports an unreadable scene as bad input (InputError, exit 2), unlike the other files.
-    check_refused(d.dir, {"run", "absent.toml"}, 2,
-                  {"cannot read scene file 'absent.toml'", "No such file or directory"});
+    // A file error (exit 3) for every command that reads a scene, naming the path and the system's reason.
     fs::create_directory(d / "folder.toml");
-    check_refused(d.dir, {"run", "folder.toml"}, 2, {"cannot read scene file 'folder.toml'", "directory"});
+    for (const std::vector<std::string>& command :
+         {std::vector<std::string>{"run"}, {"run", "--realizations", "2"}, {"generate"}}) {
+      CAPTURE(command.front());
+      auto absent = command, folder = command;
+      absent.insert(absent.begin() + 1, "absent.toml");
+      folder.insert(folder.begin() + 1, "folder.toml");
+      check_refused(d.dir, absent, 3, {"cannot read scene file 'absent.toml'", "No such file or directory"});
+      check_refused(d.dir, folder, 3, {"cannot read scene file 'folder.toml'", "Is a directory"});
+    }
+    check_refused(d.dir, {"calibrate", "absent.toml", "--target", "ucs=40MPa"}, 3,
+                  {"cannot read scene file 'absent.toml'", "No such file or directory"}, "calibrated.toml");
     fs::remove(d / "folder.toml");
   }
   SUBCASE("unreadable sphere-list file named by the scene") {

@@ -148,11 +148,12 @@ TEST_CASE("scene input: a TOML syntax error names the file, the line and toml11'
   check_names(error_of([] { doc("a = 1\na = 2\n"); }), {"scenes/a.toml:2:", "already exists", "a = 2"});
 }
 
-TEST_CASE("scene input: an unreadable file names the file and the reason") {
-  CHECK(error_of([] { TomlDoc::load("/nonexistent/x.toml"); }) ==
+TEST_CASE("scene input: an unreadable file is a file error naming the file and the reason") {
+  CHECK(error_of<mc::IoError>([] { TomlDoc::load("/nonexistent/x.toml"); }) ==
         "cannot read scene file '/nonexistent/x.toml': No such file or directory");
   const auto dir = std::filesystem::temp_directory_path().string();
-  check_names(error_of([&] { TomlDoc::load(dir); }), {"cannot read scene file '" + dir + "'", "directory"});
+  check_names(error_of<mc::IoError>([&] { TomlDoc::load(dir); }),
+              {"cannot read scene file '" + dir + "'", "directory"});
 }
 
 TEST_CASE("scene input: a bad --set names the override and why") {

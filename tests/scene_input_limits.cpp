@@ -136,6 +136,13 @@ TEST_CASE("scene input: megabyte lines, keys and paths give one short line, neve
   CHECK(value.size() < 400);
 }
 
+TEST_CASE("scene input: a file too large to be a scene is refused after 128 MB, not read to the end") {
+  const std::string message = error_of([] { TomlDoc::load("/dev/zero"); });
+  CHECK(message ==
+        "scene file '/dev/zero' is larger than 128 MB; allowed: at most 128 MB (list many particles in a "
+        "sphere_list file)");
+}
+
 TEST_CASE("scene input: tables of many keys keep their order, find every key and refuse duplicates") {
   std::string text;
   for (int k = 0; k < 100; ++k) text += "k" + std::to_string(k) + " = " + std::to_string(k) + "\n";
