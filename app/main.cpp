@@ -4,10 +4,15 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <limits>
+#include <string>
 
 #include "engine/errors.hpp"
 #include "scene/scene.hpp"
@@ -107,6 +112,75 @@ int generate(const std::string& scene_file, const std::string& output, const std
   return report(output);  // the picture: particles by phase, aggregate outlines
 }
 
+// ---------------------------------------------------------------- the options' values
+
+// An option's value: the validator's message follows CLI11's "--name: ", so it names the value and what is allowed.
+std::string refused(const std::string& value, const std::string& allowed) {
+  return "'" + value + "' is not allowed: " + allowed;
+}
+
+// A whole number from lo to hi; CLI11's own checks print ranges as full-width doubles and say nothing of the
+// option's meaning.
+CLI::Validator whole_number(long long lo, long long hi, const std::string& meaning) {
+  const std::string allowed =
+      "give a whole number " +
+      (hi == std::numeric_limits<int>::max() ? ">= " + std::to_string(lo)
+                                             : "from " + std::to_string(lo) + " to " + std::to_string(hi)) +
+      " (" + meaning + ")";
+  return CLI::Validator(
+      [=](std::string& text) {
+        long long n = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+        const bool whole = ec == std::errc{} && end == text.data() + text.size();
+        return whole && n >= lo && n <= hi ? std::string() : refused(text, allowed);
+      },
+      "INT");
+}
+
+// A finite number from lo to hi (CLI::Range lets nan through: every comparison with it is false).
+CLI::Validator finite_number(double lo, double hi, const std::string& meaning) {
+  char range[64];
+  std::snprintf(range, sizeof range, "from %g to %g", lo, hi);
+  const std::string allowed = "give a number " + std::string(range) + " (" + meaning + ")";
+  return CLI::Validator(
+      [=](std::string& text) {
+        double x = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
+        const bool number = ec == std::errc{} && end == text.data() + text.size() && std::isfinite(x);
+        return number && x >= lo && x <= hi ? std::string() : refused(text, allowed);
+      },
+      "FLOAT");
+}
+
+constexpr int kAnyCount = std::numeric_limits<int>::max();
+
+// ---------------------------------------------------------------- errors of the command line itself
+
+constexpr const char* kCommands = "run, generate, calibrate, summary, report";
+
+// A first word that is no subcommand: CLI11 would only say that a subcommand is required.
+bool unknown_command(int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return false;
+  const std::string first = argv[1];
+  for (const char* c : {"run", "generate", "calibrate", "summary", "report"})
+    if (first == c) return false;
+  std::fprintf(stderr, "error: unknown command '%s'; allowed: %s (see mesocrack --help)\n", argv[1], kCommands);
+  return true;
+}
+
+// --help (CLI11's exit code 0) prints the help; any other parse error is bad input: one line and exit 2, pointing
+// to the help of the subcommand it concerns.
+int command_line_error(const CLI::App& app, const CLI::ParseError& e) {
+  if (e.get_exit_code() == 0) return app.exit(e);
+  std::string message = e.what();
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  const auto parsed = app.get_subcommands();
+  if (dynamic_cast<const CLI::RequiredError*>(&e) && parsed.empty()) message += "; allowed: " + std::string(kCommands);
+  const std::string help = "mesocrack " + (parsed.empty() ? "" : parsed.front()->get_name() + " ") + "--help";
+  std::fprintf(stderr, "error: %s (see %s)\n", message.c_str(), help.c_str());
+  return 2;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -118,6 +192,7 @@ int main(int argc, char** argv) {
     execv("/proc/self/exe", argv);  // returns only on failure: then go on with the default policy
   }
   CLI::App app{"mesocrack: meso-scale discrete element modelling of concrete fracture"};
+  const CLI::Validator threads_check = whole_number(1, kAnyCount, "OpenMP threads; leave --threads out for all cores");
   app.require_subcommand(1);
   std::string scene, output, resume, target;
   std::vector<std::string> sets;
@@ -128,12 +203,12 @@ int main(int argc, char** argv) {
   run_cmd->add_option("scene", scene, "scene file (TOML)")->required();
   run_cmd->add_option("-o,--output", output, "output file (HDF5)");
   run_cmd->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
-  run_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  run_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(threads_check);
   run_cmd->add_option("--resume", resume, "continue this output file from its last checkpoint");
   run_cmd
       ->add_option("--realizations", n_realizations,
                    "run N packings (seeds seed..seed+N-1) into OUT_rK.h5 and report mean, std and CV of E, nu, UCS")
-      ->check(CLI::PositiveNumber)
+      ->check(whole_number(1, kAnyCount, "the number of packings"))
       ->excludes("--resume");
   auto* calibrate_cmd = app.add_subcommand("calibrate", "find micro-parameters matching target E, nu, UCS (Tang 6.3)");
   calibrate_cmd->add_option("scene", scene, "scene file (TOML) with one parallel_bond contact entry and [uniaxial]")
@@ -142,21 +217,26 @@ int main(int argc, char** argv) {
   calibrate_cmd->add_option("-o,--output", output, "the calibrated scene (TOML); its runs are written beside it")
       ->required();
   calibrate_cmd->add_option("--tolerance", tolerance, "relative tolerance on each target (default 0.05)")
-      ->check(CLI::Range(1e-4, 0.5));
+      ->check(finite_number(1e-4, 0.5, "the relative tolerance on each target"));
   calibrate_cmd->add_option("--max-iterations", max_iterations, "give up after this many runs (default 12)")
-      ->check(CLI::Range(1, 100));
+      ->check(whole_number(1, 100, "the most calibration runs"));
   calibrate_cmd->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
-  calibrate_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  calibrate_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(threads_check);
   auto* generate_cmd = app.add_subcommand("generate", "build a scene's specimen (e.g. a dense packing) and save it");
   generate_cmd->add_option("scene", scene, "scene file (TOML)")->required();
   generate_cmd->add_option("-o,--output", output, "specimen file (HDF5; scenes load it with kind = \"output\")");
   generate_cmd->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
-  generate_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::PositiveNumber);
+  generate_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(threads_check);
   auto* summary_cmd = app.add_subcommand("summary", "print the key results of a run as JSON");
   summary_cmd->add_option("output", target, "output file (HDF5)")->required();
   auto* report_cmd = app.add_subcommand("report", "write PNG plots of a run next to its output file");
   report_cmd->add_option("output", target, "output file (HDF5)")->required();
-  CLI11_PARSE(app, argc, argv);
+  if (unknown_command(argc, argv)) return 2;
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return command_line_error(app, e);
+  }
   try {
     if (*run_cmd && n_realizations > 1) return realizations(scene, output, sets, threads, n_realizations);
     if (*run_cmd) return run(scene, output, sets, threads, resume);

@@ -160,9 +160,9 @@ def main(argv=None):
         for plot in (plot_history, plot_xy, plot_energy, plot_specimen, plot_cracks):
             for path in plot(run, stem, out_dir):
                 print(path, flush=True)
-    except ReportError as e:
-        print(f"report: {args.file}: {e}", file=sys.stderr)
-        return 2
+    except ReportError as e:  # every ReportError is about a file: exit 3, as `mesocrack` does for file errors
+        print(f"error: report: {args.file}: {e}", file=sys.stderr)
+        return 3
     return 0
 
 

@@ -145,3 +145,88 @@ TEST_CASE_FIXTURE(BadInput, "bad_set_overrides_give_message_and_exit_2") {
   check_refused(d.dir, with("run.duration=0.3 parsecs"), 2,
                 {"scene.toml: ", "key 'run.duration' (from --set) = \"0.3 parsecs\"", "parsecs"});
 }
+
+namespace {
+
+// A command refused before it reads anything: exit `code`, one line "error: ..." naming `parts`, nothing on
+// stdout and no file written.
+void check_command_refused(const TempDir& d, const std::vector<std::string>& args, int code,
+                           const std::vector<std::string>& parts) {
+  CAPTURE(args);
+  const Result r = mesocrack(args, d.dir);
+  CHECK_MESSAGE(r.code == code, r.describe());
+  CHECK_MESSAGE(r.err.rfind("error: ", 0) == 0, r.err);
+  CHECK_MESSAGE(std::count(r.err.begin(), r.err.end(), '\n') == 1, r.err);
+  for (const auto& part : parts) CHECK_MESSAGE(contains(r.err, part), "stderr '", r.err, "' lacks '", part, "'");
+  CHECK_MESSAGE(r.out.empty(), r.out);
+  CHECK(files_in(d.dir) == std::vector<std::string>{"scene.toml"});
+}
+
+}  // namespace
+
+TEST_CASE_FIXTURE(BadInput, "command_line_errors_of_every_subcommand_give_one_line_and_exit_2") {
+  scene(base);
+  const std::vector<std::string> run_scene{"run", "scene.toml", "-o", "out.h5"};
+  const auto with = [](std::vector<std::string> args, const std::vector<std::string>& more) {
+    args.insert(args.end(), more.begin(), more.end());
+    return args;
+  };
+  SUBCASE("bad option values name the option, the value and what is allowed") {
+    for (const std::string value : {"0", "-1", "abc", "1e3", "99999999999"}) {
+      check_command_refused(d, with(run_scene, {"--threads", value}), 2,
+                            {"--threads: '" + value + "' is not allowed", "whole number >= 1", "mesocrack run --help"});
+      check_command_refused(d, {"generate", "scene.toml", "-o", "g.h5", "--threads", value}, 2,
+                            {"--threads: '" + value + "'", "whole number >= 1"});
+      check_command_refused(d, {"calibrate", "scene.toml", "--target", "ucs=1MPa", "-o", "c.toml", "--threads", value},
+                            2, {"--threads: '" + value + "'", "whole number >= 1"});
+      check_command_refused(d, with(run_scene, {"--realizations", value}), 2,
+                            {"--realizations: '" + value + "'", "whole number >= 1"});
+    }
+    const std::vector<std::string> calibrate{"calibrate", "scene.toml", "--target", "ucs=1MPa", "-o", "c.toml"};
+    for (const std::string value : {"nan", "inf", "0", "0.6", "x"})
+      check_command_refused(
+          d, with(calibrate, {"--tolerance", value}), 2,
+          {"--tolerance: '" + value + "'", "number from 0.0001 to 0.5", "mesocrack calibrate --help"});
+    for (const std::string value : {"0", "101", "2.5"})
+      check_command_refused(d, with(calibrate, {"--max-iterations", value}), 2,
+                            {"--max-iterations: '" + value + "'", "whole number from 1 to 100"});
+  }
+  SUBCASE("unknown options, missing arguments and excluded pairs give CLI11's message") {
+    check_command_refused(d, with(run_scene, {"--bogus"}), 2, {"not expected: --bogus"});
+    check_command_refused(d, {"run"}, 2, {"scene is required", "mesocrack run --help"});
+    check_command_refused(d, {"run", "scene.toml", "-o"}, 2, {"--output"});
+    check_command_refused(d, with(run_scene, {"--realizations", "2", "--resume", "out.h5"}), 2, {"excludes"});
+    check_command_refused(d, {"generate"}, 2, {"scene is required"});
+    check_command_refused(d, {"generate", "scene.toml", "--bogus"}, 2, {"not expected: --bogus"});
+    check_command_refused(d, {"calibrate", "scene.toml", "-o", "c.toml"}, 2, {"--target is required"});
+    check_command_refused(d, {"calibrate", "scene.toml", "--target", "ucs=1MPa"}, 2, {"--output is required"});
+    check_command_refused(d, {"summary"}, 2, {"output is required", "mesocrack summary --help"});
+    check_command_refused(d, {"summary", "a.h5", "b.h5"}, 2, {"not expected: b.h5"});
+    check_command_refused(d, {"report"}, 2, {"output is required"});
+    check_command_refused(d, {"report", "a.h5", "-o", "x"}, 2, {"not expected"});
+  }
+  SUBCASE("no command or an unknown one lists the commands") {
+    check_command_refused(d, {}, 2, {"subcommand is required", "run, generate, calibrate, summary, report"});
+    check_command_refused(d, {"frobnicate", "scene.toml"}, 2,
+                          {"unknown command 'frobnicate'", "run, generate, calibrate, summary, report"});
+  }
+  SUBCASE("summary and report of a missing file are file errors") {
+    check_command_refused(d, {"summary", "absent.h5"}, 3, {"absent.h5"});
+    check_command_refused(d, {"report", "absent.h5"}, 3, {"absent.h5", "no such file"});
+  }
+}
+
+TEST_CASE_FIXTURE(BadInput, "help_of_every_subcommand_exits_0") {
+  for (const std::vector<std::string>& args : {std::vector<std::string>{"--help"},
+                                               {"run", "--help"},
+                                               {"generate", "--help"},
+                                               {"calibrate", "--help"},
+                                               {"summary", "--help"},
+                                               {"report", "--help"}}) {
+    CAPTURE(args);
+    const Result r = mesocrack(args, d.dir);
+    CHECK_MESSAGE(r.code == 0, r.describe());
+    CHECK(contains(r.out, "Usage:"));
+    CHECK(r.err.empty());
+  }
+}

@@ -128,7 +128,7 @@ def check_pngs(case, p, expected):
 
 def check_error(case, p, path, words):
     lines = p.stderr.strip().splitlines()
-    check(f"{case}: exit 2", p.returncode == 2, f"exit {p.returncode}")
+    check(f"{case}: exit 3 (a file error)", p.returncode == 3, f"exit {p.returncode}")
     check(f"{case}: one-line message naming the file",
           len(lines) == 1 and path in lines[0] and all(w in lines[0] for w in words) and "Traceback" not in p.stderr,
           repr(p.stderr))
