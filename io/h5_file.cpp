@@ -1,6 +1,13 @@
 #include "io/h5_file.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <numeric>
@@ -25,11 +32,19 @@ class Id {
   Id& operator=(const Id&) = delete;
   operator hid_t() const { return id_; }
   bool ok() const { return id_ >= 0; }
+  // Closes now, returning HDF5's status: closing a dataset writes its cached chunks, and that write can fail.
+  herr_t close() { return id_ >= 0 ? close_(std::exchange(id_, H5I_INVALID_HID)) : 0; }
 
  private:
   hid_t id_;
   herr_t (*close_)(hid_t);
 };
+
+// HDF5 closes the files still open when the process exits, flushing them. An abandoned file must never be flushed
+// or closed (H5Fclose of a file whose writes fail leaves HDF5's state half torn down, and the exit-time cleanup then
+// crashes), so that cleanup is off: every healthy file is closed by its H5File before the process ends. It must be
+// switched off before the library initialises, hence at static initialisation of this file.
+[[maybe_unused]] const bool kNoCleanupAtExit = H5dont_atexit() >= 0;
 
 void quiet_this_thread() {
   // The library is built thread-safe, which makes the error-printing switch per thread.
@@ -37,8 +52,24 @@ void quiet_this_thread() {
   if (!quiet) quiet = H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0;
 }
 
+// A failed system call as HDF5 reports it ("file write failed: time = …, filename = …, errno = 28, error message =
+// 'No space left on device', buf = …") shortened to what it means: "file write failed: No space left on device".
+std::string shortened(const std::string& desc) {
+  const std::string key = "error message = '";
+  const auto at = desc.find(key), colon = desc.find(':');
+  if (at == std::string::npos || colon == std::string::npos || colon > at) return desc;
+  const auto from = at + key.size(), to = desc.find('\'', from);
+  return desc.substr(0, colon) + ": " + desc.substr(from, to == std::string::npos ? std::string::npos : to - from);
+}
+
+// Set when a call into HDF5 or the system failed (rather than a check of ours, such as a missing dataset or a value
+// type that does not match the table): such a failure may leave HDF5's state ahead of the file, which then must not
+// be flushed.
+thread_local bool g_call_failed = false;
+
 // The innermost message of HDF5's error stack: the most specific cause.
 std::string hdf5_reason() {
+  g_call_failed = true;
   std::string reason;
   H5Ewalk2(
       H5E_DEFAULT, H5E_WALK_UPWARD,
@@ -47,7 +78,7 @@ std::string hdf5_reason() {
         return 0;
       },
       &reason);
-  return reason.empty() ? "HDF5 error" : reason;
+  return reason.empty() ? "HDF5 error" : shortened(reason);
 }
 
 // What every helper needs: the file id, and the file path for messages.
@@ -175,10 +206,11 @@ void write_numeric(File f, const std::string& ds, const std::vector<T>& data, co
   clear_for_dataset(f, ds, what);
   const Id space = simple_space(dims);
   const Id lcpl = parents_created();
-  const Id d(H5Dcreate2(f.id, ds.c_str(), file_type, space, lcpl, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+  Id d(H5Dcreate2(f.id, ds.c_str(), file_type, space, lcpl, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
   if (!d.ok()) f.fail(what, ds, hdf5_reason());
   if (!data.empty() && H5Dwrite(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) < 0)
     f.fail(what, ds, hdf5_reason());
+  if (d.close() < 0) f.fail(what, ds, hdf5_reason());
 }
 
 template <class T>
@@ -205,7 +237,7 @@ std::vector<T> read_numeric(File f, const std::string& ds, std::vector<hsize_t>*
 
 void append_raw(File f, const std::string& ds, const void* rows, hsize_t nrows, bool integer) {
   const std::string what = "append rows to";
-  const Id d = open_dataset(f, ds, what);
+  Id d = open_dataset(f, ds, what);
   const Id type(H5Dget_type(d), H5Tclose);
   if ((H5Tget_class(type) == H5T_INTEGER) != integer)
     f.fail(what, ds, std::string("the table holds ") + (integer ? "doubles" : "integers"));
@@ -222,6 +254,7 @@ void append_raw(File f, const std::string& ds, const void* rows, hsize_t nrows, 
   const Id mem_space = simple_space(count);
   const hid_t mem_type = integer ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE;
   if (H5Dwrite(d, mem_type, mem_space, file_space, H5P_DEFAULT, rows) < 0) f.fail(what, ds, hdf5_reason());
+  if (d.close() < 0) f.fail(what, ds, hdf5_reason());
 }
 
 void set_attr_raw(File f, const std::string& obj, const std::string& name, hid_t file_type, hid_t mem_type,
@@ -231,8 +264,8 @@ void set_attr_raw(File f, const std::string& obj, const std::string& name, hid_t
   // Deleted, not rewritten: the new value may have another type or string length.
   if (H5Aexists(o, name.c_str()) > 0 && H5Adelete(o, name.c_str()) < 0) f.fail(what, obj, hdf5_reason());
   const Id space(H5Screate(H5S_SCALAR), H5Sclose);
-  const Id a(H5Acreate2(o, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
-  if (!a.ok() || H5Awrite(a, mem_type, value) < 0) f.fail(what, obj, hdf5_reason());
+  Id a(H5Acreate2(o, name.c_str(), file_type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+  if (!a.ok() || H5Awrite(a, mem_type, value) < 0 || a.close() < 0) f.fail(what, obj, hdf5_reason());
 }
 
 Id open_attr(File f, const std::string& obj, const std::string& name, const std::string& what) {
@@ -275,54 +308,131 @@ Id crash_safe_writing() {
   return fapl;
 }
 
+// The file descriptor HDF5 writes through (the default sec2 driver keeps one).
+int descriptor(File f, const std::string& what) {
+  void* handle = nullptr;
+  if (H5Fget_vfd_handle(f.id, H5P_DEFAULT, &handle) < 0 || !handle) f.fail(what, "", hdf5_reason());
+  return *static_cast<int*>(handle);
+}
+
+// Allocates the disk blocks between the end of the file as written and the end HDF5 has allocated (its metadata
+// not yet written lies there), so that a full disk fails here, before a flush overwrites any flushed metadata.
+void reserve_allocated_space(File f) {
+  const std::string what = "flush file";
+  hsize_t allocated = 0;
+  if (H5Fget_filesize(f.id, &allocated) < 0) f.fail(what, "", hdf5_reason());
+  const int fd = descriptor(f, what);
+  struct stat st {};
+  g_call_failed = true;  // whatever fails below
+  if (fstat(fd, &st) != 0) f.fail(what, "", std::strerror(errno));
+  const int e = static_cast<hsize_t>(st.st_size) >= allocated
+                    ? 0
+                    : posix_fallocate(fd, st.st_size, static_cast<off_t>(allocated) - st.st_size);
+  if (e != 0) f.fail(what, "", std::strerror(e));
+  g_call_failed = false;
+}
+
 }  // namespace
 
-H5File::H5File(const std::string& path, Mode mode) : path_(path) {
+H5File::H5File(const std::string& path, Mode mode) : path_(path), writable_(mode != Mode::ReadOnly) {
   quiet_this_thread();
   const Id fapl = mode == Mode::ReadOnly ? Id(H5Pcreate(H5P_FILE_ACCESS), H5Pclose) : crash_safe_writing();
   if (mode == Mode::Create) {
     const std::filesystem::path dir = std::filesystem::path(path).parent_path();
     if (!dir.empty() && !std::filesystem::is_directory(dir))
       throw IoError(path + ": cannot create file: no such directory '" + dir.string() + "'");
+    const bool existed = std::filesystem::exists(path);
     file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-    // Until its root group is flushed, a new file is unreadable; a writer killed early leaves an empty file.
-    if (file_ >= 0 && H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) {
+    if (file_ < 0) {
       const std::string reason = hdf5_reason();
-      H5Fclose(file_);
+      if (!existed) std::remove(path.c_str());  // what it created: an empty or torn file
       throw IoError(path + ": cannot create file: " + reason);
     }
-  } else {
-    if (!std::filesystem::exists(path)) throw IoError(path + ": cannot open file: no such file");
-    file_ = H5Fopen(path.c_str(), mode == Mode::ReadOnly ? H5F_ACC_RDONLY : H5F_ACC_RDWR, fapl);
+    // Until its root group is flushed, a new file is unreadable; a writer killed early leaves an empty file.
+    try {
+      flush();
+    } catch (const IoError& e) {
+      if (!existed) std::remove(path.c_str());  // an empty file would pass for a readable one
+      const std::string why = e.what(), flushing = path + ": cannot flush file: ";
+      throw IoError(path + ": cannot create file: " + (why.starts_with(flushing) ? why.substr(flushing.size()) : why));
+    }
+    return;
   }
-  if (file_ < 0)
-    throw IoError(path + ": cannot " + (mode == Mode::Create ? "create" : "open") + " file: " + hdf5_reason());
+  if (!std::filesystem::exists(path)) throw IoError(path + ": cannot open file: no such file");
+  file_ = H5Fopen(path.c_str(), mode == Mode::ReadOnly ? H5F_ACC_RDONLY : H5F_ACC_RDWR, fapl);
+  if (file_ < 0) throw IoError(path + ": cannot open file: " + hdf5_reason());
 }
 
-H5File::~H5File() {
-  if (file_ >= 0) H5Fclose(file_);
-}
+H5File::~H5File() { close(); }
 
 H5File::H5File(H5File&& other) noexcept
-    : path_(std::move(other.path_)), file_(std::exchange(other.file_, H5I_INVALID_HID)) {}
+    : path_(std::move(other.path_)),
+      file_(std::exchange(other.file_, H5I_INVALID_HID)),
+      writable_(other.writable_),
+      abandoned_(std::exchange(other.abandoned_, false)) {}
 
 H5File& H5File::operator=(H5File&& other) noexcept {
   if (this != &other) {
-    if (file_ >= 0) H5Fclose(file_);
+    close();
     path_ = std::move(other.path_);
     file_ = std::exchange(other.file_, H5I_INVALID_HID);
+    writable_ = other.writable_;
+    abandoned_ = std::exchange(other.abandoned_, false);
   }
   return *this;
 }
 
+void H5File::close() noexcept {
+  if (file_ >= 0 && !abandoned_) H5Fclose(file_);
+  file_ = H5I_INVALID_HID;
+}
+
 hid_t H5File::fid() const {
   if (file_ < 0) throw IoError(path_ + ": file is not open (the H5File was moved from)");
+  if (abandoned_)
+    throw IoError(path_ + ": file abandoned after a failed write; it holds what was flushed before the failure");
   quiet_this_thread();
   return file_;
 }
 
+template <class F>
+void H5File::change(F&& f) {
+  g_call_failed = false;
+  try {
+    f();
+  } catch (const IoError&) {
+    if (writable_ && g_call_failed) abandon();
+    throw;
+  }
+}
+
+// HDF5's descriptor is replaced by one that refuses writes: whatever HDF5 still holds in memory can no longer reach
+// the file. The id is never closed (see the header).
+void H5File::abandon() noexcept {
+  if (file_ < 0 || abandoned_) return;
+  abandoned_ = true;
+  void* handle = nullptr;
+  if (H5Fget_vfd_handle(file_, H5P_DEFAULT, &handle) < 0 || !handle) return;
+  const int read_only = open("/dev/null", O_RDONLY | O_CLOEXEC);
+  if (read_only < 0) return;
+  dup2(read_only, *static_cast<int*>(handle));
+  ::close(read_only);
+}
+
 void H5File::flush() {
-  if (H5Fflush(fid(), H5F_SCOPE_GLOBAL) < 0) File{file_, path_}.fail("flush file", "", hdf5_reason());
+  change([&] {
+    const File f{fid(), path_};
+    reserve_allocated_space(f);
+    if (H5Fflush(f.id, H5F_SCOPE_GLOBAL) < 0) f.fail("flush file", "", hdf5_reason());
+  });
+}
+
+void H5File::rename(const std::string& to) {
+  fid();
+  std::error_code ec;
+  std::filesystem::rename(path_, to, ec);
+  if (ec) throw IoError(path_ + ": cannot rename to " + to + ": " + ec.message());
+  path_ = to;
 }
 
 bool H5File::exists(const std::string& obj) const { return kind({fid(), path_}, obj) != H5I_BADID; }
@@ -346,46 +456,52 @@ std::vector<std::string> H5File::list(const std::string& group) const {
 }
 
 void H5File::create_group(const std::string& group) {
-  const File f{fid(), path_};
-  const H5I_type_t k = kind(f, group);
-  if (k == H5I_GROUP) return;
-  if (k != H5I_BADID) f.fail("create group", group, "a dataset has that path");
-  const Id lcpl = parents_created();
-  const Id g(H5Gcreate2(f.id, group.c_str(), lcpl, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
-  if (!g.ok()) f.fail("create group", group, hdf5_reason());
+  change([&] {
+    const File f{fid(), path_};
+    const H5I_type_t k = kind(f, group);
+    if (k == H5I_GROUP) return;
+    if (k != H5I_BADID) f.fail("create group", group, "a dataset has that path");
+    const Id lcpl = parents_created();
+    const Id g(H5Gcreate2(f.id, group.c_str(), lcpl, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+    if (!g.ok()) f.fail("create group", group, hdf5_reason());
+  });
 }
 
 void H5File::remove(const std::string& obj) {
-  if (exists(obj) && H5Ldelete(fid(), obj.c_str(), H5P_DEFAULT) < 0)
-    File{file_, path_}.fail("remove", obj, hdf5_reason());
+  change([&] {
+    if (exists(obj) && H5Ldelete(fid(), obj.c_str(), H5P_DEFAULT) < 0)
+      File{file_, path_}.fail("remove", obj, hdf5_reason());
+  });
 }
 
 void H5File::write(const std::string& ds, const std::vector<double>& data, const std::vector<hsize_t>& dims) {
-  write_numeric({fid(), path_}, ds, data, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE);
+  change([&] { write_numeric({fid(), path_}, ds, data, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE); });
 }
 
 void H5File::write(const std::string& ds, const std::vector<std::int64_t>& data, const std::vector<hsize_t>& dims) {
-  write_numeric({fid(), path_}, ds, data, dims, H5T_STD_I64LE, H5T_NATIVE_INT64);
+  change([&] { write_numeric({fid(), path_}, ds, data, dims, H5T_STD_I64LE, H5T_NATIVE_INT64); });
 }
 
 void H5File::write(const std::string& ds, const std::vector<std::int32_t>& data, const std::vector<hsize_t>& dims) {
-  write_numeric({fid(), path_}, ds, data, dims, H5T_STD_I32LE, H5T_NATIVE_INT32);
+  change([&] { write_numeric({fid(), path_}, ds, data, dims, H5T_STD_I32LE, H5T_NATIVE_INT32); });
 }
 
 void H5File::write(const std::string& ds, const std::vector<std::uint8_t>& data, const std::vector<hsize_t>& dims) {
-  write_numeric({fid(), path_}, ds, data, dims, H5T_STD_U8LE, H5T_NATIVE_UINT8);
+  change([&] { write_numeric({fid(), path_}, ds, data, dims, H5T_STD_U8LE, H5T_NATIVE_UINT8); });
 }
 
 void H5File::write_string(const std::string& ds, const std::string& text) {
-  const File f{fid(), path_};
-  const std::string what = "write dataset";
-  clear_for_dataset(f, ds, what);
-  const Id type = string_type(text.size());
-  const Id space(H5Screate(H5S_SCALAR), H5Sclose);
-  const Id lcpl = parents_created();
-  const Id d(H5Dcreate2(f.id, ds.c_str(), type, space, lcpl, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
-  if (!d.ok() || H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, padded(text).data()) < 0)
-    f.fail(what, ds, hdf5_reason());
+  change([&] {
+    const File f{fid(), path_};
+    const std::string what = "write dataset";
+    clear_for_dataset(f, ds, what);
+    const Id type = string_type(text.size());
+    const Id space(H5Screate(H5S_SCALAR), H5Sclose);
+    const Id lcpl = parents_created();
+    Id d(H5Dcreate2(f.id, ds.c_str(), type, space, lcpl, H5P_DEFAULT, H5P_DEFAULT), H5Dclose);
+    if (!d.ok() || H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, padded(text).data()) < 0 || d.close() < 0)
+      f.fail(what, ds, hdf5_reason());
+  });
 }
 
 std::vector<double> H5File::read_doubles(const std::string& ds, std::vector<hsize_t>* dims) const {
@@ -415,32 +531,34 @@ std::vector<hsize_t> H5File::shape(const std::string& ds) const {
 }
 
 void H5File::create_table(const std::string& ds, hsize_t width, bool integer) {
-  const File f{fid(), path_};
-  const std::string what = "create table";
-  clear_for_dataset(f, ds, what);
-  constexpr hsize_t chunk_bytes = 64 * 1024;
-  const hsize_t chunk_rows = std::max<hsize_t>(1, chunk_bytes / (8 * std::max<hsize_t>(width, 1)));
-  std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{chunk_rows};
-  if (width > 0) {
-    dims.push_back(width);
-    maxdims.push_back(width);
-    chunk.push_back(width);
-  }
-  const Id space = simple_space(dims, maxdims.data());
-  const Id dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
-  H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data());
-  const hid_t type = integer ? H5T_STD_I64LE : H5T_IEEE_F64LE;
-  const Id lcpl = parents_created();
-  const Id d(H5Dcreate2(f.id, ds.c_str(), type, space, lcpl, dcpl, H5P_DEFAULT), H5Dclose);
-  if (!d.ok()) f.fail(what, ds, hdf5_reason());
+  change([&] {
+    const File f{fid(), path_};
+    const std::string what = "create table";
+    clear_for_dataset(f, ds, what);
+    constexpr hsize_t chunk_bytes = 64 * 1024;
+    const hsize_t chunk_rows = std::max<hsize_t>(1, chunk_bytes / (8 * std::max<hsize_t>(width, 1)));
+    std::vector<hsize_t> dims{0}, maxdims{H5S_UNLIMITED}, chunk{chunk_rows};
+    if (width > 0) {
+      dims.push_back(width);
+      maxdims.push_back(width);
+      chunk.push_back(width);
+    }
+    const Id space = simple_space(dims, maxdims.data());
+    const Id dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+    H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data());
+    const hid_t type = integer ? H5T_STD_I64LE : H5T_IEEE_F64LE;
+    const Id lcpl = parents_created();
+    Id d(H5Dcreate2(f.id, ds.c_str(), type, space, lcpl, dcpl, H5P_DEFAULT), H5Dclose);
+    if (!d.ok() || d.close() < 0) f.fail(what, ds, hdf5_reason());
+  });
 }
 
 void H5File::append_rows(const std::string& ds, const double* rows, hsize_t nrows) {
-  append_raw({fid(), path_}, ds, rows, nrows, false);
+  change([&] { append_raw({fid(), path_}, ds, rows, nrows, false); });
 }
 
 void H5File::append_rows(const std::string& ds, const std::int64_t* rows, hsize_t nrows) {
-  append_raw({fid(), path_}, ds, rows, nrows, true);
+  change([&] { append_raw({fid(), path_}, ds, rows, nrows, true); });
 }
 
 hsize_t H5File::rows(const std::string& ds) const {
@@ -450,28 +568,32 @@ hsize_t H5File::rows(const std::string& ds) const {
 }
 
 void H5File::truncate_rows(const std::string& ds, hsize_t nrows) {
-  const File f{fid(), path_};
-  const std::string what = "truncate table";
-  const Id d = open_dataset(f, ds, what);
-  std::vector<hsize_t> dims = dataset_dims(d);
-  if (dims.empty()) f.fail(what, ds, "a scalar dataset has no rows");
-  if (dims[0] < nrows)
-    f.fail(what, ds, "it has " + std::to_string(dims[0]) + " rows, fewer than " + std::to_string(nrows));
-  dims[0] = nrows;
-  if (H5Dset_extent(d, dims.data()) < 0) f.fail(what, ds, hdf5_reason());
+  change([&] {
+    const File f{fid(), path_};
+    const std::string what = "truncate table";
+    Id d = open_dataset(f, ds, what);
+    std::vector<hsize_t> dims = dataset_dims(d);
+    if (dims.empty()) f.fail(what, ds, "a scalar dataset has no rows");
+    if (dims[0] < nrows)
+      f.fail(what, ds, "it has " + std::to_string(dims[0]) + " rows, fewer than " + std::to_string(nrows));
+    dims[0] = nrows;
+    if (H5Dset_extent(d, dims.data()) < 0 || d.close() < 0) f.fail(what, ds, hdf5_reason());
+  });
 }
 
 void H5File::set_attr(const std::string& obj, const std::string& name, double v) {
-  set_attr_raw({fid(), path_}, obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &v);
+  change([&] { set_attr_raw({fid(), path_}, obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &v); });
 }
 
 void H5File::set_attr(const std::string& obj, const std::string& name, std::int64_t v) {
-  set_attr_raw({fid(), path_}, obj, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &v);
+  change([&] { set_attr_raw({fid(), path_}, obj, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &v); });
 }
 
 void H5File::set_attr(const std::string& obj, const std::string& name, const std::string& v) {
-  const Id type = string_type(v.size());
-  set_attr_raw({fid(), path_}, obj, name, type, type, padded(v).data());
+  change([&] {
+    const Id type = string_type(v.size());
+    set_attr_raw({fid(), path_}, obj, name, type, type, padded(v).data());
+  });
 }
 
 double H5File::attr_double(const std::string& obj, const std::string& name) const {

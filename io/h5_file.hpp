@@ -9,6 +9,12 @@
 // in memory (some KB per object) until the file is closed.
 // While a process has the file open for writing, HDF5's file lock keeps other processes from opening it
 // (HDF5_USE_FILE_LOCKING=FALSE overrides); the lock goes with the process, even a killed one.
+// A change that fails in HDF5 or the system (a full disk, a write error; not a check such as a missing dataset)
+// abandons the file: HDF5 can no longer write to it, nothing more is flushed (a flush cut short by a full disk could
+// leave it unreadable), and every later call throws. On disk it stays as it was at its last successful flush(), which
+// reserves the disk space its metadata needs before writing any of it. An abandoned file is never closed through HDF5
+// (a failed close corrupts HDF5's state and crashes the process at exit); its few KB of memory go with the process.
+//
 // Replaced or removed objects leave their file space unused once the file is closed (h5repack reclaims it).
 // Not for concurrent use: one thread at a time per file.
 #pragma once
@@ -31,8 +37,13 @@ class H5File {
   H5File& operator=(const H5File&) = delete;
 
   const std::string& path() const { return path_; }
-  // After it the file on disk is complete and readable (it reaches the OS, not necessarily the platter).
+  // After it the file on disk is complete and readable (it reaches the OS, not necessarily the platter). The disk
+  // space the flush needs is reserved first: a full disk fails it before anything is written.
   void flush();
+  // Renames the open file (std::filesystem::rename: atomic within a directory, replacing any file there).
+  void rename(const std::string& to);
+  // True after a failed change (see above).
+  bool abandoned() const { return abandoned_; }
   // Group or dataset at any depth; false when any component is missing.
   bool exists(const std::string& obj) const;
   // Child names of a group, sorted.
@@ -81,9 +92,16 @@ class H5File {
 
  private:
   hid_t fid() const;  // the open file id, with HDF5's error printing off for the calling thread
+  // Runs a change to the file; when a call into HDF5 or the system fails in it, the file is abandoned.
+  template <class F>
+  void change(F&& f);
+  void abandon() noexcept;
+  void close() noexcept;
 
   std::string path_;
   hid_t file_ = H5I_INVALID_HID;
+  bool writable_ = false;
+  bool abandoned_ = false;
 };
 
 }  // namespace mc
