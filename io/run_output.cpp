@@ -1,7 +1,9 @@
 #include "io/run_output.hpp"
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <sstream>
 
@@ -14,6 +16,26 @@ std::string stem_path(const std::string& path, const std::string& suffix) {
   std::filesystem::path p(path);
   return (p.parent_path() / (p.stem().string() + suffix)).string();
 }
+// Writes `text` to `path` through a temporary file renamed over it: a reader sees the old file or the new one, and a
+// full disk leaves the old one (the temporary is removed).
+void write_atomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp";
+  std::FILE* out = std::fopen(tmp.c_str(), "w");
+  if (!out) throw IoError(tmp + ": cannot create file: " + std::strerror(errno));
+  const bool written = std::fwrite(text.data(), 1, text.size(), out) == text.size() && std::fflush(out) == 0;
+  const int write_errno = errno;
+  if (std::fclose(out) != 0 || !written) {
+    const int e = written ? errno : write_errno;
+    std::remove(tmp.c_str());
+    throw IoError(path + ": cannot write file: " + std::strerror(e));
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::remove(tmp.c_str());
+    throw IoError(path + ": cannot write file: " + ec.message());
+  }
+}
 std::string join(const std::vector<std::string>& v) {
   std::string s;
   for (const auto& x : v) s += (s.empty() ? "" : ",") + x;
@@ -23,7 +45,16 @@ std::string join(const std::vector<std::string>& v) {
 
 RunOutput::RunOutput(const std::string& path, const std::string& scene_text, const std::string& scene_file,
                      const SpecimenData& s)
-    : file_(path, H5File::Mode::Create) {
+    : file_(partial_path(path), H5File::Mode::Create), published_(false) {
+  try {
+    write_initial(scene_text, scene_file, s);
+  } catch (...) {
+    std::remove(file_.path().c_str());
+    throw;
+  }
+}
+
+void RunOutput::write_initial(const std::string& scene_text, const std::string& scene_file, const SpecimenData& s) {
   file_.set_attr("/", "format", std::string("mesocrack-1"));
   file_.set_attr("/", "dimension", static_cast<std::int64_t>(s.dimension));
   file_.set_attr("/", "scene_file", scene_file);
@@ -35,8 +66,8 @@ RunOutput::RunOutput(const std::string& path, const std::string& scene_text, con
   file_.write("/specimen/id", s.id, {n});
   file_.set_attr("/specimen", "phase_names", join(s.phase_names));
   for (const auto& [name, value] : s.facts) file_.set_attr("/specimen", name, value);
-  if (!s.outlines
-           .empty()) {  // /specimen/outline_xy [M, 2], outline_start [K + 1]: polygon k is rows start[k]..start[k+1]
+  // /specimen/outline_xy [M, 2], outline_start [K + 1]: polygon k is rows start[k]..start[k+1]
+  if (!s.outlines.empty()) {
     std::vector<double> xy;
     std::vector<std::int64_t> start{0};
     for (const auto& o : s.outlines) {
@@ -53,10 +84,33 @@ RunOutput::RunOutput(const std::string& path, const std::string& scene_text, con
   flush();
 }
 
-RunOutput::RunOutput(const std::string& path) : file_(path, H5File::Mode::ReadWrite) {
+namespace {
+// The file to resume, or why there is none.
+std::string existing(const std::string& path) {
+  if (!std::filesystem::exists(path) && std::filesystem::exists(RunOutput::partial_path(path)))
+    throw IoError(path + ": cannot open file: no such file; " + RunOutput::partial_path(path) +
+                  " is a run that ended before its first complete flush (specimen, step 0): run it again with -o " +
+                  path);
+  return path;
+}
+}  // namespace
+
+RunOutput::RunOutput(const std::string& path) : file_(existing(path), H5File::Mode::ReadWrite) {
   if (!file_.has_attr("/", "format") || file_.attr_string("/", "format") != "mesocrack-1")
     throw IoError(path + ": not a mesocrack output file (no format attribute 'mesocrack-1')");
   if (file_.exists("/history")) names_ = file_.list("/history");
+}
+
+RunOutput::~RunOutput() {
+  if (!published_) std::remove(file_.path().c_str());
+}
+
+void RunOutput::publish() {
+  flush();
+  const std::string& partial = file_.path();
+  file_.rename(partial.substr(0, partial.size() - std::string(".partial").size()));
+  published_ = true;
+  write_xdmf();
 }
 
 void RunOutput::create_histories(const std::vector<std::string>& names, const std::vector<std::string>& units) {
@@ -87,7 +141,7 @@ void RunOutput::append_frame(double time, std::int64_t step, const std::vector<d
   file_.append_rows("/frames/x", x.data(), 1);
   file_.append_rows("/frames/v", v.data(), 1);
   file_.append_rows("/frames/force", force.data(), 1);
-  write_xdmf();
+  if (published_) write_xdmf();
 }
 
 std::int64_t RunOutput::frame_rows() const { return static_cast<std::int64_t>(file_.rows("/frames/time")); }
@@ -123,7 +177,9 @@ Archive RunOutput::read_checkpoint() const {
       best = s, best_step = file_.attr_int(s, "step");
   if (best.empty())
     throw IoError(file_.path() +
-                  ": no complete checkpoint to resume from (set output.checkpoint_every or output.checkpoint_seconds)");
+                  ": no complete checkpoint to resume from (a run writes one at step 0, then every "
+                  "output.checkpoint_every steps, or every 60 s of wall time when that key is 0): the file is damaged "
+                  "or was not written by `mesocrack run`");
   Archive a;
   if (file_.exists(best + "/reals"))
     for (const auto& k : file_.list(best + "/reals")) a.reals[k] = file_.read_doubles(best + "/reals/" + k);
@@ -181,24 +237,19 @@ void RunOutput::set_xy_plots(const std::string& pairs) { file_.set_attr("/histor
 void RunOutput::flush() { file_.flush(); }
 
 void RunOutput::write_csv() const {
-  const std::string path = stem_path(file_.path(), "_history.csv");
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    if (!out) throw IoError("cannot write '" + tmp + "'");
-    std::vector<std::vector<double>> cols;
-    for (std::size_t i = 0; i < names_.size(); ++i) {
-      out << (i ? "," : "") << names_[i] << " [" << file_.attr_string("/history/" + names_[i], "unit") << "]";
-      cols.push_back(file_.read_doubles("/history/" + names_[i]));
-    }
-    out << "\n" << std::setprecision(17);
-    const std::size_t rows = cols.empty() ? 0 : cols[0].size();
-    for (std::size_t r = 0; r < rows; ++r) {
-      for (std::size_t i = 0; i < cols.size(); ++i) out << (i ? "," : "") << cols[i][r];
-      out << "\n";
-    }
+  std::ostringstream out;
+  std::vector<std::vector<double>> cols;
+  for (std::size_t i = 0; i < names_.size(); ++i) {
+    out << (i ? "," : "") << names_[i] << " [" << file_.attr_string("/history/" + names_[i], "unit") << "]";
+    cols.push_back(file_.read_doubles("/history/" + names_[i]));
   }
-  std::filesystem::rename(tmp, path);
+  out << "\n" << std::setprecision(17);
+  const std::size_t rows = cols.empty() ? 0 : cols[0].size();
+  for (std::size_t r = 0; r < rows; ++r) {
+    for (std::size_t i = 0; i < cols.size(); ++i) out << (i ? "," : "") << cols[i][r];
+    out << "\n";
+  }
+  write_atomically(stem_path(file_.path(), "_history.csv"), out.str());
 }
 
 void RunOutput::write_xdmf() const {
@@ -237,14 +288,7 @@ void RunOutput::write_xdmf() const {
     x << "   </Grid>\n";
   }
   x << "  </Grid>\n </Domain>\n</Xdmf>\n";
-  const std::string path = stem_path(file_.path(), ".xdmf");
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    if (!out) throw IoError("cannot write '" + tmp + "'");
-    out << x.str();
-  }
-  std::filesystem::rename(tmp, path);
+  write_atomically(stem_path(file_.path(), ".xdmf"), x.str());
 }
 
 }  // namespace mc

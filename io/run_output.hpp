@@ -1,6 +1,8 @@
 // The output file of a run (layout in README.md, "Output"): scene text, initial specimen, histories, frames,
 // checkpoints, status; an XDMF sidecar so ParaView opens the frames; histories as CSV when the run ends.
-// Everything written is flushed at once (`flush`), so a run killed at any moment leaves a readable file.
+// A new file is written as <path>.partial and renamed to <path> by `publish` once its initial contents are flushed:
+// <path> is complete or absent. Everything written after that is flushed at once (`flush`), so a run killed at any
+// moment leaves a readable file.
 #pragma once
 #include <array>
 #include <string>
@@ -14,11 +16,18 @@ namespace mc {
 
 class RunOutput {
  public:
-  // A new file (an existing one is replaced).
+  // A new file, <path>.partial until `publish` (an existing <path> stays until then). Destroyed unpublished, it
+  // removes the partial file.
   RunOutput(const std::string& path, const std::string& scene_text, const std::string& scene_file,
             const SpecimenData& s);
   // An existing file, to resume it.
   explicit RunOutput(const std::string& path);
+  ~RunOutput();
+  RunOutput(const RunOutput&) = delete;
+  RunOutput& operator=(const RunOutput&) = delete;
+  // Flushes, renames <path>.partial to <path> (replacing any file there) and writes the XDMF sidecar.
+  void publish();
+  static std::string partial_path(const std::string& path) { return path + ".partial"; }
 
   void create_histories(const std::vector<std::string>& names, const std::vector<std::string>& units);
   void append_history(const std::vector<std::vector<double>>& columns);  // one column per series, equal lengths
@@ -47,9 +56,11 @@ class RunOutput {
   H5File& file() { return file_; }
 
  private:
-  void write_xdmf() const;  // <stem>.xdmf, rewritten atomically after each frame
+  void write_initial(const std::string& scene_text, const std::string& scene_file, const SpecimenData& s);
+  void write_xdmf() const;  // <stem>.xdmf, rewritten atomically after each frame once published
   H5File file_;
   std::vector<std::string> names_;
+  bool published_ = true;
 };
 
 }  // namespace mc
