@@ -42,27 +42,51 @@ class Runner {
     RunResult r;
     try {
       r.status = loop(t0);
+      finish(r.status);
     } catch (const InstabilityError& e) {
-      flush_history();
-      out_->set_status("unstable", e.what());
-      out_->flush();
-      out_->write_csv();
-      if (progress_shown_) std::fputc('\n', stderr);
+      end_with("unstable", e.what());
+      throw;
+    } catch (const std::exception& e) {
+      if (out_->file().abandoned())
+        throw IoError(std::string(e.what()) + "; " + opt_.output +
+                      " keeps the run as last flushed: `summary` reads it, `run --resume` continues it from its last "
+                      "checkpoint");
+      end_with("failed", e.what());
       throw;
     }
-    // The final state is always in the histories and the frames, once: the loop may have written it already,
-    // and a resumed run that had already ended writes nothing new.
-    if (last_record_step_ != system_->step_count()) record();
-    if (last_frame_step_ != system_->step_count()) frame();
-    checkpoint();
-    out_->set_status(r.status == "finished" ? "finished" : "stopped", r.status);
-    out_->flush();
-    out_->write_csv();
-    if (progress_shown_) std::fputc('\n', stderr);
     r.steps = system_->step_count();
     r.time = system_->time();
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     return r;
+  }
+
+ private:
+  // The end of a run that went to its end: the final state is checked like every guard_every-th one, and is always
+  // in the histories and the frames, once (the loop may have written it already, and a resumed run that had
+  // already ended writes nothing new).
+  void finish(const std::string& status) {
+    if (system_->step_count() % scene_.guard_every != 0) system_->check_stability();
+    if (last_record_step_ != system_->step_count()) record();
+    if (last_frame_step_ != system_->step_count()) frame();
+    checkpoint();
+    out_->set_status(status == "finished" ? "finished" : "stopped", status);
+    out_->flush();
+    out_->write_csv();
+    if (progress_shown_) std::fputc('\n', stderr);
+  }
+
+  // A run cut short by an exception: what it recorded so far goes to the file, with the status saying why. When
+  // that fails too, the file error is what the command reports (exit 3), naming the first failure as well.
+  void end_with(const std::string& status, const std::string& why) {
+    if (progress_shown_) std::fputc('\n', stderr);
+    try {
+      flush_history();
+      out_->set_status(status, why);
+      out_->flush();
+      out_->write_csv();
+    } catch (const IoError& e) {
+      throw IoError(std::string(e.what()) + " (while recording that the run " + status + ": " + why + ")");
+    }
   }
 
  private:
@@ -106,6 +130,17 @@ class Runner {
     }
     // The system may refuse the scene here (a fixed timestep above the estimate): before the output file exists.
     system_->start();
+    try {
+      start_output(names, units);
+    } catch (const IoError& e) {
+      out_.reset();  // removes the partial file
+      throw IoError(named_as_output(e.what()) + "; " + opt_.output + " was not written");
+    }
+  }
+
+  // Everything up to the step-0 checkpoint goes into the partial file; the file appears under its name only then,
+  // complete, so that a run killed at any moment leaves either no file or one that can be read and resumed.
+  void start_output(const std::vector<std::string>& names, const std::vector<std::string>& units) {
     out_ = std::make_unique<RunOutput>(opt_.output, scene_.text, scene_.file, system_->specimen());
     out_->create_histories(names, units);
     const std::vector<std::string> models = system_->crack_models();
@@ -114,7 +149,16 @@ class Runner {
     if (!scene_.xy_plots.empty()) out_->set_xy_plots(scene_.xy_plots);
     record();
     frame();
-    out_->flush();
+    checkpoint();
+    out_->publish();
+  }
+
+  // An error message about the partial file, naming the output file the user gave instead.
+  std::string named_as_output(std::string message) const {
+    const std::string partial = RunOutput::partial_path(opt_.output);
+    for (auto at = message.find(partial); at != std::string::npos; at = message.find(partial, at + 1))
+      message.replace(at, partial.size(), opt_.output);
+    return message;
   }
 
   void resume(const std::vector<std::string>& names, const std::vector<std::string>& units) {
@@ -168,11 +212,23 @@ class Runner {
     return stop_reason_;
   }
 
+  // One history row. A non-finite value is an instability: it never reaches the file (nor does its row).
   void record() {
-    last_record_step_ = system_->step_count();
     const auto& series = system_->histories();
     std::vector<double> row(series.size());
-    for (std::size_t i = 0; i < series.size(); ++i) row[i] = series[i].sample(), buffer_[i].push_back(row[i]);
+    for (std::size_t i = 0; i < series.size(); ++i) {
+      row[i] = series[i].sample();
+      if (!std::isfinite(row[i])) {
+        std::ostringstream m;
+        m << "unstable at step " << system_->step_count() << " (t = " << system_->time() << " s): history '"
+          << series[i].name << "' is " << row[i]
+          << "; likely cause: a quantity divided by zero or the state blowing up between two stability checks "
+             "(lower output.guard_every to find where)";
+        throw InstabilityError(m.str());
+      }
+    }
+    last_record_step_ = system_->step_count();
+    for (std::size_t i = 0; i < series.size(); ++i) buffer_[i].push_back(row[i]);
     for (auto& st : stops_) check_stop(st, row[st.column]);
   }
 
@@ -212,8 +268,22 @@ class Runner {
     flush_history();
     std::vector<double> x, v, f;
     system_->frame(x, v, f);
+    refuse_non_finite("position", x), refuse_non_finite("velocity", v), refuse_non_finite("force", f);
     out_->append_frame(system_->time(), system_->step_count(), x, v, f);
     out_->flush();
+  }
+
+  // A frame's values are finite, or the run is unstable (before anything of the frame is written).
+  void refuse_non_finite(const char* what, const std::vector<double>& values) const {
+    const auto bad = std::find_if(values.begin(), values.end(), [](double x) { return !std::isfinite(x); });
+    if (bad == values.end()) return;
+    const auto k = bad - values.begin();
+    const auto d = static_cast<std::ptrdiff_t>(system_->dimension());
+    std::ostringstream m;
+    m << "unstable at step " << system_->step_count() << " (t = " << system_->time() << " s): the " << what
+      << " of particle " << k / d << " (row " << k / d << " of /specimen) is " << *bad
+      << "; likely cause: the state blew up between two stability checks (lower output.guard_every to find where)";
+    throw InstabilityError(m.str());
   }
 
   void checkpoint() {
@@ -265,16 +335,11 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) { return Runn
 std::vector<std::pair<std::string, double>> generate_specimen(const Scene& scene, const std::string& output) {
   const auto system = make_system(scene);  // the genesis happens here, before the file exists
   const SpecimenData d = system->specimen();
-  try {
-    RunOutput out(output, scene.text, scene.file, d);
-    const std::vector<double> zero(d.x.size(), 0.0);
-    out.append_frame(0.0, 0, d.x, zero, zero);  // at rest: a scene loads it with kind = "output"
-    out.set_status("finished", "generated specimen");
-    out.flush();
-  } catch (const IoError&) {
-    std::remove(output.c_str());  // never a half-written file
-    throw;
-  }
+  RunOutput out(output, scene.text, scene.file, d);  // complete under its name, or absent
+  const std::vector<double> zero(d.x.size(), 0.0);
+  out.append_frame(0.0, 0, d.x, zero, zero);  // at rest: a scene loads it with kind = "output"
+  out.set_status("finished", "generated specimen");
+  out.publish();
   auto facts = d.facts;
   facts.insert(facts.begin(), {"particles", static_cast<double>(d.radius.size())});
   return facts;
