@@ -20,7 +20,8 @@ COMPONENT = re.compile(r"_(x|y|z|xx|yy|zz|xy|yx|xz|zx|yz|zy)$")
 
 
 class ReportError(Exception):
-    """An expected problem with the input: reported in one line, exit status 2."""
+    """A file that cannot be read or written (missing, not HDF5, not a mesocrack file, damaged; a PNG or folder that
+    cannot be written): reported in one line naming it, exit status 3 like the engine's file errors."""
 
 
 def si_scale(values, unit):

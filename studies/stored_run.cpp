@@ -6,14 +6,57 @@
 
 namespace mc {
 
+namespace {
+
+// The names in /history's `order` attribute (the scene's order), each a series present in the file with as many
+// rows as `time`; IoError naming the file and the entry otherwise. A file lacking them is damaged, or was not
+// written by `mesocrack run`.
+Histories read_histories(const H5File& f) {
+  const std::string& file = f.path();
+  if (!f.exists("/history")) throw IoError(file + ": no /history group: not a complete mesocrack output file");
+  const std::string order = f.attr_string("/history", "order");
+  Histories h;
+  for (std::size_t from = 0; from <= order.size();) {
+    const std::size_t to = std::min(order.find(';', from), order.size());
+    const std::string name = order.substr(from, to - from);
+    if (!name.empty()) h[name] = f.read_doubles("/history/" + name);  // IoError naming it when it is missing
+    from = to + 1;
+  }
+  for (const char* needed : {"time", "step"})
+    if (!h.count(needed))
+      throw IoError(file + ": /history/" + needed +
+                    " is not among the recorded histories ('order' attribute of /history)");
+  const std::size_t rows = h.at("time").size();
+  for (const auto& [name, y] : h)
+    if (y.size() != rows)
+      throw IoError(file + ": /history/" + name + " has " + std::to_string(y.size()) + " rows, /history/time " +
+                    std::to_string(rows) + ": the histories are damaged");
+  return h;
+}
+
+// The stored scene, re-read and validated: one this version refuses makes the file unreadable here (a file error).
+Scene read_stored_scene(const H5File& f) {
+  const std::string& file = f.path();
+  try {
+    return read_scene(TomlDoc::parse_text(f.read_string("/scene"), file + ":/scene"), file);
+  } catch (const InputError& e) {
+    throw IoError(file + ": the scene stored in it (/scene) is not valid: " + e.what());
+  }
+}
+
+}  // namespace
+
 StoredRun read_stored_run(const std::string& output_file) {
   const H5File f(output_file, H5File::Mode::ReadOnly);
   if (!f.has_attr("/", "format") || f.attr_string("/", "format") != "mesocrack-1")
     throw IoError(output_file + ": not a mesocrack output file (no format attribute 'mesocrack-1')");
   StoredRun r;
-  if (f.exists("/history"))
-    for (const auto& n : f.list("/history")) r.histories[n] = f.read_doubles("/history/" + n);
-  r.scene = read_scene(TomlDoc::parse_text(f.read_string("/scene"), output_file + ":/scene"), output_file);
+  r.histories = read_histories(f);
+  r.scene = read_stored_scene(f);
+  for (const auto& s : r.scene.summaries)
+    if (!r.histories.count(s.of))
+      throw IoError(output_file + ": /history/" + s.of + ", which the scene's [[summary]] '" + s.name +
+                    "' reduces, is not among the recorded histories");
   r.status = f.attr_string("/", "status");
   r.status_message = f.attr_string("/", "status_message");
   r.particles = static_cast<std::int64_t>(f.rows("/specimen/radius"));

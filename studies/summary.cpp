@@ -56,21 +56,21 @@ double reduce(SummarySpec::Reduce r, const std::vector<double>& t, const std::ve
 }  // namespace
 
 std::string summary_json(const std::string& output_file) {
-  StoredRun run = read_stored_run(output_file);
+  const StoredRun run = read_stored_run(output_file);  // checks every series read below and their lengths
   const Scene& scene = run.scene;
-  Histories& h = run.histories;
-  const auto& t = h["time"];
+  const Histories& h = run.histories;
+  const auto& t = h.at("time");
   std::ostringstream o;
   o << "{\n  \"file\": " << json_quote(output_file) << ",\n  \"title\": " << json_quote(scene.title)
     << ",\n  \"dimension\": " << scene.dimension << ",\n  \"status\": " << json_quote(run.status)
     << ",\n  \"status_message\": " << json_quote(run.status_message) << ",\n  \"particles\": " << run.particles
-    << ",\n  \"steps\": " << json_number(h["step"].empty() ? 0.0 : h["step"].back())
+    << ",\n  \"steps\": " << json_number(h.at("step").empty() ? 0.0 : h.at("step").back())
     << ",\n  \"time\": " << json_number(t.empty() ? 0.0 : t.back()) << ",\n  \"history_rows\": " << t.size()
     << ",\n  \"density_scaling\": " << json_number(scene.density_scaling);  // 1: off; else the inertia was scaled by it
   o << ",\n  \"results\": {";
   for (std::size_t i = 0; i < scene.summaries.size(); ++i) {
     const SummarySpec& s = scene.summaries[i];
-    o << (i ? "," : "") << "\n    " << json_quote(s.name) << ": " << json_number(reduce(s.reduce, t, h[s.of]));
+    o << (i ? "," : "") << "\n    " << json_quote(s.name) << ": " << json_number(reduce(s.reduce, t, h.at(s.of)));
   }
   o << (scene.summaries.empty() ? "}" : "\n  }");
   for (const auto& a : scene.analyses) o << ",\n  " << json_quote(a->name()) << ": " << a->summary_json(h);
