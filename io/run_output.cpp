@@ -101,6 +101,11 @@ RunOutput::RunOutput(const std::string& path) : file_(existing(path), H5File::Mo
   if (file_.exists("/history")) names_ = file_.list("/history");
 }
 
+std::vector<std::string> RunOutput::files_written(const std::string& path) {
+  const std::string xdmf = stem_path(path, ".xdmf"), csv = stem_path(path, "_history.csv");
+  return {path, partial_path(path), xdmf, xdmf + ".tmp", csv, csv + ".tmp"};
+}
+
 RunOutput::~RunOutput() {
   if (!published_) std::remove(file_.path().c_str());
 }

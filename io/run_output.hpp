@@ -28,6 +28,8 @@ class RunOutput {
   // Flushes, renames <path>.partial to <path> (replacing any file there) and writes the XDMF sidecar.
   void publish();
   static std::string partial_path(const std::string& path) { return path + ".partial"; }
+  // Every file a run with output `path` writes: the file, its partial name, its sidecars and their temporaries.
+  static std::vector<std::string> files_written(const std::string& path);
 
   void create_histories(const std::vector<std::string>& names, const std::vector<std::string>& units);
   void append_history(const std::vector<std::vector<double>>& columns);  // one column per series, equal lengths

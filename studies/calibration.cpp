@@ -134,6 +134,10 @@ class Calibration {
         base_(read_scene(TomlDoc::load(scene_file, overrides), scene_file)) {
     if (!base_.analysis<UniaxialAnalysis>())
       throw InputError(scene_file + ": calibrate needs a [uniaxial] table: it matches the E, ν and UCS it reports");
+    std::vector<std::string> outputs{options_.output, options_.output + ".tmp"};
+    for (int it = 1; it <= options_.max_iterations; ++it)
+      for (const auto& f : run_files(run_file(it))) outputs.push_back(f);
+    refuse_inputs_as_outputs(base_, outputs);
     knobs_.ratio = entry_.ratio;
     elastic_ = elastic_targets();
     // The elastic runs stop at half the target's elastic strain at the peak: far enough for the secant between
@@ -187,9 +191,8 @@ class Calibration {
     if (elastic_)
       scene.stops = {StopSpec{scene.analysis<UniaxialAnalysis>()->axial_strain, StopSpec::Kind::MagnitudeAbove,
                               elastic_stop_, 0.0}};
-    const std::filesystem::path out(options_.output);
     RunOptions ro;
-    ro.output = (out.parent_path() / (out.stem().string() + "_it" + std::to_string(it) + ".h5")).string();
+    ro.output = run_file(it);
     Trial t{{}, run_scene(scene, ro), ro.output};
     t.result = uniaxial_result(ro.output);
     const UniaxialResult& u = t.result;
@@ -226,6 +229,12 @@ class Calibration {
   }
 
   // The input scene with the calibrated values (listed in its header comment), written whole or not at all.
+  // Iteration it's run, beside the calibrated scene.
+  std::string run_file(int it) const {
+    const std::filesystem::path out(options_.output);
+    return (out.parent_path() / (out.stem().string() + "_it" + std::to_string(it) + ".h5")).string();
+  }
+
   void write_scene() const {
     std::vector<std::string> all = overrides_;
     all.insert(all.end(), res_.overrides.begin(), res_.overrides.end());

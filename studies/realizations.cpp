@@ -39,6 +39,14 @@ RealizationSet run_realizations(const std::string& scene_file, const std::vector
   if (!base.analysis<UniaxialAnalysis>())
     throw InputError(scene_file +
                      ": --realizations needs a [uniaxial] table: it compares E, ν and UCS across packings");
+  // Every realization's files and the statistics (which the command writes to <stem>_realizations.json).
+  std::vector<std::string> outputs;
+  for (int k = 0; k < n; ++k)
+    for (const auto& f : run_files(realization_file(output, k))) outputs.push_back(f);
+  const std::filesystem::path p(output);
+  const std::string json = (p.parent_path() / (p.stem().string() + "_realizations.json")).string();
+  outputs.insert(outputs.end(), {json, json + ".tmp"});
+  refuse_inputs_as_outputs(base, outputs);
   RealizationSet set;
   std::fprintf(log, "%4s %12s %10s %8s %10s %10s %9s\n", "k", "seed", "E [GPa]", "nu", "UCS [MPa]", "init/UCS",
                "wall [s]");

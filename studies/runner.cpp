@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <sstream>
 
@@ -330,9 +331,29 @@ class Runner {
 
 }  // namespace
 
-RunResult run_scene(const Scene& scene, const RunOptions& options) { return Runner(scene, options).run(); }
+void refuse_inputs_as_outputs(const Scene& scene, const std::vector<std::string>& outputs) {
+  std::vector<std::pair<std::string, std::string>> inputs{{scene.file, "the scene file"}};
+  const auto kind = scene.specimen.kind;
+  if (kind == SpecimenSpec::Kind::SphereList || kind == SpecimenSpec::Kind::Output)
+    inputs.push_back({scene.specimen.file, "the specimen file the scene loads (specimen.file)"});
+  for (const auto& out : outputs)
+    for (const auto& [in, what] : inputs) {
+      std::error_code ec;  // false, not an error, when either file does not exist
+      if (std::filesystem::equivalent(out, in, ec))
+        throw InputError("output file " + out + " is " + in + ", " + what +
+                         ": the run would overwrite its own input; name another output file");
+    }
+}
+
+std::vector<std::string> run_files(const std::string& output) { return RunOutput::files_written(output); }
+
+RunResult run_scene(const Scene& scene, const RunOptions& options) {
+  refuse_inputs_as_outputs(scene, run_files(options.output));
+  return Runner(scene, options).run();
+}
 
 std::vector<std::pair<std::string, double>> generate_specimen(const Scene& scene, const std::string& output) {
+  refuse_inputs_as_outputs(scene, run_files(output));
   const auto system = make_system(scene);  // the genesis happens here, before the file exists
   const SpecimenData d = system->specimen();
   RunOutput out(output, scene.text, scene.file, d);  // complete under its name, or absent

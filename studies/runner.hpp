@@ -25,6 +25,12 @@ struct RunResult {
 // Throws InputError / IoError before anything runs; InstabilityError after recording it in the file.
 RunResult run_scene(const Scene& scene, const RunOptions& options);
 
+// InputError, naming both, when one of `outputs` is the same file (by file-system identity, whatever the spelling
+// of its path) as an input of the scene: the scene file or the specimen file it loads (also when --set names it).
+void refuse_inputs_as_outputs(const Scene& scene, const std::vector<std::string>& outputs);
+// The files a run writing `output` creates or replaces (the file, its sidecars, temporaries).
+std::vector<std::string> run_files(const std::string& output);
+
 // Builds the scene's specimen (for kind = "packing": the genesis) and writes it to `output` as a finished run
 // with one frame at rest, which scenes load with kind = "output". Returns what the generation measured.
 std::vector<std::pair<std::string, double>> generate_specimen(const Scene& scene, const std::string& output);
