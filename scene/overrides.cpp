@@ -81,13 +81,14 @@ class OverrideApplier {
     if (eq == std::string::npos) fail("expected key=value, e.g. --set contact.model=hertz_mindlin");
     const std::string path = trim(spec_.substr(0, eq));
     const auto steps = parse_key_path(path);
-    if (steps.empty()) fail("'" + shorten(path) + "' is not a key path such as material.density or walls[1].velocity");
+    if (steps.empty())
+      fail("'" + shorten(printable(path)) + "' is not a key path such as material.density or walls[1].velocity");
     const std::string value = trim(spec_.substr(eq + 1));
     check_nesting(steps, value);
     Value* node = &st_.root;
     std::string walked;
     for (std::size_t i = 0; i < steps.size(); ++i) {
-      if (!node->is_table()) fail("'" + shorten(walked) + "' is not a table");
+      if (!node->is_table()) fail("'" + shorten(printable(walked)) + "' is not a table");
       walked = join_key(walked, steps[i].key);
       node = step_into(node->as_table(), steps[i], walked, i + 1 == steps.size());
       if (steps[i].index) walked = index_key(walked, *steps[i].index);
@@ -103,11 +104,13 @@ class OverrideApplier {
       if (!last && table.count(s.key) == 0) table[s.key] = Value(Value::table_type{});
       return &table[s.key];
     }
-    if (table.count(s.key) == 0 || !table.at(s.key).is_array()) fail("'" + shorten(walked) + "' is not an array");
+    if (table.count(s.key) == 0 || !table.at(s.key).is_array())
+      fail("'" + shorten(printable(walked)) + "' is not an array");
     auto& array = table.at(s.key).as_array();
     if (*s.index >= array.size())
-      fail("index " + std::to_string(*s.index) + " is past the end of '" + shorten(walked) + "', which has " +
-           std::to_string(array.size()) + (array.size() == 1 ? " entry" : " entries") + " (indices start at 0)");
+      fail("index " + std::to_string(*s.index) + " is past the end of '" + shorten(printable(walked)) +
+           "', which has " + std::to_string(array.size()) + (array.size() == 1 ? " entry" : " entries") +
+           " (indices start at 0)");
     return &array[*s.index];
   }
 
@@ -120,7 +123,7 @@ class OverrideApplier {
   }
 
   [[noreturn]] void fail(const std::string& what) const {
-    throw InputError(st_.file + ": --set '" + shorten(spec_) + "': " + what);
+    throw InputError(st_.file + ": --set '" + shorten(printable(spec_)) + "': " + what);
   }
 
   TomlState& st_;

@@ -22,6 +22,27 @@ inline std::string trim(const std::string& s) {
   return b == std::string::npos ? "" : s.substr(b, s.find_last_not_of(" \t") - b + 1);
 }
 
+// s with its control characters written as escapes (\n, \t, \r, \x1b): a message quoting user text stays on
+// one line and cannot move the terminal's cursor.
+inline std::string printable(const std::string& s) {
+  static const char* hex = "0123456789abcdef";
+  std::string out;
+  for (const char c : s) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u != 0x7f)
+      out += c;
+    else if (c == '\n')
+      out += "\\n";
+    else if (c == '\t')
+      out += "\\t";
+    else if (c == '\r')
+      out += "\\r";
+    else
+      out += std::string("\\x") + hex[u >> 4] + hex[u & 15];
+  }
+  return out;
+}
+
 // s cut to its first max_chars characters and "..." when longer: a message stays one readable line even when the
 // input it quotes (a value, a key, a line of the file) is megabytes long.
 inline std::string shorten(const std::string& s, std::size_t max_chars = 80) {

@@ -36,15 +36,17 @@ namespace {
 
 using detail::array_hint, detail::expected_finite_number, detail::expected_number, detail::format_number,
     detail::number_hint, detail::quantity;
-using detail::Field, detail::Value, detail::join_key, detail::join_list, detail::shorten, detail::trim;
+using detail::Field, detail::Value, detail::join_key, detail::join_list, detail::printable, detail::shorten,
+    detail::trim;
 
+// A string value as TOML writes it, control characters escaped.
 std::string quoted(const std::string& s) {
   std::string out = "\"";
   for (const char c : s) {
     if (c == '"' || c == '\\') out += '\\';
-    out += c == '\n' ? std::string("\\n") : std::string(1, c);
+    out += c;
   }
-  return out + "\"";
+  return printable(out) + "\"";
 }
 
 // A value as the user would write it, on one line (messages are one line).
@@ -68,6 +70,10 @@ std::string show_full(const Value& v) {
 }
 
 std::string show(const Value& v) { return shorten(show_full(v)); }
+
+// What a check says of a value: it may quote the user's words ("'x' is not a phase name"), so it is made printable
+// and cut to a length that still holds any list of what is allowed.
+std::string explained(const std::string& what) { return shorten(printable(what), 600); }
 
 // The section header the user should write for a key path: "walls[1].faces" -> "walls.faces".
 std::string without_indices(const std::string& path) {
@@ -171,7 +177,7 @@ std::string source_line(const std::string& line) {
   const auto bar = line.find_first_not_of("0123456789", digits);
   if (digits == std::string::npos || bar == digits || bar == std::string::npos || line.compare(bar, 3, " | ") != 0)
     return "";
-  return "line " + line.substr(digits, bar - digits) + " '" + shorten(trim(line.substr(bar + 3))) + "'";
+  return "line " + line.substr(digits, bar - digits) + " '" + shorten(printable(trim(line.substr(bar + 3)))) + "'";
 }
 
 // "    |      ^--- expected a value" -> "expected a value", or "" for another kind of line.
@@ -179,7 +185,7 @@ std::string note_line(const std::string& line) {
   const auto bar = line.find_first_not_of(" \t");
   if (bar == std::string::npos || line.compare(bar, 2, "| ") != 0) return "";
   const auto note = line.find_first_not_of(" \t~^-", bar + 2);
-  return note == std::string::npos ? "" : shorten(line.substr(note));
+  return note == std::string::npos ? "" : shorten(printable(line.substr(note)));
 }
 
 // toml11 reports a syntax error on several lines (message, source lines with ^--- notes, hints); messages here
@@ -189,7 +195,7 @@ std::string fold_toml_message(const std::string& what) {
   std::istringstream in(what);
   std::string line, code;
   std::getline(in, line);
-  std::string out = shorten(without_toml_prefix(line));
+  std::string out = shorten(printable(without_toml_prefix(line)));
   if (!out.empty() && out.back() == '.') out.pop_back();  // a "; note" follows
   while (std::getline(in, line)) {
     if (const std::string c = source_line(line); !c.empty()) {
@@ -197,7 +203,7 @@ std::string fold_toml_message(const std::string& what) {
     } else if (const std::string n = note_line(line); !n.empty()) {
       out += "; " + code + ": " + n;
     } else if (line.rfind("Hint: ", 0) == 0) {
-      out += "; " + shorten(line);
+      out += "; " + shorten(printable(line));
     }
   }
   return out;
@@ -231,7 +237,7 @@ Value parse_scene_text(const std::string& text, const std::string& name) {
 
 std::string Field::label() const {
   const bool from_set = std::find(st.set_paths.begin(), st.set_paths.end(), key) != st.set_paths.end();
-  return "key '" + shorten(key) + "'" + (from_set ? " (from --set)" : "");
+  return "key '" + shorten(printable(key)) + "'" + (from_set ? " (from --set)" : "");
 }
 
 void Field::missing(const std::string& hint) const {
@@ -239,7 +245,7 @@ void Field::missing(const std::string& hint) const {
 }
 
 void Field::bad(const std::string& what) const {
-  throw InputError(st.file + ": " + label() + " = " + show(*value) + ": " + what);
+  throw InputError(st.file + ": " + label() + " = " + show(*value) + ": " + explained(what));
 }
 
 void Field::out_of_range(const Range& r, Unit u, double si) const {
@@ -372,7 +378,7 @@ std::vector<Table> Table::tables(const std::string& key) const {
 
 void Table::fail(const std::string& key, const std::string& what) const {
   const auto f = field(key);
-  if (!f.value) throw InputError(state_->file + ": " + f.label() + ": " + what);
+  if (!f.value) throw InputError(state_->file + ": " + f.label() + ": " + explained(what));
   f.bad(what);
 }
 

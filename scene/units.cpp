@@ -127,7 +127,7 @@ std::string unit_mismatch(const std::string& unit, Unit u) {
   const UnitDef* other = find_unit(unit, std::nullopt);
   const std::string noun(kind_def(u).noun);
   const std::string is = other ? "is " + std::string(kind_def(other->kind).noun) + ", not " + noun : "is not " + noun;
-  return "unit '" + unit + "' " + is + "; use " + allowed_units(u);
+  return "unit '" + shorten(printable(unit)) + "' " + is + "; use " + allowed_units(u);
 }
 
 // The decimal exponent is shifted rather than the value multiplied, so a quantity converts exactly as if
