@@ -8,6 +8,7 @@
 #include "scene/text.hpp"
 #include "scene/toml_document.hpp"
 #include "scene/toml_nesting.hpp"
+#include "scene/toml_writer.hpp"
 
 namespace mc::detail {
 namespace {
@@ -149,8 +150,8 @@ std::string serialise(const TomlState& st, const std::vector<std::string>& overr
   for (const auto& o : overrides) head.push_back("   " + one_line(o));
   root.comments().insert(root.comments().begin(), head.begin(), head.end());
   // 15 digits print what the user typed (0.1, not 0.10000000000000001); 17 digits are always exact.
-  const std::string short_form = toml::format(root, 80, 15);
-  return parse_scene_text(short_form, "re-serialised") == root ? short_form : toml::format(root, 80, 17);
+  const std::string short_form = write_toml(root, 15);
+  return parse_scene_text(short_form, "re-serialised") == root ? short_form : write_toml(root, 17);
 }
 
 }  // namespace mc::detail
