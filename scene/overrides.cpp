@@ -78,6 +78,7 @@ class OverrideApplier {
   OverrideApplier(TomlState& st, std::string spec) : st_(st), spec_(std::move(spec)) {}
 
   void apply() {
+    if (first_non_utf8(spec_)) fail("not UTF-8 text; allowed: UTF-8, as in scene files");
     const auto eq = spec_.find('=');
     if (eq == std::string::npos) fail("expected key=value, e.g. --set contact.model=hertz_mindlin");
     const std::string path = trim(spec_.substr(0, eq));

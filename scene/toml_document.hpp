@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <deque>
 #include <iterator>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -127,9 +128,14 @@ inline std::string join_key(const std::string& path, const std::string& key) {
 // "walls" + 1 -> "walls[1]": the path of an array entry.
 inline std::string index_key(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
 
+// The offset of the first byte that is not part of valid UTF-8, if any.
+std::optional<std::size_t> first_non_utf8(const std::string& text);
+// Throws InputError "name:line: ..." at the first byte that is not UTF-8 text.
+void check_utf8(const std::string& text, const std::string& name);
 // Throws InputError "name:line: ..." when the text nests tables and arrays deeper than kMaxNesting.
 void check_nesting(const std::string& text, const std::string& name);
-// TOML text -> Value; throws toml::exception, whose message spans several lines, or check_nesting's InputError.
+// TOML text -> Value; throws toml::exception, whose message spans several lines, or check_utf8's or check_nesting's
+// InputError.
 Value parse_toml(const std::string& text, const std::string& name);
 // The same, but a syntax error is an InputError of one line: "name:line: TOML syntax error: ...".
 Value parse_scene_text(const std::string& text, const std::string& name);

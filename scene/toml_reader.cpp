@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <sstream>
 
 #include "engine/errors.hpp"
@@ -213,6 +214,53 @@ std::string fold_toml_message(const std::string& what) {
 
 namespace detail {
 
+namespace {
+
+// The length of the valid UTF-8 sequence at s[i], or 0 when it is not one (RFC 3629: no overlong forms, no
+// surrogates, nothing above U+10FFFF).
+std::size_t utf8_length(const std::string& s, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return k < s.size() ? static_cast<unsigned char>(s[k]) : 0u; };
+  const auto cont = [&](std::size_t k, unsigned lo = 0x80, unsigned hi = 0xBF) {
+    return byte(k) >= lo && byte(k) <= hi;
+  };
+  const unsigned b = byte(i);
+  if (b < 0x80) return 1;
+  if (b >= 0xC2 && b <= 0xDF) return cont(i + 1) ? 2 : 0;
+  if (b >= 0xE0 && b <= 0xEF) {
+    const unsigned lo = b == 0xE0 ? 0xA0 : 0x80, hi = b == 0xED ? 0x9F : 0xBF;
+    return cont(i + 1, lo, hi) && cont(i + 2) ? 3 : 0;
+  }
+  if (b >= 0xF0 && b <= 0xF4) {
+    const unsigned lo = b == 0xF0 ? 0x90 : 0x80, hi = b == 0xF4 ? 0x8F : 0xBF;
+    return cont(i + 1, lo, hi) && cont(i + 2) && cont(i + 3) ? 4 : 0;
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::optional<std::size_t> first_non_utf8(const std::string& text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = utf8_length(text, i);
+    if (n == 0) return i;
+    i += n;
+  }
+  return std::nullopt;
+}
+
+// TOML files are UTF-8, and toml11 misreads other bytes (a broken sequence inside a quoted key made it build a
+// string of negative length: std::length_error instead of a syntax error).
+void check_utf8(const std::string& text, const std::string& name) {
+  const auto at = first_non_utf8(text);
+  if (!at) return;
+  static const char* hex = "0123456789abcdef";
+  const auto b = static_cast<unsigned char>(text[*at]);
+  const auto line_start = text.rfind('\n', *at) == std::string::npos ? 0 : text.rfind('\n', *at) + 1;
+  const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(*at), '\n');
+  throw InputError(name + ":" + std::to_string(line) + ": byte 0x" + hex[b >> 4] + hex[b & 15] + " at column " +
+                   std::to_string(*at - line_start + 1) + " is not UTF-8 text; allowed: UTF-8 (TOML files are UTF-8)");
+}
+
 void check_nesting(const std::string& text, const std::string& name) {
   if (const auto line = toml_nesting(text).too_deep)
     throw InputError(name + ":" + std::to_string(*line) + ": tables and arrays nest deeper than " +
@@ -221,6 +269,7 @@ void check_nesting(const std::string& text, const std::string& name) {
 }
 
 Value parse_toml(const std::string& text, const std::string& name) {
+  check_utf8(text, name);
   check_nesting(text, name);
   std::istringstream in(text);
   return toml::parse<toml::preserve_comments, OrderedMap, std::vector>(in, name);

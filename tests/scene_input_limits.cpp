@@ -260,3 +260,15 @@ TEST_CASE("scene input: control characters in keys, units and words are escaped 
   CHECK(contains(set, "--set 'x\\ny=1'"));
   CHECK(no_control(set));
 }
+
+TEST_CASE("scene input: bytes that are not UTF-8 are refused naming the line, the column and the byte") {
+  // Found by the fuzzer: a broken UTF-8 sequence in a quoted key made toml11 throw std::length_error.
+  CHECK(error_of([] { doc("x = 1\n'\xed\xa2' = 2\n"); }) ==
+        kFile + ":2: byte 0xed at column 2 is not UTF-8 text; allowed: UTF-8 (TOML files are UTF-8)");
+  CHECK(contains(error_of([] { doc("x = \"\xc0\xaf\"\n"); }), ":1: byte 0xc0 at column 6"));    // overlong '/'
+  CHECK(contains(error_of([] { doc("# \xf4\x90\x80\x80\n"); }), ":1: byte 0xf4 at column 3"));  // above U+10FFFF
+  CHECK(doc("title = \"\xc2\xb5m, \xe2\x89\xa4, \xf0\x9f\x98\x80\" # \xc2\xa7\n").root().string("title") ==
+        "\xc2\xb5m, \xe2\x89\xa4, \xf0\x9f\x98\x80");
+  CHECK(error_of([] { doc("x = 1\n", {"x=\xff"}); }) ==
+        kFile + ": --set 'x=\xff': not UTF-8 text; allowed: UTF-8, as in scene files");
+}

@@ -344,7 +344,8 @@ class Mutator {
     const std::size_t n = 1 + pick(16);
     const std::size_t at = pick(m.text.size() + 1);
     std::string bytes;
-    for (std::size_t i = 0; i < n; ++i) bytes += static_cast<char>(pick(256));
+    const std::size_t range = chance(0.5) ? 128 : 256;  // ASCII half the time: past the UTF-8 check, into toml11
+    for (std::size_t i = 0; i < n; ++i) bytes += static_cast<char>(pick(range));
     if (chance(0.5))
       m.text.insert(at, bytes);
     else
