@@ -6,9 +6,7 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <functional>
 #include <numeric>
 #include <stdexcept>
@@ -16,80 +14,12 @@
 #include <utility>
 
 #include "engine/errors.hpp"
+#include "io/h5_detail.hpp"
 
 namespace mc {
 namespace {
 
-// Owns one HDF5 id and closes it with the matching H5?close.
-class Id {
- public:
-  Id(hid_t id, herr_t (*close)(hid_t)) : id_(id), close_(close) {}
-  ~Id() {
-    if (id_ >= 0) close_(id_);
-  }
-  Id(Id&& other) noexcept : id_(std::exchange(other.id_, H5I_INVALID_HID)), close_(other.close_) {}
-  Id(const Id&) = delete;
-  Id& operator=(const Id&) = delete;
-  operator hid_t() const { return id_; }
-  bool ok() const { return id_ >= 0; }
-  // Closes now, returning HDF5's status: closing a dataset writes its cached chunks, and that write can fail.
-  herr_t close() { return id_ >= 0 ? close_(std::exchange(id_, H5I_INVALID_HID)) : 0; }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
-
-// HDF5 closes the files still open when the process exits, flushing them. An abandoned file must never be flushed
-// or closed (H5Fclose of a file whose writes fail leaves HDF5's state half torn down, and the exit-time cleanup then
-// crashes), so that cleanup is off: every healthy file is closed by its H5File before the process ends. It must be
-// switched off before the library initialises, hence at static initialisation of this file.
-[[maybe_unused]] const bool kNoCleanupAtExit = H5dont_atexit() >= 0;
-
-void quiet_this_thread() {
-  // The library is built thread-safe, which makes the error-printing switch per thread.
-  thread_local bool quiet = false;
-  if (!quiet) quiet = H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr) >= 0;
-}
-
-// A failed system call as HDF5 reports it ("file write failed: time = …, filename = …, errno = 28, error message =
-// 'No space left on device', buf = …") shortened to what it means: "file write failed: No space left on device".
-std::string shortened(const std::string& desc) {
-  const std::string key = "error message = '";
-  const auto at = desc.find(key), colon = desc.find(':');
-  if (at == std::string::npos || colon == std::string::npos || colon > at) return desc;
-  const auto from = at + key.size(), to = desc.find('\'', from);
-  return desc.substr(0, colon) + ": " + desc.substr(from, to == std::string::npos ? std::string::npos : to - from);
-}
-
-// Set when a call into HDF5 or the system failed (rather than a check of ours, such as a missing dataset or a value
-// type that does not match the table): such a failure may leave HDF5's state ahead of the file, which then must not
-// be flushed.
-thread_local bool g_call_failed = false;
-
-// The innermost message of HDF5's error stack: the most specific cause.
-std::string hdf5_reason() {
-  g_call_failed = true;
-  std::string reason;
-  H5Ewalk2(
-      H5E_DEFAULT, H5E_WALK_UPWARD,
-      [](unsigned n, const H5E_error2_t* e, void* out) -> herr_t {
-        if (n == 0) *static_cast<std::string*>(out) = e->desc;
-        return 0;
-      },
-      &reason);
-  return reason.empty() ? "HDF5 error" : shortened(reason);
-}
-
-// What every helper needs: the file id, and the file path for messages.
-struct File {
-  hid_t id;
-  const std::string& path;
-
-  [[noreturn]] void fail(const std::string& what, const std::string& obj, const std::string& reason) const {
-    throw IoError(path + ": cannot " + what + (obj.empty() ? "" : " '" + obj + "'") + ": " + reason);
-  }
-};
+using namespace h5;
 
 // H5I_DATASET, H5I_GROUP, or H5I_BADID when the object (or one of its parents) is missing.
 H5I_type_t kind(File f, const std::string& obj) {
@@ -291,23 +221,6 @@ T read_attr(File f, const std::string& obj, const std::string& name, hid_t mem_t
   return value;
 }
 
-// HDF5 writes dirty metadata whenever its cache evicts, so a writer killed between two flushes can leave
-// groups half-updated on disk, losing objects flushed long before. With evictions off, metadata reaches the
-// disk only at a flush (or close), and the file keeps the last flushed state. The price: the metadata of the
-// objects touched while the file is open stays in memory.
-Id crash_safe_writing() {
-  Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-  H5AC_cache_config_t config{};
-  config.version = H5AC__CURR_CACHE_CONFIG_VERSION;
-  H5Pget_mdc_config(fapl, &config);
-  config.evictions_enabled = false;
-  config.incr_mode = H5C_incr__off;  // evictions can only be disabled with automatic resizing off
-  config.flash_incr_mode = H5C_flash_incr__off;
-  config.decr_mode = H5C_decr__off;
-  H5Pset_mdc_config(fapl, &config);
-  return fapl;
-}
-
 // The file descriptor HDF5 writes through (the default sec2 driver keeps one).
 int descriptor(File f, const std::string& what) {
   void* handle = nullptr;
@@ -334,67 +247,6 @@ void reserve_allocated_space(File f) {
 
 }  // namespace
 
-H5File::H5File(const std::string& path, Mode mode) : path_(path), writable_(mode != Mode::ReadOnly) {
-  quiet_this_thread();
-  const Id fapl = mode == Mode::ReadOnly ? Id(H5Pcreate(H5P_FILE_ACCESS), H5Pclose) : crash_safe_writing();
-  if (mode == Mode::Create) {
-    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-    if (!dir.empty() && !std::filesystem::is_directory(dir))
-      throw IoError(path + ": cannot create file: no such directory '" + dir.string() + "'");
-    const bool existed = std::filesystem::exists(path);
-    file_ = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-    if (file_ < 0) {
-      const std::string reason = hdf5_reason();
-      if (!existed) std::remove(path.c_str());  // what it created: an empty or torn file
-      throw IoError(path + ": cannot create file: " + reason);
-    }
-    // Until its root group is flushed, a new file is unreadable; a writer killed early leaves an empty file.
-    try {
-      flush();
-    } catch (const IoError& e) {
-      if (!existed) std::remove(path.c_str());  // an empty file would pass for a readable one
-      const std::string why = e.what(), flushing = path + ": cannot flush file: ";
-      throw IoError(path + ": cannot create file: " + (why.starts_with(flushing) ? why.substr(flushing.size()) : why));
-    }
-    return;
-  }
-  if (!std::filesystem::exists(path)) throw IoError(path + ": cannot open file: no such file");
-  file_ = H5Fopen(path.c_str(), mode == Mode::ReadOnly ? H5F_ACC_RDONLY : H5F_ACC_RDWR, fapl);
-  if (file_ < 0) throw IoError(path + ": cannot open file: " + hdf5_reason());
-}
-
-H5File::~H5File() { close(); }
-
-H5File::H5File(H5File&& other) noexcept
-    : path_(std::move(other.path_)),
-      file_(std::exchange(other.file_, H5I_INVALID_HID)),
-      writable_(other.writable_),
-      abandoned_(std::exchange(other.abandoned_, false)) {}
-
-H5File& H5File::operator=(H5File&& other) noexcept {
-  if (this != &other) {
-    close();
-    path_ = std::move(other.path_);
-    file_ = std::exchange(other.file_, H5I_INVALID_HID);
-    writable_ = other.writable_;
-    abandoned_ = std::exchange(other.abandoned_, false);
-  }
-  return *this;
-}
-
-void H5File::close() noexcept {
-  if (file_ >= 0 && !abandoned_) H5Fclose(file_);
-  file_ = H5I_INVALID_HID;
-}
-
-hid_t H5File::fid() const {
-  if (file_ < 0) throw IoError(path_ + ": file is not open (the H5File was moved from)");
-  if (abandoned_)
-    throw IoError(path_ + ": file abandoned after a failed write; it holds what was flushed before the failure");
-  quiet_this_thread();
-  return file_;
-}
-
 template <class F>
 void H5File::change(F&& f) {
   g_call_failed = false;
@@ -406,33 +258,12 @@ void H5File::change(F&& f) {
   }
 }
 
-// HDF5's descriptor is replaced by one that refuses writes: whatever HDF5 still holds in memory can no longer reach
-// the file. The id is never closed (see the header).
-void H5File::abandon() noexcept {
-  if (file_ < 0 || abandoned_) return;
-  abandoned_ = true;
-  void* handle = nullptr;
-  if (H5Fget_vfd_handle(file_, H5P_DEFAULT, &handle) < 0 || !handle) return;
-  const int read_only = open("/dev/null", O_RDONLY | O_CLOEXEC);
-  if (read_only < 0) return;
-  dup2(read_only, *static_cast<int*>(handle));
-  ::close(read_only);
-}
-
 void H5File::flush() {
   change([&] {
     const File f{fid(), path_};
     reserve_allocated_space(f);
     if (H5Fflush(f.id, H5F_SCOPE_GLOBAL) < 0) f.fail("flush file", "", hdf5_reason());
   });
-}
-
-void H5File::rename(const std::string& to) {
-  fid();
-  std::error_code ec;
-  std::filesystem::rename(path_, to, ec);
-  if (ec) throw IoError(path_ + ": cannot rename to " + to + ": " + ec.message());
-  path_ = to;
 }
 
 bool H5File::exists(const std::string& obj) const { return kind({fid(), path_}, obj) != H5I_BADID; }
