@@ -44,9 +44,14 @@ int show_one(const std::vector<SeedScene>& seeds, const Options& o) {
 
 int main(int argc, char** argv) {
   Options o;
+  const char* usage = "usage: fuzz_scenes [--seed S] [--count N] [--show M] [--only K] (whole numbers)\n";
+  if (argc % 2 == 0) return std::fprintf(stderr, "%s", usage), 2;  // an option without its value, or --help
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string opt = argv[i];
-    const unsigned long long v = std::strtoull(argv[i + 1], nullptr, 10);
+    char* end = nullptr;
+    const unsigned long long v = std::strtoull(argv[i + 1], &end, 10);
+    if (*argv[i + 1] == '\0' || *argv[i + 1] == '-' || *end != '\0')
+      return std::fprintf(stderr, "fuzz_scenes: %s '%s' is not a whole number\n%s", opt.c_str(), argv[i + 1], usage), 2;
     if (opt == "--seed")
       o.seed = v;
     else if (opt == "--count")
@@ -56,7 +61,7 @@ int main(int argc, char** argv) {
     else if (opt == "--only")
       o.only = static_cast<long long>(v);
     else
-      return std::fprintf(stderr, "usage: fuzz_scenes [--seed S] [--count N] [--show M] [--only K]\n"), 2;
+      return std::fprintf(stderr, "%s", usage), 2;
   }
   const auto seeds = shipped_scenes(MESOCRACK_SOURCE_DIR);
   if (seeds.empty()) return std::fprintf(stderr, "no scenes under %s\n", MESOCRACK_SOURCE_DIR), 2;
