@@ -195,14 +195,20 @@ TEST_CASE("scene input: reading is linear in the keys of a table and in the entr
     for (const auto& p : d.root().tables("p")) sum += p.number("x", Unit::None, Range::any());
     CHECK(sum > 0);
   };
-  const double wide_ratio =
-      seconds_to_read(wide(40000), read_wide, true) / seconds_to_read(wide(5000), read_wide, true);
-  const double entries_ratio =
-      seconds_to_read(entries(40000), read_entries, false) / seconds_to_read(entries(5000), read_entries, false);
+  // A ratio disturbed by a neighbour test (a cache flushed during one size) does not repeat; a quadratic reader
+  // exceeds the bound every time: up to three tries, the smallest ratio counts.
+  constexpr double kBound = 18;
+  double wide_ratio = 1e9, entries_ratio = 1e9;
+  for (int k = 0; k < 3 && (wide_ratio >= kBound || entries_ratio >= kBound); ++k) {
+    wide_ratio = std::min(wide_ratio,
+                          seconds_to_read(wide(40000), read_wide, true) / seconds_to_read(wide(5000), read_wide, true));
+    entries_ratio = std::min(entries_ratio, seconds_to_read(entries(40000), read_entries, false) /
+                                                seconds_to_read(entries(5000), read_entries, false));
+  }
   CAPTURE(wide_ratio);
   CAPTURE(entries_ratio);
-  CHECK(wide_ratio < 18);
-  CHECK(entries_ratio < 18);
+  CHECK(wide_ratio < kBound);
+  CHECK(entries_ratio < kBound);
 }
 
 TEST_CASE("scene input: a deeply nested document with --set is stored as text in linear time and reads back") {
