@@ -95,6 +95,10 @@ std::string existing(const std::string& path) {
 }
 }  // namespace
 
+std::string RunOutput::stored_scene(const std::string& path) {
+  return H5File(existing(path), H5File::Mode::ReadOnly).read_string("/scene");
+}
+
 RunOutput::RunOutput(const std::string& path) : file_(existing(path), H5File::Mode::ReadWrite) {
   if (!file_.has_attr("/", "format") || file_.attr_string("/", "format") != "mesocrack-1")
     throw IoError(path + ": not a mesocrack output file (no format attribute 'mesocrack-1')");

@@ -22,6 +22,8 @@ class RunOutput {
             const SpecimenData& s);
   // An existing file, to resume it.
   explicit RunOutput(const std::string& path);
+  // The scene text stored in an existing output file, read without opening it for writing.
+  static std::string stored_scene(const std::string& path);
   ~RunOutput();
   RunOutput(const RunOutput&) = delete;
   RunOutput& operator=(const RunOutput&) = delete;

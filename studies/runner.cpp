@@ -198,7 +198,7 @@ class Runner {
   // The scene stored in the output against the one resuming it: anything but the run's end, its stop
   // conditions and the output cadences would continue the checkpoint under other rules.
   SceneChange scene_change() const {
-    const std::string stored = H5File(opt_.output, H5File::Mode::ReadOnly).read_string("/scene");
+    const std::string stored = RunOutput::stored_scene(opt_.output);
     SceneChange c = compare_for_resume(stored, scene_.text);
     if (!c.refused.empty())
       throw InputError(scene_.file + ": cannot resume " + opt_.output + " with this scene: " + c.refused +
