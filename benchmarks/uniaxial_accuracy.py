@@ -86,7 +86,7 @@ def geometry(dim, lr, rate, size):
     return geometry_2d(size, 2 * size, r_min, rate) if dim == 2 else geometry_3d(size, r_min, rate)
 
 
-def plan(full, dims, only):
+def plan(full, dims, only, seeds):
     """(study, dim, label, x, seed, overrides) for every run."""
     runs = []
     for dim in dims:
@@ -95,12 +95,10 @@ def plan(full, dims, only):
             lrs = [20, 40, 60, 80, 120, 160, 240] if dim == 2 else [10, 20, 31, 39, 51, 62, 77]
             rates = [0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100]
             lr_rate = 120 if dim == 2 else 38   # also the timestep and density sweeps
-            seeds = 5
         else:
             lrs = [20, 30, 40, 60, 80, 120] if dim == 2 else [10, 15, 20, 25]
             rates = [0.01, 0.03, 0.1, 0.3, 1, 3, 10, 30, 100]
             lr_rate = 40 if dim == 2 else 15
-            seeds = 5
         if "rate" in only:
             for r in rates:
                 runs.append(("rate", dim, f"{r:g} /s", r, 1, geometry(dim, lr_rate, r, size)))
@@ -137,7 +135,8 @@ def run_one(exe, out, key, dim, overrides):
     u = s["uniaxial"] or {}
     for f in h5.parent.glob(h5.stem + "*"):        # keep the disk small: the numbers are in results.csv
         f.unlink()
-    return {"E": u.get("E"), "nu": u.get("nu"), "ucs": u.get("ucs"), "init_ratio": u.get("crack_initiation_ratio"),
+    return {"E": u.get("E"), "E_platens": u.get("E_platens"), "E_inside": u.get("E_inside"), "nu": u.get("nu"),
+            "ucs": u.get("ucs"), "init_ratio": u.get("crack_initiation_ratio"),
             "particles": s["particles"], "steps": s["steps"],
             "cpu_s": usage.ru_utime + usage.ru_stime, "wall_s": wall}
 
@@ -156,6 +155,32 @@ def ceb_dif(rate, f_cs_mpa):
     alpha = 1 / (5 + 9 * f_cs_mpa / 10)
     gamma = 10 ** (6.156 * alpha - 2)
     return (rate / 30e-6) ** (1.026 * alpha) if rate <= 30 else gamma * (rate / 30e-6) ** (1 / 3)
+
+
+def strain_source_table(by):
+    """E from the platens' gap against E from the inside of the specimen (Tang §5.4.1's L/R dependence): the
+    axial-strain definition whose E depends least on L/R measures the material, not the platen contacts."""
+    lines = []
+    for dim in (2, 3):
+        rs = [r for r in by.get(("resolution", dim), []) if r.get("E_inside") is not None]
+        if not rs:
+            continue
+        groups = {}
+        for r in rs:
+            groups.setdefault(r["x"], []).append(r)
+        xs = sorted(groups)
+        lines.append(f"\n### axial strain from the platens or from inside, {dim}D (E, secant 25-50 %)\n")
+        lines.append("| L/R | runs | E platens [GPa] | CV | E inside [GPa] | CV | inside / platens |")
+        lines.append("|---|---|---|---|---|---|---|")
+        for x in xs:
+            (ep, cvp), (ei, cvi) = (mean_cv([r[q] for r in groups[x]]) for q in ("E_platens", "E_inside"))
+            lines.append(f"| {x:g} | {len(groups[x])} | {ep * 1e-9:.2f} | {cvp:.1%} | {ei * 1e-9:.2f} | {cvi:.1%} | "
+                         f"{ei / ep:.3f} |")
+        lo, hi = xs[0], xs[-1]
+        for q in ("E_platens", "E_inside"):
+            a, b = (mean_cv([r[q] for r in groups[x]])[0] for x in (lo, hi))
+            lines.append(f"\n{q}: {b / a - 1:+.1%} from L/R {lo:g} to {hi:g}")
+    return lines
 
 
 def analyse(rows, out):
@@ -189,6 +214,7 @@ def analyse(rows, out):
                          f"{cvn:.1%} | {u * 1e-6:.2f} | {cvu:.1%} | {err['E']:.1%} | {err['nu']:.1%} | {err['ucs']:.1%} | {cpu:.1f} |")
             if x != ref_x:
                 points.append((study, dim, g[0]["label"], cpu, err["E"], err["ucs"]))
+    lines += strain_source_table(by)
     md = out / "accuracy.md"
     md.write_text("# What accuracy costs in time (uniaxial compression)\n" + "\n".join(lines) + "\n")
     print("\n".join(lines))
@@ -240,12 +266,18 @@ def analyse(rows, out):
             groups.setdefault(r["x"], []).append(r)
         xs = sorted(groups)
         fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
-        for q, scale, unit in (("E", 1e-9, "E [GPa]"), ("ucs", 1e-6, "UCS [MPa]")):
-            ax = axes[0] if q == "E" else axes[1]
-            ms = [mean_cv([r[q] for r in groups[x]]) for x in xs]
-            ax.errorbar(xs, [m * scale for m, _ in ms], yerr=[m * cv * scale for m, cv in ms], fmt="o-", capsize=3)
+        for q, scale, unit, ax in (("E_platens", 1e-9, "E [GPa]", axes[0]), ("E_inside", 1e-9, "E [GPa]", axes[0]),
+                                   ("ucs", 1e-6, "UCS [MPa]", axes[1])):
+            vals = {x: [r[q] for r in groups[x] if r.get(q) is not None] for x in xs}
+            xq = [x for x in xs if vals[x]]
+            if not xq:
+                continue
+            ms = [mean_cv(vals[x]) for x in xq]
+            ax.errorbar(xq, [m * scale for m, _ in ms], yerr=[m * cv * scale for m, cv in ms], fmt="o-", capsize=3,
+                        label={"E_platens": "axial strain from the platens", "E_inside": "axial strain inside"}.get(q))
             ax.set_xlabel("L/R")
             ax.set_ylabel(unit + " (mean ± std over seeds)")
+        axes[0].legend(fontsize=8)
         fig.suptitle(f"Resolution, {dim}D (Tang Figs. 5.9-5.12)")
         fig.tight_layout()
         fig.savefig(out / f"resolution_{dim}d.png", dpi=110)
@@ -259,12 +291,13 @@ def main():
     ap.add_argument("--full", action="store_true", help="Tang's full ranges (hours)")
     ap.add_argument("--dims", default="2,3")
     ap.add_argument("--only", default="rate,resolution,timestep,density")
+    ap.add_argument("--seeds", type=int, default=5, help="realizations per point of the resolution sweep")
     ap.add_argument("--analyse", action="store_true", help="only redraw tables and plots from results.csv")
     a = ap.parse_args()
     out = Path(a.out)
     (out / "runs").mkdir(parents=True, exist_ok=True)
     csv_path = out / "results.csv"
-    fields = ["study", "dim", "label", "x", "seed", "E", "nu", "ucs", "init_ratio", "particles", "steps", "cpu_s", "wall_s"]
+    fields = ["study", "dim", "label", "x", "seed", "E", "E_platens", "E_inside", "nu", "ucs", "init_ratio", "particles", "steps", "cpu_s", "wall_s"]
     done = {}
     if csv_path.exists():
         with open(csv_path) as f:
@@ -280,7 +313,7 @@ def main():
     if not a.analyse:
         only = set(a.only.split(","))
         dims = [int(d) for d in a.dims.split(",")]
-        todo = [p for p in plan(a.full, dims, only) if (p[0], p[1], p[2], p[4]) not in done]
+        todo = [p for p in plan(a.full, dims, only, a.seeds) if (p[0], p[1], p[2], p[4]) not in done]
         # the longest first, so the pool ends together
         print(f"{len(todo)} runs to do ({len(done)} already in {csv_path})", flush=True)
         new = not csv_path.exists()

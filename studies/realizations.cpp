@@ -77,6 +77,8 @@ std::string realizations_json(const RealizationSet& set) {
   };
   const Column cols[] = {
       {"E", [](const UniaxialResult& u) { return u.modulus; }},
+      {"E_platens", [](const UniaxialResult& u) { return u.modulus_platens; }},
+      {"E_inside", [](const UniaxialResult& u) { return u.modulus_inside; }},
       {"nu", [](const UniaxialResult& u) { return u.poisson; }},
       {"ucs", [](const UniaxialResult& u) { return u.ucs; }},
       {"strain_at_peak", [](const UniaxialResult& u) { return u.strain_at_peak; }},
