@@ -81,13 +81,15 @@ int realizations(const std::string& scene_file, const std::string& output, const
 }
 
 int calibrate(const std::string& scene_file, const std::string& output, const std::vector<std::string>& sets,
-              int threads, const std::string& targets, double tolerance, int max_iterations) {
+              int threads, const std::string& targets, double tolerance, int max_iterations,
+              const std::string& compression) {
   if (threads > 0) omp_set_num_threads(threads);
   const mc::CalibrationTarget target = mc::parse_targets(targets);
   mc::CalibrationOptions opt;
   opt.output = output;
   opt.tolerance = tolerance;
   opt.max_iterations = max_iterations;
+  opt.compression_scene = compression;
   const mc::CalibrationResult r = mc::calibrate(scene_file, sets, target, opt, stderr);
   std::fprintf(stderr, "%s after %d iterations; calibrated scene -> %s\n", r.converged ? "converged" : "NOT converged",
                r.iterations, output.c_str());
@@ -197,8 +199,8 @@ int main(int argc, char** argv) {
   std::string scene, output, resume, target;
   std::vector<std::string> sets;
   int threads = 0, n_realizations = 1, max_iterations = 12;
-  double tolerance = 0.05;
-  std::string targets;
+  double tolerance = mc::kNaN;  // the procedure's default
+  std::string targets, compression;
   auto* run_cmd = app.add_subcommand("run", "run a scene");
   run_cmd->add_option("scene", scene, "scene file (TOML)")->required();
   run_cmd->add_option("-o,--output", output, "output file (HDF5)");
@@ -210,13 +212,20 @@ int main(int argc, char** argv) {
                    "run N packings (seeds seed..seed+N-1) into OUT_rK.h5 and report mean, std and CV of E, nu, UCS")
       ->check(whole_number(1, kAnyCount, "the number of packings"))
       ->excludes("--resume");
-  auto* calibrate_cmd = app.add_subcommand("calibrate", "find micro-parameters matching target E, nu, UCS (Tang 6.3)");
-  calibrate_cmd->add_option("scene", scene, "scene file (TOML) with one parallel_bond contact entry and [uniaxial]")
+  auto* calibrate_cmd = app.add_subcommand(
+      "calibrate", "find micro-parameters matching target E, nu, UCS (Tang 6.3) or E, nu, ft, fc (CPM, Smilauer)");
+  calibrate_cmd
+      ->add_option("scene", scene,
+                   "scene file (TOML) with [uniaxial] and one parallel_bond (compression) or cpm (tension) contact entry")
       ->required();
-  calibrate_cmd->add_option("--target", targets, "targets, e.g. E=30GPa,nu=0.2,ucs=40MPa")->required();
+  calibrate_cmd
+      ->add_option("--target", targets, "targets, e.g. E=30GPa,nu=0.2,ucs=40MPa or E=30GPa,nu=0.2,ft=3MPa,fc=40MPa")
+      ->required();
+  calibrate_cmd->add_option("--compression", compression,
+                            "cpm with an fc target: the compression test scene (same specimen and material entry)");
   calibrate_cmd->add_option("-o,--output", output, "the calibrated scene (TOML); its runs are written beside it")
       ->required();
-  calibrate_cmd->add_option("--tolerance", tolerance, "relative tolerance on each target (default 0.05)")
+  calibrate_cmd->add_option("--tolerance", tolerance, "relative tolerance on each target (default 0.05; cpm 0.03)")
       ->check(finite_number(1e-4, 0.5, "the relative tolerance on each target"));
   calibrate_cmd->add_option("--max-iterations", max_iterations, "give up after this many runs (default 12)")
       ->check(whole_number(1, 100, "the most calibration runs"));
@@ -240,7 +249,7 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd && n_realizations > 1) return realizations(scene, output, sets, threads, n_realizations);
     if (*run_cmd) return run(scene, output, sets, threads, resume);
-    if (*calibrate_cmd) return calibrate(scene, output, sets, threads, targets, tolerance, max_iterations);
+    if (*calibrate_cmd) return calibrate(scene, output, sets, threads, targets, tolerance, max_iterations, compression);
     if (*generate_cmd) return generate(scene, output, sets, threads);
     if (*summary_cmd) {
       std::cout << mc::summary_json(target);

@@ -16,9 +16,10 @@ inline double poisson_from_kt_kn(double kt_kn) { return (1.0 - kt_kn) / (4.0 + k
 inline double kt_kn_from_poisson(double nu) { return (1.0 - 4.0 * nu) / (1.0 + nu); }
 
 // Šmilauer (25): E/k_N = Σ A_i L_i/(3V) · (2 + 3 k_T/k_N)/(4 + k_T/k_N), A_i, L_i the contacts' cross-sections
-// and lengths in the volume V.
+// and lengths in the volume V. The second factor alone tells how a new k_T/k_N moves E at fixed k_N.
+inline double modulus_shape(double kt_kn) { return (2.0 + 3.0 * kt_kn) / (4.0 + kt_kn); }
 inline double modulus_ratio(double sum_area_length, double volume, double kt_kn) {
-  return sum_area_length / (3.0 * volume) * (2.0 + 3.0 * kt_kn) / (4.0 + kt_kn);
+  return sum_area_length / (3.0 * volume) * modulus_shape(kt_kn);
 }
 
 // Radial scaling: E is proportional to k_N at fixed k_T/k_N and R_I, so a run that gave E with k_N asks for

@@ -9,9 +9,12 @@
 #include "engine/errors.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
+#include "studies/calibration_run.hpp"
 #include "studies/runner.hpp"
 
 namespace mc {
+
+using namespace calibration;
 
 CalibrationTarget parse_targets(const std::string& text) {
   // Each "name=value" becomes a TOML line, so units and ranges are checked by the scene reader's own rules.
@@ -37,14 +40,17 @@ CalibrationTarget parse_targets(const std::string& text) {
     c.modulus = t.number("E", Unit::Pressure, Range::positive(), kNaN);
     c.poisson = t.number("nu", Unit::None, Range{0.0, 0.5, true, true}, kNaN);
     c.ucs = t.number("ucs", Unit::Pressure, Range::positive(), kNaN);
+    c.tensile = t.number("ft", Unit::Pressure, Range::positive(), kNaN);
+    c.compressive = t.number("fc", Unit::Pressure, Range::positive(), kNaN);
     t.finish();
-    if (std::isnan(c.modulus) && std::isnan(c.poisson) && std::isnan(c.ucs))
-      throw InputError("--target '" + text + "': name at least one of E, nu, ucs");
-    if (std::isnan(c.modulus) != std::isnan(c.poisson))
-      throw InputError("--target '" + text + "': give E and nu together (both depend on E_c and k_n/k_s, Tang §6.3)");
+    if (std::isnan(c.modulus) && std::isnan(c.poisson) && std::isnan(c.ucs) && std::isnan(c.tensile) &&
+        std::isnan(c.compressive))
+      throw InputError("--target '" + text + "': name at least one of E, nu, ucs, ft, fc");
     return c;
   } catch (const InputError& e) {
-    throw InputError(std::string(e.what()) + " (allowed targets: E [Pa], nu in (0, 0.5), ucs [Pa])");
+    throw InputError(std::string(e.what()) +
+                     " (allowed targets: E [Pa], nu in (0, 0.5), and ucs [Pa] for parallel_bond scenes or ft, fc "
+                     "[Pa] for cpm scenes)");
   }
 }
 
@@ -64,38 +70,22 @@ struct Entry {
   std::vector<std::pair<std::string, double>> strengths;  // key → value [Pa]
 };
 
-Entry find_entry(const std::string& scene_file, const std::vector<std::string>& overrides) {
+Entry find_entry(const std::string& scene_file, const std::vector<std::string>& overrides, int index) {
   const TomlDoc doc = TomlDoc::load(scene_file, overrides);
-  const std::vector<Table> contacts = doc.root().tables("contacts");
+  const Table t = doc.root().tables("contacts")[static_cast<std::size_t>(index)];
   Entry e;
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
-    const Table& t = contacts[i];
-    if (t.string("model", "") != "parallel_bond") continue;
-    if (e.index >= 0)
-      t.fail("model",
-             "calibrate works on one parallel-bonded phase pair; this scene has several [[contacts]] with "
-             "model = \"parallel_bond\" (calibrate each material in its own scene)");
-    e.index = static_cast<int>(i);
-    e.modulus = t.number("modulus", Unit::Pressure, Range::positive());
-    e.bond_modulus = t.number("bond_modulus", Unit::Pressure, Range::positive());
-    e.ratio = t.number("kn_ks_ratio", Unit::None, Range::positive(), 1.0);
-    e.bond_ratio = t.number("bond_kn_ks_ratio", Unit::None, Range::positive(), 1.0);
-    for (const char* k :
-         {"bond_tensile_strength", "bond_tensile_strength_std", "bond_shear_strength", "bond_shear_strength_std"})
-      if (t.has(k)) e.strengths.push_back({k, t.number(k, Unit::Pressure, Range::non_negative())});
-  }
-  if (e.index < 0)
-    throw InputError(scene_file +
-                     ": calibrate needs a [[contacts]] entry with model = \"parallel_bond\" (Tang §6.3 "
-                     "calibrates a parallel-bonded material)");
+  e.index = index;
+  e.modulus = t.number("modulus", Unit::Pressure, Range::positive());
+  e.bond_modulus = t.number("bond_modulus", Unit::Pressure, Range::positive());
+  e.ratio = t.number("kn_ks_ratio", Unit::None, Range::positive(), 1.0);
+  e.bond_ratio = t.number("bond_kn_ks_ratio", Unit::None, Range::positive(), 1.0);
+  for (const char* k :
+       {"bond_tensile_strength", "bond_tensile_strength_std", "bond_shear_strength", "bond_shear_strength_std"})
+    if (t.has(k)) e.strengths.push_back({k, t.number(k, Unit::Pressure, Range::non_negative())});
   return e;
 }
 
-std::string set(const Entry& e, const std::string& key, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.8g", v);
-  return "contacts[" + std::to_string(e.index) + "]." + key + "=" + b;
-}
+std::string set(const Entry& e, const std::string& key, double v) { return set_key(e.index, key, v); }
 
 std::vector<std::string> knob_overrides(const Entry& e, const Knobs& k, double strength) {
   std::vector<std::string> o{set(e, "modulus", e.modulus * k.modulus),
@@ -111,8 +101,6 @@ double modulus_shape(int dimension, double ratio) {
   return dimension == 2 ? 1.57 - 0.42 * std::log(ratio) : 1.36 - 0.39 * std::log(ratio);
 }
 
-double rel(double value, double target) { return std::abs(value / target - 1.0); }
-
 // One run of the calibration: what it used, what it gave, how long it took.
 struct Trial {
   UniaxialResult result;
@@ -123,14 +111,14 @@ struct Trial {
 // Tang §6.3 as a loop of runs: elastic runs (bonds made strong) until E and ν match, then full runs until UCS does.
 class Calibration {
  public:
-  Calibration(const std::string& scene_file, const std::vector<std::string>& overrides, const CalibrationTarget& target,
-              const CalibrationOptions& options, std::FILE* log)
+  Calibration(const std::string& scene_file, const std::vector<std::string>& overrides, int entry,
+              const CalibrationTarget& target, const CalibrationOptions& options, std::FILE* log)
       : scene_file_(scene_file),
         overrides_(overrides),
         target_(target),
         options_(options),
         log_(log),
-        entry_(find_entry(scene_file, overrides)),
+        entry_(find_entry(scene_file, overrides, entry)),
         base_(read_scene(TomlDoc::load(scene_file, overrides), scene_file)) {
     if (!base_.analysis<UniaxialAnalysis>())
       throw InputError(scene_file + ": calibrate needs a [uniaxial] table: it matches the E, ν and UCS it reports");
@@ -172,7 +160,7 @@ class Calibration {
         knobs_.strength *= target_.ucs / u.ucs;  // UCS in proportion to the bond strengths at fixed strength ratio
     }
     res_.overrides = knob_overrides(entry_, ran, ran.strength);
-    write_scene();
+    write_scene(scene_file_, with_user_overrides(res_.overrides), options_.output);
     return res_;
   }
 
@@ -228,24 +216,12 @@ class Calibration {
     knobs_.ratio = ratio;
   }
 
-  // The input scene with the calibrated values (listed in its header comment), written whole or not at all.
-  // Iteration it's run, beside the calibrated scene.
-  std::string run_file(int it) const {
-    const std::filesystem::path out(options_.output);
-    return (out.parent_path() / (out.stem().string() + "_it" + std::to_string(it) + ".h5")).string();
-  }
+  std::string run_file(int it) const { return calibration::run_file(options_.output, it); }
 
-  void write_scene() const {
+  std::vector<std::string> with_user_overrides(const std::vector<std::string>& knobs) const {
     std::vector<std::string> all = overrides_;
-    all.insert(all.end(), res_.overrides.begin(), res_.overrides.end());
-    const std::string text = TomlDoc::load(scene_file_, all).text();
-    const std::string tmp = options_.output + ".tmp";
-    {
-      std::ofstream f(tmp);
-      f << text;
-      if (!f) throw IoError(tmp + ": cannot write the calibrated scene");
-    }
-    std::filesystem::rename(tmp, options_.output);
+    all.insert(all.end(), knobs.begin(), knobs.end());
+    return all;
   }
 
   const std::string scene_file_;
@@ -265,10 +241,77 @@ class Calibration {
 
 }  // namespace
 
+// Which procedure: the scene's calibrated [[contacts]] entry decides, and the targets must be ones it can reach.
 CalibrationResult calibrate(const std::string& scene_file, const std::vector<std::string>& overrides,
                             const CalibrationTarget& target, const CalibrationOptions& options, std::FILE* log) {
   if (options.output.empty()) throw InputError("calibrate: give the calibrated scene's file with -o CALIBRATED.toml");
-  return Calibration(scene_file, overrides, target, options, log).run();
+  const TomlDoc doc = TomlDoc::load(scene_file, overrides);
+  const int bonded = contacts_entry(doc, "parallel_bond"), cpm = contacts_entry(doc, "cpm");
+  if ((bonded >= 0) == (cpm >= 0))
+    throw InputError(scene_file +
+                     ": calibrate needs one [[contacts]] entry with model = \"parallel_bond\" (Tang §6.3) or "
+                     "model = \"cpm\" (Šmilauer, \"Parameter calibration\")" +
+                     (bonded >= 0 ? "; this scene has both: calibrate each material in its own scene" : ""));
+  auto refuse = [&](double value, const char* name, const char* model, const char* allowed) {
+    if (!std::isnan(value))
+      throw InputError("--target " + std::string(name) + ": not a target for a " + model +
+                       " scene (its targets: " + allowed + ")");
+  };
+  CalibrationOptions o = options;
+  if (cpm >= 0) {
+    refuse(target.ucs, "ucs", "cpm", "E, nu, ft, fc; its compressive strength is fc");
+    if (std::isnan(o.tolerance)) o.tolerance = 0.03;
+    return calibrate_cpm(scene_file, overrides, cpm, target, o, log);
+  }
+  refuse(target.tensile, "ft", "parallel_bond", "E with nu, ucs");
+  refuse(target.compressive, "fc", "parallel_bond", "E with nu, ucs; its compressive strength is ucs");
+  if (std::isnan(target.modulus) != std::isnan(target.poisson))
+    throw InputError("--target: give E and nu together for a parallel_bond scene (both depend on E_c and k_n/k_s, "
+                     "Tang §6.3)");
+  if (!o.compression_scene.empty())
+    throw InputError("--compression: only for cpm scenes with an fc target; a parallel_bond scene is calibrated in "
+                     "its own compression test");
+  if (std::isnan(o.tolerance)) o.tolerance = 0.05;
+  return Calibration(scene_file, overrides, bonded, target, o, log).run();
 }
+
+namespace calibration {
+
+int contacts_entry(const TomlDoc& doc, const std::string& model) {
+  const std::vector<Table> contacts = doc.root().tables("contacts");
+  int found = -1;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    if (contacts[i].string("model", "") != model) continue;
+    if (found >= 0)
+      contacts[i].fail("model", "calibrate works on one " + model + " phase pair; this scene has several [[contacts]] "
+                                "with model = \"" + model + "\" (calibrate each material in its own scene)");
+    found = static_cast<int>(i);
+  }
+  return found;
+}
+
+std::string set_key(int index, const std::string& key, double value) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.8g", value);
+  return "contacts[" + std::to_string(index) + "]." + key + "=" + b;
+}
+
+std::string run_file(const std::string& output, int iteration, const std::string& suffix) {
+  const std::filesystem::path out(output);
+  return (out.parent_path() / (out.stem().string() + "_it" + std::to_string(iteration) + suffix + ".h5")).string();
+}
+
+void write_scene(const std::string& scene_file, const std::vector<std::string>& overrides, const std::string& output) {
+  const std::string text = TomlDoc::load(scene_file, overrides).text();
+  const std::string tmp = output + ".tmp";
+  {
+    std::ofstream f(tmp);
+    f << text;
+    if (!f) throw IoError(tmp + ": cannot write the calibrated scene");
+  }
+  std::filesystem::rename(tmp, output);
+}
+
+}  // namespace calibration
 
 }  // namespace mc

@@ -1,7 +1,9 @@
-// `mesocrack calibrate`: find the micro-parameters of a parallel-bonded specimen that give target macro-properties
-// in its uniaxial compression test, by Tang's recipe (§6.3): with the bonds made strong, ν is matched through the
-// stiffness ratio k_n/k_s and E through the contact modulus E_c (grain and bond changed together); then UCS
-// through the bond strengths, all scaled by one factor so that their ratio and spread stay as given.
+// `mesocrack calibrate`: find the micro-parameters of a specimen that give target macro-properties in its
+// uniaxial test. A parallel-bonded specimen follows Tang's recipe (§6.3) in compression: with the bonds made
+// strong, ν is matched through the stiffness ratio k_n/k_s and E through the contact modulus E_c (grain and bond
+// changed together); then UCS through the bond strengths, all scaled by one factor so that their ratio and spread
+// stay as given. A CPM specimen follows Šmilauer's "Parameter calibration" in tension (studies/calibration_cpm.cpp):
+// k_T/k_N from ν, k_N from E, ε_0 from f_t, and tan φ from f_c/f_t in a compression test.
 #pragma once
 #include <cstdio>
 #include <string>
@@ -12,15 +14,21 @@
 namespace mc {
 
 struct CalibrationTarget {
-  double modulus = kNaN, poisson = kNaN, ucs = kNaN;  // NaN: not a target
+  double modulus = kNaN, poisson = kNaN;  // NaN: not a target
+  double ucs = kNaN;                      // parallel bonds: the compressive strength of the compression test
+  double tensile = kNaN, compressive = kNaN;  // CPM: f_t of the tension test, f_c of the compression test
 };
-// "E=30 GPa,nu=0.2,ucs=40 MPa" (any subset, any order; numbers without units are SI). Throws InputError.
+// "E=30 GPa,nu=0.2,ucs=40 MPa" or "E=30GPa,nu=0.2,ft=3MPa,fc=40MPa" (any subset, any order; numbers without
+// units are SI). Which targets a scene can use depends on its model: calibrate() refuses the others. Throws
+// InputError.
 CalibrationTarget parse_targets(const std::string& text);
 
 struct CalibrationOptions {
-  double tolerance = 0.05;  // relative, on each target
+  double tolerance = kNaN;  // relative, on each target; NaN: the procedure's default (Tang 5 %, CPM 3 %)
   int max_iterations = 12;
   std::string output;  // the calibrated scene (TOML); its runs go beside it as <stem>_itK.h5
+  // CPM with an f_c target: the compression test (the specimen and supports of the scene, loaded the other way).
+  std::string compression_scene;
 };
 
 struct CalibrationResult {

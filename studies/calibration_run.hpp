@@ -1,0 +1,35 @@
+// What the calibration procedures (Tang §6.3 for parallel bonds, Šmilauer's for the CPM) share: the scene's
+// one calibrated [[contacts]] entry, its values as --set strings, the iteration runs' files beside the
+// calibrated scene, and writing that scene. Internal to studies/calibration*.cpp.
+#pragma once
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "scene/toml_reader.hpp"
+#include "studies/calibration.hpp"
+
+namespace mc::calibration {
+
+// Index of the one [[contacts]] entry with `model` in the scene; InputError when there are several.
+// −1 when there is none.
+int contacts_entry(const TomlDoc& doc, const std::string& model);
+
+// "contacts[index].key=value" with value to 8 significant digits.
+std::string set_key(int index, const std::string& key, double value);
+
+inline double rel(double value, double target) { return std::abs(value / target - 1.0); }
+
+// Where the runs of a calibration writing the scene `output` go: <stem>_itK<suffix>.h5 beside it.
+std::string run_file(const std::string& output, int iteration, const std::string& suffix = "");
+
+// The scene `scene_file` with `overrides` applied (listed in its header comment), written to `output` whole or
+// not at all.
+void write_scene(const std::string& scene_file, const std::vector<std::string>& overrides, const std::string& output);
+
+// Šmilauer's procedure on the scene's cpm entry `entry` (studies/calibration_cpm.cpp); options.tolerance is set.
+CalibrationResult calibrate_cpm(const std::string& scene_file, const std::vector<std::string>& overrides, int entry,
+                                const CalibrationTarget& target, const CalibrationOptions& options, std::FILE* log);
+
+}  // namespace mc::calibration
