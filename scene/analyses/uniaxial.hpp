@@ -22,8 +22,10 @@ struct UniaxialResult {
   // The same curve read with other windows: the secant from the start to 50 % of the peak, and the tangent at
   // 50 % (the secant between 45 % and 55 %), in the declared reading.
   double modulus_secant_0_50 = kNaN, modulus_tangent_50 = kNaN;
-  // E (secant 25–50 %, declared reading) from each axial strain: the platens' (or supports') and the inside's.
+  // E and ν (secant 25–50 %, declared reading) from each axial strain: the platens' (or supports') and the
+  // inside's.
   double modulus_platens = kNaN, modulus_inside = kNaN;
+  double poisson_platens = kNaN, poisson_inside = kNaN;
   double ucs = kNaN;  // peak axial stress [Pa]: f_c, or in tension f_t
   double strain_at_peak = kNaN;
   double initiation_stress = kNaN;  // when the cracks reach 1 % of their count at the peak [Pa]
