@@ -20,7 +20,7 @@ std::shared_ptr<const Analysis> read_uniaxial(const Table& t, const Scene& s) {
                s.dimension == 2 ? "y" : "z");
   u->axis = axis[0] - 'x';
   // Platens touch the specimen through unbonded contacts whose give enters their gap: E read from it rises with
-  // L/R (3D: +23 % from L/R 15 to 25, against +15 % inside; 2D from 40 to 120: +9 % against +1 %), so inside is
+  // L/R (3D: +23 % from L/R 15 to 25, against +15 % inside; 2D from 40 to 120: +10 % against +1 %), so inside is
   // the default. Supports are the specimen's own bonded end layers, and their strain is Šmilauer's definition.
   const bool supported = t.has("supports");
   u->strain_inside =
