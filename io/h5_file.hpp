@@ -22,6 +22,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mc {
@@ -89,6 +90,8 @@ class H5File {
   std::string attr_string(const std::string& obj, const std::string& name) const;
   // False also when the object is missing.
   bool has_attr(const std::string& obj, const std::string& name) const;
+  // The object's numeric scalar attributes, by name (text attributes left out).
+  std::vector<std::pair<std::string, double>> number_attrs(const std::string& obj) const;
 
  private:
   hid_t fid() const;  // the open file id, with HDF5's error printing off for the calling thread

@@ -61,11 +61,18 @@ void ExplicitSystem<D>::start() {
 template <int D>
 void ExplicitSystem<D>::install_bonds() {
   with_scene_timestep(scene_, [&] { world_.install_bonds(scene_.bond_tolerance, scene_.seed); });
+  std::size_t bonds = 0;
+  bool bonding = false;
   for (std::size_t c = 0; c < scene_.contacts.size(); ++c)
-    if (scene_.contacts[c].model.bonds)
+    if (scene_.contacts[c].model.bonds) {
+      bonding = true;
+      bonds += world_.sets[c]->bond_count();
       info_.facts.push_back({"bonds_" + scene_.phases[scene_.contacts[c].phase_a].name + "-" +
                                  scene_.phases[scene_.contacts[c].phase_b].name,
                              static_cast<double>(world_.sets[c]->bond_count())});
+    }
+  // Bonded coordination number: bonds per particle, each bond counted at both ends (2 N_b / N).
+  if (bonding) info_.facts.push_back({"bonded_coordination", 2.0 * bonds / world_.particles.size()});
 }
 
 template <int D>

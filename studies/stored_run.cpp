@@ -60,6 +60,7 @@ StoredRun read_stored_run(const std::string& output_file) {
   r.status = f.attr_string("/", "status");
   r.status_message = f.attr_string("/", "status_message");
   r.particles = static_cast<std::int64_t>(f.rows("/specimen/radius"));
+  r.specimen_facts = f.number_attrs("/specimen");
   return r;
 }
 

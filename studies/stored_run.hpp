@@ -3,6 +3,8 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "scene/analyses/uniaxial.hpp"
 #include "scene/scene.hpp"
@@ -14,6 +16,8 @@ struct StoredRun {
   Histories histories;
   std::string status, status_message;
   std::int64_t particles = 0;
+  // What generating the specimen measured (its /specimen attributes: packing_*, aggregate_*, bonds_* …).
+  std::vector<std::pair<std::string, double>> specimen_facts;
 };
 
 // Throws IoError for a file that is not a mesocrack output file.

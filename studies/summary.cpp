@@ -67,6 +67,12 @@ std::string summary_json(const std::string& output_file) {
     << ",\n  \"steps\": " << json_number(h.at("step").empty() ? 0.0 : h.at("step").back())
     << ",\n  \"time\": " << json_number(t.empty() ? 0.0 : t.back()) << ",\n  \"history_rows\": " << t.size()
     << ",\n  \"density_scaling\": " << json_number(scene.density_scaling);  // 1: off; else the inertia was scaled by it
+  o << ",\n  \"specimen\": {";  // what generating it measured: porosity, floaters, coordination, bonds
+  for (std::size_t i = 0; i < run.specimen_facts.size(); ++i) {
+    const auto& [name, value] = run.specimen_facts[i];
+    o << (i ? "," : "") << "\n    " << json_quote(name) << ": " << json_number(value);
+  }
+  o << (run.specimen_facts.empty() ? "}" : "\n  }");
   o << ",\n  \"results\": {";
   for (std::size_t i = 0; i < scene.summaries.size(); ++i) {
     const SummarySpec& s = scene.summaries[i];
