@@ -57,6 +57,7 @@ struct SpecimenSpec {
   // Packing (PFC genesis, preprocess/dense_packing.hpp): radius_min, and
   bool cylinder = false;  // 3D: carve a cylinder (axis z) out of the box
   double radius_ratio = 1.66, porosity = 0.16, stress = 1e5, modulus = 0;
+  int floater_contacts = 0;  // PFC's n_f: floaters grown until they touch this many neighbours; 0: off
 };
 
 // Coarse aggregate laid over the specimen (Tang ch. 4): particles of the mortar phase whose centres fall in an

@@ -98,6 +98,7 @@ Packing<D> genesis(const Scene& s, std::vector<std::pair<std::string, double>>& 
   g.lo = vec_of<D>(sp.box_lo), g.hi = vec_of<D>(sp.box_hi);
   g.radius_min = sp.radius_min, g.radius_ratio = sp.radius_ratio, g.porosity = sp.porosity;
   g.stress = sp.stress, g.modulus = sp.modulus, g.density = s.phases[sp.phase].density, g.seed = s.seed;
+  g.floater_contacts = sp.floater_contacts;
   PackingReport rep;
   Packing<D> pk;
   try {
@@ -108,7 +109,15 @@ Packing<D> genesis(const Scene& s, std::vector<std::pair<std::string, double>>& 
   facts = {{"packing_porosity_grown", rep.porosity_grown},
            {"packing_porosity_final", rep.porosity_final},
            {"packing_stress_final", rep.stress_final},
-           {"packing_floaters", double(rep.floaters)},
+           {"packing_floater_contacts", double(rep.floater_contacts)},
+           {"packing_floaters_before", double(rep.before.floaters)},
+           {"packing_floater_share_before", rep.before.floater_share},
+           {"packing_coordination_before", rep.before.coordination},
+           {"packing_floaters_grown", double(rep.floaters_grown)},
+           {"packing_floaters", double(rep.after.floaters)},
+           {"packing_floater_share", rep.after.floater_share},
+           {"packing_coordination", rep.after.coordination},
+           {"packing_coordination_held", rep.after.coordination_held},
            {"packing_steps", double(rep.steps)}};
   return pk;
 }

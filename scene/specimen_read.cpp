@@ -65,7 +65,9 @@ void read_specimen(const Table& root, Scene& s) {
       sp.stress = t.number("stress", Unit::Pressure, Range::positive(), 1e5);
       sp.modulus = t.number("modulus", Unit::Pressure, Range::positive());
       sp.cylinder = t.choice("shape", {"box", "cylinder"}, "box") == "cylinder";
-      if (sp.cylinder && d == 2) t.fail("shape", "a cylinder is a 3D shape; 2D packings fill the rectangle [lo, hi]");
+      // Potyondy & Cundall 2004, genesis step 4: PFC uses n_f = 3. A floater fills its cage, whose largest ball
+      // touches D + 1 neighbours: more cannot be asked of it without pressing it into them.
+      sp.floater_contacts = static_cast<int>(t.integer("floater_contacts", Range::closed(0, d + 1), 0));
       for (int k = 0; k < d; ++k)
         if (sp.box_hi[k] - sp.box_lo[k] < 6 * sp.radius_min * sp.radius_ratio)
           t.fail("radius_min", "the box [lo, hi] must be at least three largest diameters wide in every direction");

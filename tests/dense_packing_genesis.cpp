@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "engine/cell_grid.hpp"
 #include "preprocess/dense_packing.hpp"
@@ -33,7 +34,8 @@ void genesis() {
   PackingReport rep;
   const Packing<D> p = dense_packing<D>(s, &rep);
   MESSAGE(D, "D: ", rep.count, " particles, porosity grown ", rep.porosity_grown, ", final ", rep.porosity_final,
-          ", stress ", rep.stress_final, " Pa, floaters ", rep.floaters, ", steps ", rep.steps);
+          ", stress ", rep.stress_final, " Pa, floaters ", rep.after.floaters, ", coordination ",
+          rep.after.coordination, ", steps ", rep.steps);
   REQUIRE(p.x.size() > 200);
   // Grown to exactly the porosity asked for (the radii are scaled to it; round-off only).
   CHECK(rep.porosity_grown == doctest::Approx(s.porosity).epsilon(1e-9));
@@ -44,7 +46,22 @@ void genesis() {
   CHECK(rep.porosity_final >= rep.porosity_grown);
   CHECK(rep.porosity_final < 1.20 * s.porosity);
   // Rattlers: frictionless packings jammed at σ0/E_c = 5e-6 hold 10–20 % (more along walls).
-  CHECK(rep.floaters < 0.25 * rep.count);
+  CHECK(rep.after.floaters < 0.25 * rep.count);
+  // Without floater removal the report counts the packing as it is: floaters are the particles with fewer than
+  // D + 1 neighbours closer than 1e-3 R_min, counted here afresh; the coordination is 2 C / N of the same.
+  REQUIRE(rep.floater_contacts == D + 1);
+  CHECK(rep.floaters_grown == 0);
+  int floaters = 0, ends = 0;
+  std::vector<int> near(p.x.size(), 0);
+  for (const Pair& pr : candidate_pairs<D>(p.x, p.radius, 1e-3 * s.radius_min)) {
+    const double gap = (p.x[pr[1]] - p.x[pr[0]]).norm() - p.radius[pr[0]] - p.radius[pr[1]];
+    if (gap < 1e-3 * s.radius_min) ends += 2, ++near[pr[0]], ++near[pr[1]];
+  }
+  for (int k : near) floaters += k < D + 1;
+  CHECK(rep.after.floaters == floaters);
+  CHECK(rep.after.floater_share == doctest::Approx(double(floaters) / p.x.size()).epsilon(1e-12));
+  CHECK(rep.after.coordination == doctest::Approx(double(ends) / p.x.size()).epsilon(1e-12));
+  CHECK(rep.before.floaters == rep.after.floaters);
   // Inside the box, and overlaps of the order σ0/E_c R only (≈ 5e-6 R), far below the 1e-3 R asserted.
   double worst = 0;
   for (std::size_t i = 0; i < p.x.size(); ++i)
