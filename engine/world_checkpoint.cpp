@@ -1,11 +1,31 @@
 // The world's complete dynamic state as an Archive (checkpoints): restoring it and stepping on gives the same bits
 // as never stopping.
 #include <cstring>
+#include <new>
 
 #include "engine/errors.hpp"
 #include "engine/world.hpp"
 
 namespace mc {
+
+namespace {
+
+// The crack log's bytes with the padding between members zeroed (a crack made on the stack carries whatever was
+// there), so that the same run writes the same checkpoint.
+template <int D>
+std::vector<std::uint8_t> crack_bytes(const std::vector<Crack<D>>& cracks) {
+  std::vector<std::uint8_t> out(cracks.size() * sizeof(Crack<D>), 0);
+  for (std::size_t k = 0; k < cracks.size(); ++k) {
+    const Crack<D>& from = cracks[k];
+    auto* to = new (out.data() + k * sizeof(Crack<D>)) Crack<D>;
+    to->step = from.step, to->time = from.time, to->a = from.a, to->b = from.b;
+    to->position = from.position, to->normal = from.normal, to->mode = from.mode, to->kind = from.kind;
+    to->set = from.set, to->phase_a = from.phase_a, to->phase_b = from.phase_b;
+  }
+  return out;
+}
+
+}  // namespace
 
 template <int D>
 void World<D>::save(Archive& a) const {
@@ -42,8 +62,7 @@ void World<D>::save(Archive& a) const {
   for (std::size_t s = 0; s < sets.size(); ++s) a.bytes["set" + std::to_string(s)] = sets[s]->save();
   // The last step's contact forces: the servo gain and the timestep refresh read them before the next force pass.
   a.put("slot_f", slots_.f);
-  const auto* cb = reinterpret_cast<const std::uint8_t*>(cracks.data());
-  a.bytes["cracks"] = std::vector<std::uint8_t>(cb, cb + cracks.size() * sizeof(Crack<D>));
+  a.bytes["cracks"] = crack_bytes(cracks);
   a.reals["scalars"] = {dt,     dt_critical, time, static_cast<double>(step_count), static_cast<double>(rebuilds),
                         moved_, ke_half_,    skin};
   const EnergyTrace& e = energy;
