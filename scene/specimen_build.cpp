@@ -181,17 +181,40 @@ Packing<D> generated(const Scene& s, std::vector<std::pair<std::string, double>>
   }
 }
 
-// Renumbers the particles along a Morton curve (cache locality); tags and ids travel with them.
+// Keeps the particles `order` lists, in that order; tags and ids travel with them.
 template <int D>
-void spatial_sort(Particles<D>& p, std::vector<int>& tags, std::vector<std::int64_t>& ids) {
-  const std::vector<int> order = morton_order<D>(p.x);
+void reorder(Particles<D>& p, std::vector<int>& tags, std::vector<std::int64_t>& ids, const std::vector<int>& order) {
   auto permute = [&](auto& v) {
     auto old = v;
+    v.resize(order.size());
     for (std::size_t k = 0; k < order.size(); ++k) v[k] = old[order[k]];
   };
   permute(p.x), permute(p.v), permute(p.f), permute(p.w), permute(p.m), permute(p.q);
   permute(p.radius), permute(p.mass), permute(p.inertia), permute(p.phase), permute(p.fix), permute(p.stiffness);
   permute(tags), permute(ids);
+}
+
+// Renumbers the particles along a Morton curve (cache locality).
+template <int D>
+void spatial_sort(Particles<D>& p, std::vector<int>& tags, std::vector<std::int64_t>& ids) {
+  reorder<D>(p, tags, ids, morton_order<D>(p.x));
+}
+
+// [[specimen.cuts]]: the particles whose centres fall inside a box are removed (a notch, Tang §7.1); the others
+// keep their ids, so probes and groups by id do not move when a notch is cut deeper.
+template <int D>
+void cut_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags, std::vector<std::int64_t>& ids) {
+  std::vector<int> kept;
+  for (int i = 0; i < p.size(); ++i) {
+    bool inside_any = false;
+    for (const auto& [lo, hi] : s.specimen.cuts) {
+      bool inside = true;
+      for (int k = 0; k < D; ++k) inside &= p.x[i][k] >= lo[k] && p.x[i][k] <= hi[k];
+      inside_any |= inside;
+    }
+    if (!inside_any) kept.push_back(i);
+  }
+  reorder<D>(p, tags, ids, kept);
 }
 
 }  // namespace
@@ -216,6 +239,8 @@ void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags, Speci
     info.ids.resize(p.size());
     for (int i = 0; i < p.size(); ++i) info.ids[i] = i;
   }
+  if (!sp.cuts.empty()) cut_specimen<D>(s, p, tags, info.ids);
+  if (p.size() == 0) throw InputError(s.file + ": [[specimen.cuts]] remove every particle of the specimen");
   // Inline particles keep the order the scene gives them, lattices are local already.
   if (sp.kind == K::SphereList || sp.kind == K::RandomBox || sp.kind == K::Packing) spatial_sort<D>(p, tags, info.ids);
 }

@@ -78,6 +78,12 @@ void read_specimen(const Table& root, Scene& s) {
     }
     sp.phase = s.phases.size() == 1 && !t.has("phase") ? 0 : phase_index(t, "phase", s.phases);
   }
+  for (const Table& c : t.tables("cuts")) {
+    std::vector<double> lo = vec(c, "box_lo", Unit::Length, d), hi = vec(c, "box_hi", Unit::Length, d);
+    check_box(c, "box_lo", lo, "box_hi", hi);
+    sp.cuts.emplace_back(std::move(lo), std::move(hi));
+    c.finish();
+  }
   t.finish();
 }
 
