@@ -1,6 +1,6 @@
 // Rigid walls: 2D line segments, 3D planar rectangles, and infinite lines/planes in either dimension.
-// A wall moves by translation only, under one of three controls: fixed, prescribed velocity with a smooth
-// ramp, or a normal-stress servo (PFC). It records the force and moment the balls exert on it and its
+// A wall moves by translation only, under one of four controls: fixed, prescribed velocity with a smooth
+// ramp, a normal-stress servo (PFC), or an opening servo (CMOD control, Tang §7.1). It records the force and moment the balls exert on it and its
 // displacement.
 #pragma once
 #include <algorithm>
@@ -14,7 +14,7 @@
 
 namespace mc {
 
-enum class WallControl { Fixed, Velocity, Servo };
+enum class WallControl { Fixed, Velocity, Servo, Opening };
 
 template <int D>
 struct Wall {
@@ -34,7 +34,13 @@ struct Wall {
   // 3D): the stress follows the specimen as it shrinks, as PFC computes it. Empty: servo_area or own area.
   std::vector<std::array<int, 2>> area_between;
   double servo_gain = 0.5;        // α of the PFC servo, 0 < α ≤ 1
-  double servo_max_speed = kInf;  // [m/s]
+  double servo_max_speed = kInf;  // [m/s], both servos
+  // Opening: the wall moves along its normal so that the opening gauge `gauge` (World::gauges) grows at
+  // `opening_rate`, reached over ramp_time like the velocity ramp. Proportional control, as PFC's servos:
+  // v = clamp(opening_gain (target − reading), ±servo_max_speed), positive into the material.
+  int gauge = -1;
+  double opening_rate = 0;  // [m/s]
+  double opening_gain = 0;  // [1/s]
 
   Vec<D> velocity = Vec<D>::Zero();
   Vec<D> displacement = Vec<D>::Zero();  // since the start of the run [m]
@@ -64,8 +70,17 @@ struct Wall {
     return -force.dot(normal) / a;
   }
 
-  // Velocity for the next step, from the control law. t is the time since the run started.
-  void control_velocity(double t, double dt) {
+  // The time a constant rate has acted by t when it rises as (1 − cos πt/T)/2 over T = ramp_time: the integral
+  // of that ramp, so an opening target follows the wall velocities' own ramp.
+  double ramped_time(double t) const {
+    if (ramp_time <= 0) return t;
+    if (t >= ramp_time) return t - 0.5 * ramp_time;
+    return 0.5 * t - ramp_time / (2 * M_PI) * std::sin(M_PI * t / ramp_time);
+  }
+
+  // Velocity for the next step, from the control law. t is the time since the run started; `opening` the
+  // reading of the wall's gauge with the particles already moved to t + dt (Opening control only).
+  void control_velocity(double t, double dt, double opening) {
     switch (control) {
       case WallControl::Fixed: velocity.setZero(); break;
       case WallControl::Velocity: {
@@ -85,6 +100,11 @@ struct Wall {
           speed = servo_max_speed;  // nothing touched yet: approach at full speed
         speed = std::clamp(speed, -servo_max_speed, servo_max_speed);
         velocity = speed * normal;
+        break;
+      }
+      case WallControl::Opening: {
+        const double target = opening_rate * ramped_time(t + dt);
+        velocity = std::clamp(opening_gain * (target - opening), -servo_max_speed, servo_max_speed) * normal;
         break;
       }
     }

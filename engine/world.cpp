@@ -365,7 +365,7 @@ void World<D>::move_walls() {
   }
   for (std::size_t w = 0; w < walls.size(); ++w) {
     Wall<D>& wl = walls[w];
-    wl.control_velocity(time, dt);
+    wl.control_velocity(time, dt, wl.gauge >= 0 ? gauges[wl.gauge].value(particles) : 0.0);
     const Vec<D> du = wl.velocity * dt;
     if (trace_energy) energy.boundary_work -= wl.force.dot(du);  // Tang (3.76): work done on the balls
     wl.origin += du;

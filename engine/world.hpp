@@ -11,6 +11,7 @@
 
 #include "engine/archive.hpp"
 #include "engine/contact_set.hpp"
+#include "engine/opening_gauge.hpp"
 #include "engine/particles.hpp"
 #include "engine/wall.hpp"
 
@@ -42,6 +43,7 @@ class World {
  public:
   Particles<D> particles;
   std::vector<Wall<D>> walls;
+  std::vector<OpeningGauge<D>> gauges;  // read by walls under opening control (and by the scene's probes)
   std::vector<std::unique_ptr<ContactSetBase<D>>> sets;
   std::vector<std::vector<int>> model_of;  // [phase_a][phase_b] → index in sets; −1: no interaction
 
@@ -72,8 +74,8 @@ class World {
   // Stability guard. Every step (in step()): a particle that moves more than half its radius in one step or goes
   // non-finite, and two particles (or a particle and a wall) overlapping by more than half the smaller radius,
   // which the contact law can no longer hold apart. Here, as often as the caller likes and at the end of a run:
-  // walls, the domain and the energy balance. Each throws InstabilityError naming the step, the particle or wall
-  // and the likely cause.
+  // walls (and their opening servos), the domain and the energy balance. Each throws InstabilityError naming
+  // the step, the particle or wall and the likely cause.
   void check_stability() const;
   // The specimen's particle ids, used to name particles in messages (empty: their indices).
   std::vector<std::int64_t> ids;
@@ -122,6 +124,7 @@ class World {
   [[noreturn]] void moved_too_far(int i) const;
   [[noreturn]] void passing_through(const Pair& pair) const;
   void check_energy() const;
+  void check_opening_control() const;
   void move_walls();
   void refresh_timestep();
 

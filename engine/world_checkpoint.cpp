@@ -59,6 +59,12 @@ void World<D>::save(Archive& a) const {
     wl.push_back(w.contact_kn);
   }
   a.reals["walls"] = wl;
+  // The gauges' separations at the start: an opening servo's reading is measured from them.
+  if (!gauges.empty()) {
+    std::vector<double> g;
+    for (const auto& gauge : gauges) g.push_back(gauge.start);
+    a.reals["gauges"] = g;
+  }
   for (std::size_t s = 0; s < sets.size(); ++s) a.bytes["set" + std::to_string(s)] = sets[s]->save();
   // The last step's contact forces: the servo gain and the timestep refresh read them before the next force pass.
   a.put("slot_f", slots_.f);
@@ -108,6 +114,14 @@ void World<D>::restore(const Archive& a) {
       for (int d = 0; d < D; ++d) (*v)[d] = wl[k++];
     for (int d = 0; d < Dim<D>::rot; ++d) w.moment[d] = wl[k++];
     w.contact_kn = wl[k++];
+  }
+  if (!gauges.empty()) {
+    std::vector<double> g;
+    a.get("gauges", g);
+    if (g.size() != gauges.size())
+      throw InputError("the checkpoint holds " + std::to_string(g.size()) + " opening gauges, the scene declares " +
+                       std::to_string(gauges.size()) + ": resume with the scene that wrote it");
+    for (std::size_t k = 0; k < g.size(); ++k) gauges[k].start = g[k];
   }
   for (std::size_t s = 0; s < sets.size(); ++s) sets[s]->load(a.bytes.at("set" + std::to_string(s)));
   const auto& sc = a.reals.at("scalars");

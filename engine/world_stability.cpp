@@ -95,7 +95,29 @@ void World<D>::check_stability() const {
         << "' has a non-finite position or force; likely cause: servo gain or timestep too large";
       throw InstabilityError(m.str());
     }
+  check_opening_control();
   if (trace_energy) check_energy();
+}
+
+// An opening servo corrects gain × Δt of its error per step (if the gauge followed the wall one to one): at 1 or
+// more it overshoots its own error every step and the wall oscillates with growing amplitude. A gauge whose
+// particles went non-finite leaves the wall without a reading.
+template <int D>
+void World<D>::check_opening_control() const {
+  for (const auto& wl : walls) {
+    if (wl.control != WallControl::Opening) continue;
+    const double reading = gauges[wl.gauge].value(particles);
+    if (!std::isfinite(reading) || wl.opening_gain * dt >= 1) {
+      std::ostringstream m;
+      m << "unstable " << when(*this) << ": wall '" << wl.name << "' under opening control: ";
+      if (!std::isfinite(reading))
+        m << "its gauge reads " << reading << "; likely cause: the gauge's particles became unstable";
+      else
+        m << "gain " << wl.opening_gain << " /s times the timestep " << dt << " s is " << wl.opening_gain * dt
+          << " >= 1, so each step overshoots the opening error; lower the gain below " << 1 / dt << " /s";
+      throw InstabilityError(m.str());
+    }
+  }
 }
 
 // What has come out as motion, friction and damping cannot exceed all the energy ever put in; if it does, the
@@ -144,6 +166,8 @@ template void World<3>::moved_too_far(int) const;
 template void World<2>::passing_through(const Pair&) const;
 template void World<3>::passing_through(const Pair&) const;
 template void World<2>::check_energy() const;
+template void World<2>::check_opening_control() const;
+template void World<3>::check_opening_control() const;
 template void World<3>::check_energy() const;
 
 }  // namespace mc

@@ -14,7 +14,16 @@ namespace {
 WallControl read_motion(const Table& t, WallSpec& w, int d) {
   // The loaded area of the wall's stress history (and of a servo): a platen longer than the specimen it presses.
   w.servo_area = t.number("area", d == 2 ? Unit::Length : Unit::None, Range::positive(), kNaN);
-  const std::string m = t.choice("motion", {"fixed", "velocity", "servo"}, "fixed");
+  const std::string m = t.choice("motion", {"fixed", "velocity", "servo", "opening"}, "fixed");
+  if (m == "opening") {
+    // CMOD control (Tang §7.1): the wall moves along its normal so that an opening probe grows at `rate`.
+    w.probe = t.string("probe");  // resolved once [[probes]] are read (check_opening_walls)
+    w.opening_rate = t.number("rate", Unit::Velocity, Range::positive());
+    w.ramp_time = t.number("ramp_time", Unit::Time, Range::non_negative(), 0.0);
+    w.opening_gain = t.number("gain", Unit::Rate, Range::positive());
+    w.max_speed = t.number("max_speed", Unit::Velocity, Range::positive());
+    return WallControl::Opening;
+  }
   if (m == "velocity") {
     w.velocity = vec(t, "velocity", Unit::Velocity, d);
     w.ramp_time = t.number("ramp_time", Unit::Time, Range::non_negative(), 0.0);

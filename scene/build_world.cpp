@@ -32,6 +32,8 @@ Wall<D> make_wall(const WallSpec& w) {
   out.servo_area = w.servo_area;
   out.servo_gain = w.gain;
   out.servo_max_speed = w.max_speed;
+  out.opening_rate = w.opening_rate;
+  out.opening_gain = w.opening_gain;
   return out;
 }
 
@@ -55,7 +57,10 @@ void check_wall_strains(const Scene& s, const World<D>& w) {
 
 template <int D>
 void add_walls(const Scene& s, World<D>& w) {
-  for (const WallSpec& ws : s.walls) w.walls.push_back(make_wall<D>(ws));
+  for (const WallSpec& ws : s.walls) {
+    w.walls.push_back(make_wall<D>(ws));
+    if (ws.control == WallControl::Opening) w.walls.back().gauge = s.opening_gauge(ws.probe);
+  }
   auto wall_index = [&](const std::string& name) {
     for (std::size_t k = 0; k < s.walls.size(); ++k)
       if (s.walls[k].name == name) return static_cast<int>(k);
@@ -106,6 +111,35 @@ void apply_groups(const Scene& s, World<D>& w, const std::vector<int>& tags, Spe
       }
     }
     if (members.empty()) throw InputError(s.file + ": group '" + g.name + "' selects no particle");
+  }
+}
+
+// One opening gauge per opening probe, in their order: its sides (two particles by id, or two groups), its
+// direction (given, or from the first side to the second) and its separation at the start.
+template <int D>
+void add_gauges(const Scene& s, World<D>& w, const SpecimenInfo& info) {
+  for (const ProbeSpec& p : s.probes) {
+    if (p.kind != ProbeSpec::Kind::Opening) continue;
+    OpeningGauge<D> g;
+    if (p.groups[0] >= 0) {
+      g.a = info.groups[p.groups[0]], g.b = info.groups[p.groups[1]];
+    } else {
+      for (int k = 0; k < 2; ++k) {
+        const auto it = std::find(info.ids.begin(), info.ids.end(), p.particles[k]);
+        if (it == info.ids.end())
+          throw InputError(s.file + ": probe '" + p.name + "': particle " + std::to_string(p.particles[k]) +
+                           " does not exist (the specimen has " + std::to_string(w.particles.size()) +
+                           " particles; probes name them by their specimen ids)");
+        (k == 0 ? g.a : g.b).push_back(static_cast<int>(it - info.ids.begin()));
+      }
+    }
+    const Vec<D> dir = p.direction.empty() ? g.span(w.particles) : vec_of<D>(p.direction);
+    if (!(dir.norm() > 0))
+      throw InputError(s.file + ": probe '" + p.name + "': its two sides have the same centre at the start, so the "
+                                "opening has no direction; give 'direction'");
+    g.direction = dir.normalized();
+    g.start = g.separation(w.particles);
+    w.gauges.push_back(std::move(g));
   }
 }
 
@@ -232,6 +266,7 @@ World<D> build_world(const Scene& s, SpecimenInfo& info) {
   add_contact_sets<D>(s, w);
   add_walls<D>(s, w);
   apply_groups<D>(s, w, tags, info);
+  add_gauges<D>(s, w, info);
   set_physics<D>(s, w);
   set_domain<D>(s, w, info);
   return w;

@@ -160,6 +160,11 @@ void add_probes(const Scene& s, const SpecimenInfo* info, SeriesList<D>& l) {
     return static_cast<int>(std::find(info->ids.begin(), info->ids.end(), id) - info->ids.begin());
   };
   for (const ProbeSpec& p : s.probes) {
+    if (p.kind == ProbeSpec::Kind::Opening) {
+      const int g = s.opening_gauge(p.name);
+      l.add(p.name, "m", [w, g] { return w->gauges[g].value(w->particles); });
+      continue;
+    }
     const int a = index_of(p.particles[0]);
     const int b = p.particles.size() > 1 ? index_of(p.particles[1]) : -1;
     const int c = p.component;
@@ -188,6 +193,7 @@ void add_probes(const Scene& s, const SpecimenInfo* info, SeriesList<D>& l) {
       case K::Velocity:
         l.add(p.name, "m/s", [w, a, c] { return c >= 0 ? w->particles.v[a][c] : w->particles.v[a].norm(); });
         break;
+      case K::Opening: break;  // above
       case K::AngularVelocity:
         l.add(p.name, "rad/s", [w, a, c] {
           const auto& om = w->particles.w[a];
@@ -227,7 +233,8 @@ std::vector<Series> make_series(const Scene& s, World<D>* w, const SpecimenInfo*
   if (s.bond_tolerance >= 0) add_bonds<D>(s, l);
   add_walls<D>(s, l);
   add_groups<D>(s, info, l);
-  const Observed<D> observed{w ? &w->particles : nullptr, info ? &info->groups : nullptr};
+  const Observed<D> observed{w ? &w->particles : nullptr, info ? &info->groups : nullptr, w ? &w->walls : nullptr,
+                             w ? &w->gauges : nullptr};
   for (const auto& a : s.analyses) a->add_histories(l.out, observed);
   add_wall_strains<D>(s, l);
   if (s.energy) add_energy<D>(l);

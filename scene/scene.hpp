@@ -7,6 +7,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,8 @@ struct SpecimenSpec {
   bool cylinder = false;  // 3D: carve a cylinder (axis z) out of the box
   double radius_ratio = 1.66, porosity = 0.16, stress = 1e5, modulus = 0;
   int floater_contacts = 0;  // PFC's n_f: floaters grown until they touch this many neighbours; 0: off
+  // Boxes (lo, hi) whose particles are removed after the specimen is made: notches (Tang §7.1).
+  std::vector<std::pair<std::vector<double>, std::vector<double>>> cuts;
 };
 
 // Coarse aggregate laid over the specimen (Tang ch. 4): particles of the mortar phase whose centres fall in an
@@ -85,8 +88,10 @@ struct WallSpec {
   WallControl control = WallControl::Fixed;
   std::vector<double> velocity;  // Velocity
   double ramp_time = 0;
-  double stress = 0, servo_area = kNaN, gain = 0.5, max_speed = kInf;  // Servo
+  double stress = 0, servo_area = kNaN, gain = 0.5, max_speed = kInf;  // Servo (max_speed: Opening too)
   std::vector<std::string> area_between;                               // Servo: names of opposite walls, in pairs
+  std::string probe;                                                   // Opening: the opening probe it drives
+  double opening_rate = 0, opening_gain = 0;                           // Opening: [m/s], [1/s]
 };
 
 // Boundary conditions on a group of particles chosen by tag (sphere lists), by index or by a box.
@@ -114,9 +119,13 @@ struct WallStrainSpec {
 
 struct ProbeSpec {
   std::string name;
-  enum class Kind { Overlap, Gap, RelativeSpeed, Position, Velocity, AngularVelocity } kind;
+  enum class Kind { Overlap, Gap, RelativeSpeed, Position, Velocity, AngularVelocity, Opening } kind;
   std::vector<std::int64_t> particles;  // one or two
   int component = -1;                   // −1: magnitude (vectors) / normal component (relative speed)
+  // Opening: the two sides are two particles, or two groups (indices into Scene::groups); the direction from
+  // the first side to the second (empty: the line between them at the start).
+  std::array<int, 2> groups = {-1, -1};
+  std::vector<double> direction;
 };
 
 struct StopSpec {
@@ -167,6 +176,18 @@ struct Scene {
   std::string xy_plots;                                   // "x:y;x2:y2" drawn by report
 
   std::int64_t history_every = 100, frame_every = 0, checkpoint_every = 0, guard_every = 100;
+
+  // The index in World::gauges of the opening probe named `name` (one gauge per opening probe, in the order
+  // of [[probes]]), or −1 when no opening probe has that name.
+  int opening_gauge(const std::string& name) const {
+    int g = 0;
+    for (const auto& p : probes) {
+      if (p.kind != ProbeSpec::Kind::Opening) continue;
+      if (p.name == name) return g;
+      ++g;
+    }
+    return -1;
+  }
 
   // The analysis of type A the scene declares, or null.
   template <class A>

@@ -196,6 +196,7 @@ Scene read_scene(const TomlDoc& doc, const std::string& file) {
   read_physics(root, s);
   read_bonds(root, s);
   read_observers(root, s);
+  check_opening_walls(root, s);
   read_run(root, s);
   read_output(root, s);
   read_analyses(root, s);
