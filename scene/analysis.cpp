@@ -1,5 +1,6 @@
 #include "scene/analysis.hpp"
 
+#include "scene/analyses/bending.hpp"
 #include "scene/analyses/uniaxial.hpp"
 #include "scene/scene.hpp"
 
@@ -14,6 +15,7 @@ struct Entry {
 };
 constexpr Entry kAnalyses[] = {
     {"uniaxial", read_uniaxial},
+    {"bending", read_bending},
 };
 
 }  // namespace

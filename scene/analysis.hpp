@@ -1,4 +1,4 @@
-// Analyses: the kinds of test a scene may declare, each in its own table ([uniaxial]; next [bending], [pullout]).
+// Analyses: the kinds of test a scene may declare, each in its own table ([uniaxial], [bending]; next [pullout]).
 // An analysis reads its keys, records the histories it defines, checks that the histories it reads exist, and
 // writes its block of `summary`. Each is a plug-in: scene/analyses/<name>.{hpp,cpp} and one line in the registry
 // (scene/analysis.cpp). It observes bodies and groups only, not a solver's internals, so it serves every solver.
@@ -8,8 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "engine/opening_gauge.hpp"
 #include "engine/particles.hpp"
 #include "engine/system.hpp"  // Series
+#include "engine/wall.hpp"
 #include "scene/toml_reader.hpp"
 
 namespace mc {
@@ -19,12 +21,15 @@ struct Scene;
 // A run's histories by name (the output file's /history).
 using Histories = std::map<std::string, std::vector<double>>;
 
-// What an analysis may observe of a running system: its bodies (particles, or rigid cells) and the members of
-// the scene's [[groups]]. Both null when only the names of the histories are wanted.
+// What an analysis may observe of a running system: its bodies (particles, or rigid cells), the members of the
+// scene's [[groups]], its walls and its opening gauges (one per opening probe, Scene::opening_gauge). All null
+// when only the names of the histories are wanted.
 template <int D>
 struct Observed {
   const Particles<D>* bodies = nullptr;
   const std::vector<std::vector<int>>* groups = nullptr;
+  const std::vector<Wall<D>>* walls = nullptr;
+  const std::vector<OpeningGauge<D>>* gauges = nullptr;
 };
 
 class Analysis {

@@ -1,0 +1,200 @@
+#include "scene/analyses/bending.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "engine/errors.hpp"
+#include "scene/json.hpp"
+#include "scene/scene.hpp"
+#include "scene/specimen_build.hpp"  // vec_of
+
+namespace mc {
+
+namespace {
+
+// Names separated by spaces, exactly `n` of them, each found in `known` (by `name_of`); their indices.
+template <class T, class Name>
+std::vector<int> named(const Table& t, const std::string& key, std::size_t n, const std::vector<T>& known,
+                       Name name_of, const std::string& what) {
+  std::stringstream ss(t.string(key));
+  std::vector<std::string> names;
+  for (std::string x; ss >> x;) names.push_back(x);
+  if (names.size() != n)
+    t.fail(key, "give the names of " + std::to_string(n) + " " + what + ", separated by spaces");
+  std::vector<int> out;
+  for (const auto& x : names) {
+    int found = -1;
+    for (std::size_t k = 0; k < known.size(); ++k)
+      if (name_of(known[k]) == x) found = static_cast<int>(k);
+    if (found < 0) t.fail(key, "'" + x + "' is not the name of one of the " + what);
+    if (std::find(out.begin(), out.end(), found) != out.end()) t.fail(key, "names '" + x + "' twice");
+    out.push_back(found);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::shared_ptr<const Analysis> read_bending(const Table& t, const Scene& s) {
+  auto b = std::make_shared<BendingAnalysis>();
+  b->scene_file = s.file;
+  b->dimension = s.dimension;
+  b->gravity = s.gravity;
+  const auto wall_name = [](const WallSpec& w) { return w.name; };
+  b->load_wall = named(t, "load_wall", 1, s.walls, wall_name, "[[walls]]")[0];
+  const std::vector<int> sup = named(t, "supports", 2, s.walls, wall_name, "[[walls]]");
+  b->supports = {sup[0], sup[1]};
+  if (b->supports[0] == b->load_wall || b->supports[1] == b->load_wall)
+    t.fail("supports", "names the loading wall '" + s.walls[b->load_wall].name + "': give the two support walls");
+  if (t.has("deflection_groups")) {
+    const std::vector<int> g =
+        named(t, "deflection_groups", 3, s.groups, [](const GroupSpec& x) { return x.name; }, "[[groups]]");
+    b->deflection_groups = {g[0], g[1], g[2]};
+  }
+  b->cmod_probe = t.string("cmod");
+  b->cmod_gauge = s.opening_gauge(b->cmod_probe);
+  if (b->cmod_gauge < 0)
+    t.fail("cmod", "'" + b->cmod_probe + "' is not the name of an opening probe ([[probes]] with kind = \"opening\")");
+  b->span = t.number("span", Unit::Length, Range::positive());
+  b->depth = t.number("depth", Unit::Length, Range::positive());
+  b->ligament = t.number("ligament", Unit::Length, Range::positive(), b->depth);
+  if (b->ligament > b->depth)
+    t.fail("ligament", "the ligament (depth minus notch) cannot exceed the depth, " + json_number(b->depth) + " m");
+  // 2D: the discs have unit thickness; the report scales loads to the real beam's (Tang §7.1: 100 mm).
+  b->thickness = s.dimension == 2 ? t.number("thickness", Unit::Length, Range::positive(), 0.1)
+                                  : t.number("thickness", Unit::Length, Range::positive());
+  return b;
+}
+
+void BendingAnalysis::check(const Table& t, const Scene& s, const std::vector<std::string>& histories) const {
+  (void)histories;  // it reads only the histories it records itself
+  const WallSpec& w = s.walls[load_wall];
+  if (w.control == WallControl::Fixed)
+    t.fail("load_wall", "wall '" + w.name + "' is fixed: the loading wall must move (velocity, servo or opening)");
+}
+
+void BendingAnalysis::add_histories(std::vector<Series>& out, const Observed<2>& o) const { add<2>(out, o); }
+void BendingAnalysis::add_histories(std::vector<Series>& out, const Observed<3>& o) const { add<3>(out, o); }
+
+// The load is what the beam pushes back on the loading wall, along the wall's normal (which points into the
+// beam); the deflection is the loading point's displacement along that normal minus the mean of the supports'
+// (walls, or a yoke: three groups on the beam, free of the indentation at the load and the supports); the CMOD
+// is the opening probe's reading.
+template <int D>
+void BendingAnalysis::add(std::vector<Series>& out, const Observed<D>& o) const {
+  const Particles<D>* p = o.bodies;
+  const std::vector<Wall<D>>* walls = o.walls;
+  auto put = [&](std::string name, std::string unit, std::function<double()> f) {
+    out.push_back({std::move(name), std::move(unit), p ? std::move(f) : nullptr});
+  };
+  const int lw = load_wall;
+  put("bending.load", "N", [walls, lw] { return -(*walls)[lw].force.dot((*walls)[lw].normal); });
+  put("bending.cmod", "m", [o, g = cmod_gauge] { return (*o.gauges)[g].value(*o.bodies); });
+  if (deflection_groups[0] < 0) {
+    const auto sup = supports;
+    put("bending.deflection", "m", [walls, lw, sup] {
+      const auto& w = *walls;
+      return (w[lw].displacement - 0.5 * (w[sup[0]].displacement + w[sup[1]].displacement)).dot(w[lw].normal);
+    });
+  } else {
+    auto members = std::make_shared<std::array<std::vector<int>, 3>>();
+    auto x0 = std::make_shared<std::array<Vec<D>, 3>>();
+    auto centre = [p](const std::vector<int>& m) {
+      Vec<D> c = Vec<D>::Zero();
+      for (int i : m) c += p->x[i];
+      return Vec<D>(c / static_cast<double>(m.size()));
+    };
+    if (p)
+      for (int k = 0; k < 3; ++k) (*members)[k] = (*o.groups)[deflection_groups[k]], (*x0)[k] = centre((*members)[k]);
+    put("bending.deflection", "m", [walls, lw, members, x0, centre] {
+      Vec<D> u[3];
+      for (int k = 0; k < 3; ++k) u[k] = centre((*members)[k]) - (*x0)[k];
+      return (u[0] - 0.5 * (u[1] + u[2])).dot((*walls)[lw].normal);
+    });
+  }
+  if (gravity) {
+    // RILEM 50-FMC: the weight of the beam between the supports (m1 g; the loading wall has no mass, m2 = 0),
+    // along the load direction.
+    double weight = 0;
+    if (p) {
+      const Vec<D> g = vec_of<D>(*gravity), n = (*walls)[lw].normal;
+      const Vec<D> a = (*walls)[supports[0]].origin, b = (*walls)[supports[1]].origin;
+      const Vec<D> along = (b - a).normalized();
+      for (int i = 0; i < p->size(); ++i) {
+        const double s = (p->x[i] - a).dot(along);
+        if (s >= 0 && s <= (b - a).dot(along)) weight += p->mass[i] * g.dot(n);
+      }
+    }
+    put("bending.self_weight", "N", [weight] { return weight; });
+  }
+}
+
+// Tang §7.1 and RILEM 50-FMC: peak load; CMOD and deflection there; W0 the area under the load–deflection curve
+// (trapezoids) to the end of the record; G_F = (W0 + m g δ0) / (ligament × thickness), δ0 the final deflection;
+// the initial stiffness as the secant between the first pre-peak crossings of 10 % and 40 % of the peak.
+BendingResult BendingAnalysis::result(const Histories& h) const {
+  BendingResult r;
+  static const std::vector<double> none;
+  auto series = [&](const std::string& name) -> const std::vector<double>& {
+    const auto it = h.find(name);
+    return it == h.end() ? none : it->second;
+  };
+  const std::vector<double>& load = series("bending.load");
+  const std::vector<double>& cmod = series("bending.cmod");
+  const std::vector<double>& defl = series("bending.deflection");
+  const std::size_t n = std::min({load.size(), cmod.size(), defl.size()});
+  if (n < 2) return r;
+  const std::size_t peak = static_cast<std::size_t>(std::max_element(load.begin(), load.begin() + n) - load.begin());
+  r.peak_load = load[peak];
+  r.cmod_at_peak = cmod[peak];
+  r.deflection_at_peak = defl[peak];
+  double w0 = 0;
+  for (std::size_t k = 1; k < n; ++k) w0 += 0.5 * (load[k] + load[k - 1]) * (defl[k] - defl[k - 1]);
+  r.work = w0;
+  r.final_deflection = defl[n - 1];
+  r.final_load_ratio = load[n - 1] / r.peak_load;
+  const std::vector<double>& weight = series("bending.self_weight");
+  if (!weight.empty()) r.self_weight_work = weight.front() * (r.final_deflection - defl[0]);
+  r.fracture_energy = (r.work + r.self_weight_work) / ligament_area();
+  auto crossing = [&](double level) {
+    for (std::size_t k = 1; k <= peak; ++k)
+      if (load[k] >= level && load[k - 1] < level)
+        return defl[k - 1] + (level - load[k - 1]) / (load[k] - load[k - 1]) * (defl[k] - defl[k - 1]);
+    return kNaN;
+  };
+  r.stiffness = 0.3 * r.peak_load / (crossing(0.4 * r.peak_load) - crossing(0.1 * r.peak_load));
+  return r;
+}
+
+std::string BendingAnalysis::summary_json(const Histories& h) const {
+  const BendingResult r = result(h);
+  if (!std::isfinite(r.peak_load)) return "null";
+  const double f = load_scale();
+  std::ostringstream o;
+  o << "{\n    \"thickness\": " << json_number(thickness) << ",\n    \"span\": " << json_number(span)
+    << ",\n    \"depth\": " << json_number(depth) << ",\n    \"ligament\": " << json_number(ligament)
+    << ",\n    \"peak_load\": " << json_number(r.peak_load * f)
+    << ",\n    \"peak_load_simulated\": " << json_number(r.peak_load)
+    << ",\n    \"load_definition\": "
+    << json_quote(dimension == 2 ? "peak_load for the beam's thickness; _simulated per metre of the discs' thickness"
+                                 : "as simulated")
+    << ",\n    \"cmod_at_peak\": " << json_number(r.cmod_at_peak)
+    << ",\n    \"deflection_at_peak\": " << json_number(r.deflection_at_peak)
+    << ",\n    \"stiffness\": " << json_number(r.stiffness * f)
+    << ",\n    \"stiffness_simulated\": " << json_number(r.stiffness)
+    << ",\n    \"stiffness_definition\": \"secant of load-deflection between 10 % and 40 % of the peak, pre-peak\""
+    << ",\n    \"G_F\": " << json_number(r.fracture_energy)
+    << ",\n    \"G_F_definition\": \"RILEM 50-FMC: (W0 + m g delta0) / (ligament x thickness), W0 the area under "
+       "load-deflection to the end of the record\""
+    << ",\n    \"work_of_fracture\": " << json_number(r.work * f)
+    << ",\n    \"self_weight_work\": " << json_number(r.self_weight_work * f)
+    << ",\n    \"self_weight\": "
+    << json_quote(gravity ? "m g delta0, m the beam's mass between the supports"
+                          : "none: gravity is off, so no self-weight acts and the load returns to zero by itself")
+    << ",\n    \"final_deflection\": " << json_number(r.final_deflection)
+    << ",\n    \"final_load_over_peak\": " << json_number(r.final_load_ratio) << "\n  }";
+  return o.str();
+}
+
+}  // namespace mc

@@ -1,0 +1,63 @@
+// [bending]: the three-point bending test of a (notched) beam (Tang §7.1; RILEM 50-FMC). It records the load on
+// the loading wall, the crack-mouth opening (an opening probe) and the deflection of the loading point relative
+// to the supports, and gives the peak load with the CMOD and deflection there, the fracture energy G_F by the work
+// of fracture, and the initial stiffness. Keys and summary block: README, "[bending]".
+#pragma once
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/dim.hpp"
+#include "scene/analysis.hpp"
+
+namespace mc {
+
+// What a bending test gives; NaN where the curve does not tell. Loads as simulated (2D: per metre of the discs'
+// unit thickness); BendingAnalysis::load_scale turns them into the reported thickness's.
+struct BendingResult {
+  double peak_load = kNaN;           // [N]
+  double cmod_at_peak = kNaN;        // [m]
+  double deflection_at_peak = kNaN;  // [m]
+  double work = kNaN;                // W0: area under load–deflection to the end of the record [J]
+  double self_weight_work = 0;       // m g δ0 of RILEM 50-FMC [J]; 0 without gravity
+  double fracture_energy = kNaN;     // G_F = (W0 + m g δ0) / ligament area [J/m²]
+  double stiffness = kNaN;           // secant of load–deflection between 10 % and 40 % of the peak, pre-peak [N/m]
+  double final_load_ratio = kNaN;    // load at the end of the record over the peak
+  double final_deflection = kNaN;    // δ0, where the record ends [m]
+};
+
+class BendingAnalysis final : public Analysis {
+ public:
+  int dimension = 3;
+  int load_wall = -1;                          // index into Scene::walls
+  std::array<int, 2> supports = {-1, -1};      // walls (the default deflection)
+  std::array<int, 3> deflection_groups = {-1, -1, -1};  // mid, left, right: a yoke on the beam; −1: walls
+  int cmod_gauge = -1;                         // index into World::gauges
+  std::string cmod_probe;
+  double span = 0, depth = 0, ligament = 0;    // [m]
+  double thickness = 0;                        // [m] of the reported beam (2D: the real one; discs: 1 m)
+  std::optional<std::vector<double>> gravity;  // the scene's, for the self-weight correction
+  std::string scene_file;
+
+  std::string name() const override { return "bending"; }
+  void add_histories(std::vector<Series>& out, const Observed<2>& o) const override;
+  void add_histories(std::vector<Series>& out, const Observed<3>& o) const override;
+  void check(const Table& t, const Scene& s, const std::vector<std::string>& histories) const override;
+  std::string summary_json(const Histories& h) const override;
+
+  BendingResult result(const Histories& h) const;
+  // Simulated loads to the reported beam's: 2D discs stand for 1 m of thickness, the report for `thickness`.
+  double load_scale() const { return dimension == 2 ? thickness / 1.0 : 1.0; }
+  // The ligament's area in the simulation [m²] (2D: times the discs' 1 m).
+  double ligament_area() const { return ligament * (dimension == 2 ? 1.0 : thickness); }
+
+ private:
+  template <int D>
+  void add(std::vector<Series>& out, const Observed<D>& o) const;
+};
+
+std::shared_ptr<const Analysis> read_bending(const Table& t, const Scene& s);
+
+}  // namespace mc
