@@ -157,17 +157,22 @@ def ceb_dif(rate, f_cs_mpa):
     return (rate / 30e-6) ** (1.026 * alpha) if rate <= 30 else gamma * (rate / 30e-6) ** (1 / 3)
 
 
+def by_setting(rows):
+    """The runs of a sweep grouped by their setting x."""
+    groups = {}
+    for r in rows:
+        groups.setdefault(r["x"], []).append(r)
+    return groups
+
+
 def strain_source_table(by):
     """E from the platens' gap against E from the inside of the specimen (Tang §5.4.1's L/R dependence): the
     axial-strain definition whose E depends least on L/R measures the material, not the platen contacts."""
     lines = []
     for dim in (2, 3):
-        rs = [r for r in by.get(("resolution", dim), []) if r.get("E_inside") is not None]
-        if not rs:
+        groups = by_setting([r for r in by.get(("resolution", dim), []) if r.get("E_inside") is not None])
+        if not groups:
             continue
-        groups = {}
-        for r in rs:
-            groups.setdefault(r["x"], []).append(r)
         xs = sorted(groups)
         lines.append(f"\n### axial strain from the platens or from inside, {dim}D (E, secant 25-50 %)\n")
         lines.append("| L/R | runs | E platens [GPa] | CV | E inside [GPa] | CV | inside / platens |")
@@ -195,9 +200,7 @@ def analyse(rows, out):
     for r in rows:
         by.setdefault((r["study"], r["dim"]), []).append(r)
     for (study, dim), rs in sorted(by.items()):
-        groups = {}
-        for r in rs:
-            groups.setdefault(r["x"], []).append(r)
+        groups = by_setting(rs)
         xs = sorted(groups)
         ref_x = max(xs) if study == "resolution" else min(xs)  # the finest L/R; the slowest rate, smallest step or F
         ref = {q: mean_cv([g[q] for g in groups[ref_x]])[0] for q in ("E", "nu", "ucs")}
@@ -258,12 +261,9 @@ def analyse(rows, out):
         fig.savefig(out / f"rate_dif_{dim}d.png", dpi=110)
 
     for dim in (2, 3):
-        rs = by.get(("resolution", dim))
-        if not rs:
+        groups = by_setting(by.get(("resolution", dim), []))
+        if not groups:
             continue
-        groups = {}
-        for r in rs:
-            groups.setdefault(r["x"], []).append(r)
         xs = sorted(groups)
         fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
         for q, scale, unit, ax in (("E_platens", 1e-9, "E [GPa]", axes[0]), ("E_inside", 1e-9, "E [GPa]", axes[0]),
