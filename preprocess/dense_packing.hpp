@@ -33,7 +33,7 @@ struct DensePackingSpec {
   double stress = 1e5;       // isotropic stress the packing is settled to [Pa]
   double modulus = kNaN;     // contact modulus E_c of the genesis contacts [Pa]
   double density = 2600;     // [kg/m³]
-  int floater_contacts = 0;  // PFC's n_f (1 … D + 1): floaters grown until they touch this many neighbours; 0: off
+  int floater_contacts = 0;  // PFC's n_f (1 … D + 1): particles with fewer neighbours fill their cage; 0: off
   std::uint64_t seed = 1;
 };
 

@@ -58,7 +58,7 @@ struct SpecimenSpec {
   // Packing (PFC genesis, preprocess/dense_packing.hpp): radius_min, and
   bool cylinder = false;  // 3D: carve a cylinder (axis z) out of the box
   double radius_ratio = 1.66, porosity = 0.16, stress = 1e5, modulus = 0;
-  int floater_contacts = 0;  // PFC's n_f: floaters grown until they touch this many neighbours; 0: off
+  int floater_contacts = 0;  // PFC's n_f (1 … D + 1): particles with fewer neighbours fill their cage; 0: off
   // Boxes (lo, hi) whose particles are removed after the specimen is made: notches (Tang §7.1).
   std::vector<std::pair<std::vector<double>, std::vector<double>>> cuts;
 };
