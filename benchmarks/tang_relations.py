@@ -22,7 +22,6 @@ plot per relation (relation_6_K.png: our means ± one standard deviation over se
   benchmarks/tang_relations.py --analyse                     # tables and plots from results.csv
 """
 import argparse
-import concurrent.futures as cf
 import csv
 import math
 import sys
@@ -31,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from uniaxial_accuracy import MEAN, ROOT, geometry_2d, geometry_3d, mean_cv, run_one  # noqa: E402
+from uniaxial_accuracy import MEAN, ROOT, geometry_2d, geometry_3d, mean_cv, run_appending  # noqa: E402
 
 # Table 5.1: the reference point of every sweep.
 REFERENCE = {
@@ -282,23 +281,9 @@ def main():
         dims = [int(d) for d in a.dims.split(",")]
         todo = [p for p in plan(dims, only, a.seeds, lrs) if p[0] not in done]
         print(f"{len(todo)} runs to do ({len(done)} already in {csv_path})", flush=True)
-        new = not csv_path.exists()
-        with open(csv_path, "a", newline="") as f, cf.ThreadPoolExecutor(a.jobs) as pool:
-            w = csv.DictWriter(f, fieldnames=FIELDS)
-            if new:
-                w.writeheader()
-            futs = {pool.submit(run_one, a.mesocrack, out, key, dim, ov): (key, dim, params, seed)
-                    for key, dim, params, seed, ov in todo}
-            for fut in cf.as_completed(futs):
-                key, dim, params, seed = futs[fut]
-                res = fut.result()
-                r = {"key": key, "dim": dim, "seed": seed, **params, "Ec": params["modulus"],
-                     **{k: res.get(k) for k in ("E", "E_platens", "E_inside", "nu", "ucs", "particles", "cpu_s")}}
-                w.writerow(r)
-                f.flush()
-                done[key] = r
-                print(f"{key}: E {r['E'] * 1e-9:.2f} GPa, nu {r['nu']:.3f}, UCS {r['ucs'] * 1e-6:.2f} MPa, "
-                      f"{r['cpu_s']:.1f} CPU s", flush=True)
+        run_appending(a.mesocrack, out, a.jobs, csv_path, FIELDS, [
+            (key, dim, ov, key, {"key": key, "dim": dim, "seed": seed, **params, "Ec": params["modulus"]})
+            for key, dim, params, seed, ov in todo], done)
     analyse(list(done.values()), out, lrs)
 
 

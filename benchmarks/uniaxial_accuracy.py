@@ -141,6 +141,28 @@ def run_one(exe, out, key, dim, overrides):
             "cpu_s": usage.ru_utime + usage.ru_stime, "wall_s": wall}
 
 
+def run_appending(exe, out, jobs, csv_path, fields, todo, done):
+    """Runs todo's (run key, dim, overrides, done key, known columns) at `jobs` at once, appending each row to
+    csv_path as its run ends (the rest of its columns from run_one) and to `done`, so an interrupted study goes
+    on where it stopped."""
+    new = not csv_path.exists()
+    with open(csv_path, "a", newline="") as f, cf.ThreadPoolExecutor(jobs) as pool:
+        w = csv.DictWriter(f, fieldnames=fields)
+        if new:
+            w.writeheader()
+        futs = {pool.submit(run_one, exe, out, key, dim, ov): (key, done_key, known)
+                for key, dim, ov, done_key, known in todo}
+        for fut in cf.as_completed(futs):
+            key, done_key, known = futs[fut]
+            res = fut.result()
+            r = {**known, **{k: res.get(k) for k in fields if k not in known}}
+            w.writerow(r)
+            f.flush()
+            done[done_key] = r
+            print(f"{key}: E {r['E'] * 1e-9:.2f} GPa, nu {r['nu']:.3f}, UCS {r['ucs'] * 1e-6:.2f} MPa, "
+                  f"{r['cpu_s']:.1f} CPU s", flush=True)
+
+
 def mean_cv(xs):
     xs = [x for x in xs if x is not None]
     m = sum(xs) / len(xs)
@@ -314,25 +336,11 @@ def main():
         only = set(a.only.split(","))
         dims = [int(d) for d in a.dims.split(",")]
         todo = [p for p in plan(a.full, dims, only, a.seeds) if (p[0], p[1], p[2], p[4]) not in done]
-        # the longest first, so the pool ends together
         print(f"{len(todo)} runs to do ({len(done)} already in {csv_path})", flush=True)
-        new = not csv_path.exists()
-        with open(csv_path, "a", newline="") as f, cf.ThreadPoolExecutor(a.jobs) as pool:
-            w = csv.DictWriter(f, fieldnames=fields)
-            if new:
-                w.writeheader()
-            futs = {}
-            for study, dim, label, x, seed, ov in todo:
-                key = f"{study}_{dim}d_{label.replace(' ', '').replace('/', '')}_s{seed}"
-                futs[pool.submit(run_one, a.mesocrack, out, key, dim, ov)] = (study, dim, label, x, seed)
-            for fut in cf.as_completed(futs):
-                study, dim, label, x, seed = futs[fut]
-                r = {"study": study, "dim": dim, "label": label, "x": x, "seed": seed, **fut.result()}
-                w.writerow(r)
-                f.flush()
-                done[(study, dim, label, seed)] = r
-                print(f"{study:10s} {dim}D {label:14s} seed {seed}: E {r['E'] * 1e-9:.2f} GPa, nu {r['nu']:.3f}, "
-                      f"UCS {r['ucs'] * 1e-6:.2f} MPa, {r['cpu_s']:.1f} CPU s", flush=True)
+        run_appending(a.mesocrack, out, a.jobs, csv_path, fields, [
+            (f"{study}_{dim}d_{label.replace(' ', '').replace('/', '')}_s{seed}", dim, ov, (study, dim, label, seed),
+             {"study": study, "dim": dim, "label": label, "x": x, "seed": seed})
+            for study, dim, label, x, seed, ov in todo], done)
     analyse(list(done.values()), out)
 
 
