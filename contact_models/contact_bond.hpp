@@ -80,12 +80,12 @@ struct ContactBond {
     s.normal = s.shear = s.gap0 = 0;
     const double fn_before = fn + c.kn * vn * g.dt;  // the overlap closes by v_n Δt per step
     if (g.overlap <= 0) {                            // apart: no force at all
-      if constexpr (Energy) out.dissipated += 0.5 * fn * fn_before / c.kn + 0.5 * fs.dot(fs_before) / c.ks;
+      if constexpr (Energy) out.fractured += 0.5 * fn * fn_before / c.kn + 0.5 * fs.dot(fs_before) / c.ks;
       s.fs.setZero();
       return out;
     }
     // Touching: the normal force is the overlap's again; the gap's share of the bonded force goes with the bond.
-    if constexpr (Energy) out.dissipated += 0.5 * (fn - c.kn * g.overlap) * (fn_before - c.kn * g.overlap) / c.kn;
+    if constexpr (Energy) out.fractured += 0.5 * (fn - c.kn * g.overlap) * (fn_before - c.kn * g.overlap) / c.kn;
     const double fn_contact = c.kn * g.overlap;
     const double fs_max = c.mu * fn_contact, fs_mag = fs.norm();  // Tang (3.36)
     const bool slipping = fs_mag > fs_max;

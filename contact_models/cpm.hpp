@@ -185,7 +185,7 @@ struct Cpm {
     }
     double sn = (el > 0 ? 1.0 - omega : 1.0) * c.kn * el;  // Šmilauer (15), damage only in tension
     if constexpr (Energy)
-      if (cohesive && el > 0) out.dissipated += 0.5 * c.kn * el * el * (omega - omega_before) * volume;
+      if (cohesive && el > 0) out.fractured += 0.5 * c.kn * el * el * (omega - omega_before) * volume;
     // Compressive hardening: beyond ε_s the stress follows σ_Ns = k_N (ε_s + K̃_s (ε_N − ε_s)), the excess
     // turning into plastic strain; unloading is elastic with k_N from there.
     if (p.hardening && el < p.hardening_strain) {
@@ -237,7 +237,7 @@ struct Cpm {
     // non-cohesive (it then parts, or touches again measured from touching). Its stored energy goes with it.
     if (cohesive && omega >= p.break_damage && el > 0) [[unlikely]] {
       out.event = {CrackMode::Tensile, CrackKind::Break};
-      if constexpr (Energy) out.dissipated += strain_energy<D>(c, g, s);
+      if constexpr (Energy) out.fractured += strain_energy<D>(c, g, s);
       s = State<D>{};
     }
     return out;

@@ -155,7 +155,7 @@ struct ParallelBond {
     else if (breaks_in_shear<D>(c, s)) [[unlikely]]
       out.event.mode = CrackMode::Shear;
     if (out.event.mode != CrackMode::None) [[unlikely]] {
-      if constexpr (Energy) out.dissipated += bond_energy<D>(c, before, s);  // released with the crack
+      if constexpr (Energy) out.fractured += bond_energy<D>(c, before, s);  // released with the crack
       s = State<D>{s.fs};
       return out;
     }

@@ -120,7 +120,7 @@ struct SofteningBond : ContactBond {
         s.gap0 += (r - 1.0) * fn / c.kn;
         fn *= r;
       }
-      if constexpr (Energy) out.dissipated += returned_energy(c, g, fn_trial, fs_trial, fn, fs);
+      if constexpr (Energy) out.fractured += returned_energy(c, g, fn_trial, fs_trial, fn, fs);
       s.fs = fs;
       out.force = fn * g.n + fs;
       // The shear dashpot rests while the bond yields, as while a contact slides.
@@ -133,14 +133,14 @@ struct SofteningBond : ContactBond {
     out.event = {mode, CrackKind::Break};
     s = State<D>{};
     if (g.overlap <= 0) {  // apart: no force at all
-      if constexpr (Energy) out.dissipated += returned_energy<D>(c, g, fn_trial, fs_trial, 0.0, Vec<D>::Zero());
+      if constexpr (Energy) out.fractured += returned_energy<D>(c, g, fn_trial, fs_trial, 0.0, Vec<D>::Zero());
       return out;
     }
     fn = c.kn * g.overlap;
     const double fs_max = c.mu * fn;  // Tang (3.36)
     const bool slipping = fs_mag > fs_max;
     if (slipping) fs *= fs_max / fs_mag;
-    if constexpr (Energy) out.dissipated += returned_energy(c, g, fn_trial, fs_trial, fn, fs);
+    if constexpr (Energy) out.fractured += returned_energy(c, g, fn_trial, fs_trial, fn, fs);
     s.fs = fs;
     out.force = fn * g.n + fs;
     if (c.zeta > 0) Linear::add_dashpots<D, Energy>(c, g, vn, vs, slipping, out);

@@ -35,7 +35,10 @@ template <int D>
 struct ContactForce {
   Vec<D> force = Vec<D>::Zero();
   Rot<D> moment = Rot<D>::Zero();
-  double dissipated = 0;  // friction work this step [J], filled only when energy is traced
+  // Energy dissipated this step [J], filled only when energy is traced: by friction, plastic flow and viscosity,
+  // and by the bond itself (breakage, softening, damage: the fracture work).
+  double dissipated = 0;
+  double fractured = 0;
   // The dashpot part of `force` (filled only when energy is traced). Its work is booked by the engine one
   // step later, against the velocity with which the particles actually moved under it.
   Vec<D> dashpot = Vec<D>::Zero();

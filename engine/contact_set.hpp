@@ -35,6 +35,17 @@ struct Slots {
   }
 };
 
+// Energy dissipated by one pass over the contacts [J] (energy tracing only).
+struct Dissipated {
+  double contacts = 0;  // friction slip (Tang 3.77), plastic flow, dashpots, viscosity
+  double bonds = 0;     // bond breakage, softening and damage: the work of fracture
+  Dissipated& operator+=(const Dissipated& o) {
+    contacts += o.contacts;
+    bonds += o.bonds;
+    return *this;
+  }
+};
+
 // Stiffness of each slot for the timestep estimate: translational, and rotational about A's and B's centres.
 struct SlotStiffness {
   std::vector<double> kt, kra, krb;
@@ -52,8 +63,8 @@ class ContactSetBase {
   virtual void set_pairs(const std::vector<Pair>& candidates) = 0;
   virtual void set_wall_pairs(const std::vector<Pair>& candidates) = 0;
   // Forces into slots [offset, offset + size) and [wall_offset, wall_offset + wall size). Returns the
-  // energy dissipated this step (friction, dashpots) when `energy` is set, else 0.
-  virtual double forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy,
+  // energy dissipated this step when `energy` is set, else zeros.
+  virtual Dissipated forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy,
                         Slots<D>& slots, std::size_t offset, std::size_t wall_offset) = 0;
   virtual void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness& k, std::size_t offset,
                          std::size_t wall_offset) const = 0;
@@ -152,8 +163,8 @@ class ContactSet final : public ContactSetBase<D> {
   void set_pairs(const std::vector<Pair>& c) override { merge(pairs_, states_, dashpot_, c); }
   void set_wall_pairs(const std::vector<Pair>& c) override { merge(wall_pairs_, wall_states_, wall_dashpot_, c); }
 
-  double forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy, Slots<D>& s,
-                std::size_t off, std::size_t woff) override {
+  Dissipated forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy, Slots<D>& s,
+                    std::size_t off, std::size_t woff) override {
     return energy ? forces_impl<true>(p, walls, dt, s, off, woff) : forces_impl<false>(p, walls, dt, s, off, woff);
   }
 
@@ -287,13 +298,13 @@ class ContactSet final : public ContactSetBase<D> {
 
  private:
   template <bool Energy>
-  double forces_impl(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, Slots<D>& s, std::size_t off,
+  Dissipated forces_impl(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, Slots<D>& s, std::size_t off,
                      std::size_t woff) {
     const std::size_t n = pairs_.size();
     // A local copy: the compiler then knows no store in the loop changes it, and hoists what depends on the
     // parameters alone (reciprocals) out of the loop.
     const typename Model::Params prm = params_;
-    std::vector<double> part(Energy ? block_count(n) : 0, 0.0);
+    std::vector<Dissipated> part(Energy ? block_count(n) : 0);
     if (Energy && dashpot_.size() != n) dashpot_.assign(n, Vec<D>::Zero());
     if (Energy && wall_dashpot_.size() != wall_pairs_.size()) wall_dashpot_.assign(wall_pairs_.size(), Vec<D>::Zero());
     // Events go to their block's list, joined in block order afterwards: rare, and deterministic.
@@ -304,7 +315,7 @@ class ContactSet final : public ContactSetBase<D> {
 #pragma omp parallel for schedule(static) if (n > std::size_t(kParallelMin))
     for (int b = 0; b < block_count(n); ++b) {
       const std::size_t end = std::min(n, std::size_t(b + 1) * kBlock);
-      double dissipated = 0;
+      Dissipated dissipated;
       for (std::size_t c = std::size_t(b) * kBlock; c < end; ++c) {
         const auto [i, j] = pairs_[c];
         State& st = states_[c];
@@ -313,11 +324,11 @@ class ContactSet final : public ContactSetBase<D> {
         const double reach = p.radius[i] + p.radius[j];
         if (d.squaredNorm() >= reach * reach && !Model::template persistent<D>(st)) {
           if constexpr (Energy) {
-            dissipated += Model::template released_energy<D>(
+            dissipated.contacts += Model::template released_energy<D>(
                 Model::template pair<D>(prm, p.radius[i], p.radius[j], p.stiffness[i], p.stiffness[j]), st);
             if (dashpot_[c].squaredNorm() > 0) {  // the last step's dashpot force acted as the pair parted
               Vec<D> ca, cb;
-              dissipated -= 0.5 * dashpot_[c].dot(ball_geometry(p, i, j, dt, ca, cb).v_rel) * dt;
+              dissipated.contacts -= 0.5 * dashpot_[c].dot(ball_geometry(p, i, j, dt, ca, cb).v_rel) * dt;
               dashpot_[c].setZero();
             }
           }
@@ -344,7 +355,8 @@ class ContactSet final : public ContactSetBase<D> {
         if constexpr (Energy) {
           // Central differences balance ½ m v(t−½)·v(t+½) against ½ F(t)·(v(t−½) + v(t+½)) Δt: half of a
           // dashpot force's work is booked now, half at the next step with the velocity it produced.
-          dissipated += r.dissipated - 0.5 * (dashpot_[c] + r.dashpot).dot(g.v_rel) * dt;
+          dissipated.contacts += r.dissipated - 0.5 * (dashpot_[c] + r.dashpot).dot(g.v_rel) * dt;
+          dissipated.bonds += r.fractured;
           dashpot_[c] = r.dashpot;
         }
       }
@@ -360,8 +372,8 @@ class ContactSet final : public ContactSetBase<D> {
         passing_ = pairs_[c];
         break;
       }
-    double e = 0;
-    for (double x : part) e += x;
+    Dissipated e;
+    for (const Dissipated& x : part) e += x;
     // Walls touch few balls; a serial loop keeps the order fixed.
     for (std::size_t c = 0; c < wall_pairs_.size(); ++c) {
       const auto [w, j] = wall_pairs_[c];
@@ -375,7 +387,8 @@ class ContactSet final : public ContactSetBase<D> {
       s.ma[slot] = Dim<D>::cross(cw, Vec<D>(-r.force)) - r.moment;  // on the wall, about its origin
       s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
       if constexpr (Energy) {
-        e += r.dissipated - 0.5 * (wall_dashpot_[c] + r.dashpot).dot(g.v_rel) * dt;
+        e.contacts += r.dissipated - 0.5 * (wall_dashpot_[c] + r.dashpot).dot(g.v_rel) * dt;
+        e.bonds += r.fractured;
         wall_dashpot_[c] = r.dashpot;
       }
     }

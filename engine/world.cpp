@@ -202,12 +202,15 @@ void World<D>::refresh_timestep() {
 
 template <int D>
 void World<D>::compute_forces() {
-  double e = 0;
+  Dissipated e;
   for (std::size_t s = 0; s < sets.size(); ++s) {
     e += sets[s]->forces(particles, walls, dt, trace_energy, slots_, offset_[s], wall_offset_[s]);
     if (const auto pr = sets[s]->passing_through()) [[unlikely]] passing_through(*pr);
   }
-  if (trace_energy) energy.dissipated_contacts += e;
+  if (trace_energy) {
+    energy.dissipated_contacts += e.contacts;
+    energy.dissipated_bonds += e.bonds;
+  }
   log_cracks();
 }
 

@@ -21,14 +21,16 @@ namespace mc {
 struct EnergyTrace {
   double body_work = 0;            // gravity and applied loads, (3.74)
   double boundary_work = 0;        // walls, (3.76)
-  double dissipated_contacts = 0;  // friction slip (3.77) and contact dashpots
+  double dissipated_contacts = 0;  // friction slip (3.77), plastic flow, contact dashpots, viscosity
+  double dissipated_bonds = 0;     // bond breakage, softening and damage: the work of fracture
   double dissipated_local = 0;     // PFC local damping
   double kinetic = 0;              // (3.79), at the current time
   double strain = 0;               // (3.80) and the models' own, at the current time (updated by World::update_energy)
   double initial = 0;              // kinetic + strain when tracing started
   // Work put in minus what is stored and dissipated; zero for an exact integrator.
   double residual() const {
-    return initial + body_work + boundary_work - kinetic - strain - dissipated_contacts - dissipated_local;
+    return initial + body_work + boundary_work - kinetic - strain - dissipated_contacts - dissipated_bonds -
+           dissipated_local;
   }
 };
 

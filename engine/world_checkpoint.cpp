@@ -72,8 +72,8 @@ void World<D>::save(Archive& a) const {
   a.reals["scalars"] = {dt,     dt_critical, time, static_cast<double>(step_count), static_cast<double>(rebuilds),
                         moved_, ke_half_,    skin};
   const EnergyTrace& e = energy;
-  a.reals["energy"] = {e.body_work, e.boundary_work, e.dissipated_contacts, e.dissipated_local, e.kinetic,
-                       e.strain,    e.initial};
+  a.reals["energy"] = {e.body_work, e.boundary_work, e.dissipated_contacts, e.dissipated_local,
+                       e.kinetic,   e.strain,        e.initial,             e.dissipated_bonds};
 }
 
 template <int D>
@@ -130,7 +130,12 @@ void World<D>::restore(const Archive& a) {
   rebuilds = static_cast<std::int64_t>(sc[4]);
   moved_ = sc[5], ke_half_ = sc[6], skin = sc[7];
   const auto& e = a.reals.at("energy");
-  energy = {e[0], e[1], e[2], e[3], e[4], e[5], e[6]};
+  if (e.size() != 8) throw InputError("the checkpoint's energy record has " + std::to_string(e.size()) +
+                                      " terms, this version writes 8: resume it with the version that wrote it");
+  energy = EnergyTrace{};
+  energy.body_work = e[0], energy.boundary_work = e[1], energy.dissipated_contacts = e[2];
+  energy.dissipated_local = e[3], energy.kinetic = e[4], energy.strain = e[5], energy.initial = e[6];
+  energy.dissipated_bonds = e[7];
   // Slots, offsets and gather lists follow from the restored pair lists; no contact is re-detected, so the
   // next step sees exactly the lists it would have seen.
   relink();

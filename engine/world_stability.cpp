@@ -133,7 +133,8 @@ void World<D>::check_energy() const {
   const auto& p = particles;
   const int n = p.size();
   const double budget = std::abs(energy.initial) + std::abs(energy.body_work) + std::abs(energy.boundary_work);
-  const double out = energy.kinetic + energy.dissipated_contacts + energy.dissipated_local;
+  const double out =
+      energy.kinetic + energy.dissipated_contacts + energy.dissipated_bonds + energy.dissipated_local;
   if (out <= 2.0 * budget + 1e-12) return;
   int fastest = 0;  // the particle with the most kinetic energy, to point at
   double e_max = -1;
@@ -143,7 +144,7 @@ void World<D>::check_energy() const {
   }
   std::ostringstream m;
   m << "unstable " << when(*this) << ": kinetic energy " << energy.kinetic << " J plus dissipated "
-    << energy.dissipated_contacts + energy.dissipated_local << " J exceeds twice the energy put in (" << budget
+    << energy.dissipated_contacts + energy.dissipated_bonds + energy.dissipated_local << " J exceeds twice the energy put in (" << budget
     << " J)";
   if (n > 0) m << ", " << particle_name(fastest) << " moving fastest (|v| = " << p.v[fastest].norm() << " m/s)";
   // The fastest contact vibration's half period, π over its angular frequency, is π times the critical estimate.

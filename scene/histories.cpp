@@ -120,6 +120,7 @@ void add_energy(SeriesList<D>& l) {
   l.add("energy.body_work", "J", [e] { return e->body_work; });
   l.add("energy.boundary_work", "J", [e] { return e->boundary_work; });
   l.add("energy.dissipated_contacts", "J", [e] { return e->dissipated_contacts; });
+  l.add("energy.dissipated_bonds", "J", [e] { return e->dissipated_bonds; });
   l.add("energy.dissipated_local", "J", [e] { return e->dissipated_local; });
   l.add("energy.residual", "J", [e] { return e->residual(); });
 }

@@ -70,7 +70,8 @@ Outcome pull_to_failure(const typename Model::Params& prm, double r, double spee
   const auto& e = w.energy;
   MESSAGE(D, "D ", std::string(Model::name), ": ", w.step_count, " steps, peak pull ", o.peak, " N, final ", o.final,
           " N, bonds ", o.bonds0, " → ", o.bonds_left, ", work ", e.boundary_work, " J, kinetic ", e.kinetic,
-          ", strain ", e.strain, ", contacts (friction, dashpots, bonds) ", e.dissipated_contacts, ", local damping ",
+          ", strain ", e.strain, ", contacts (friction, dashpots) ", e.dissipated_contacts, ", bonds ", e.dissipated_bonds,
+          ", local damping ",
           e.dissipated_local, ", residual ", o.residual / o.work);
   return o;
 }

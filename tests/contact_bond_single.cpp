@@ -50,7 +50,7 @@ void tension_break() {
   // Work of the moving particle = energy released by the crack (the stretched spring). Work is booked with
   // the force at the start of each step: the sum differs from ∫F dx by about one of the 4000 loading steps.
   w.update_energy();
-  CHECK(w.energy.dissipated_contacts == doctest::Approx(0.5 * last * last / c.kn).epsilon(1e-3));
+  CHECK(w.energy.dissipated_bonds == doctest::Approx(0.5 * last * last / c.kn).epsilon(1e-3));
   CHECK(std::abs(w.energy.residual()) < 1e-3 * w.energy.boundary_work);
 }
 

@@ -81,7 +81,7 @@ void pulled_apart_dissipates_the_area_under_its_softening_curve() {
   const double peak = *std::max_element(r.force.begin(), r.force.end());
   const double area = 0.5 * r.strength * r.limit;  // under the softening curve, Tang (3.48)
   MESSAGE("peak / F_c^n - 1 = ", peak / r.strength - 1,
-          ", dissipated / (½ F_c^n U_p,max) - 1 = ", w.energy.dissipated_contacts / area - 1,
+          ", dissipated / (½ F_c^n U_p,max) - 1 = ", w.energy.dissipated_bonds / area - 1,
           ", residual / boundary work = ", w.energy.residual() / w.energy.boundary_work,
           ", loading steps = ", r.force.size());
   // Each step adds 1/1000 of the strength: the force passes the peak within 0.1 % of it, never above.
@@ -96,7 +96,7 @@ void pulled_apart_dissipates_the_area_under_its_softening_curve() {
   // All the work of the pull is dissipated, the triangle under the curve. The dissipation is the trapezoid
   // rule along U_p, exact on the softening line; only the step that turns onto it at the peak errs, by
   // ~(k_n Δx)(ΔU_p)/(F_c^n U_p,max) ~ 1e-7 (one step in 1000 times one in 4000).
-  CHECK(w.energy.dissipated_contacts / area == doctest::Approx(1.0).epsilon(1e-5));
+  CHECK(w.energy.dissipated_bonds / area == doctest::Approx(1.0).epsilon(1e-5));
   // The balance closes exactly but for round-off: positions ~2e-3 m move by steps of 5e-12 m (2D), each
   // rounded to ~4e-19 m, 1e-7 of a step, partly cancelling over the 5000 steps.
   CHECK(std::abs(w.energy.residual()) < 1e-6 * w.energy.boundary_work);
@@ -135,10 +135,10 @@ void fracture_energy_sets_the_plastic_limit() {
   p.fracture_energy = 0.5 * p.normal_mean * (5 * p.normal_mean / SofteningBond::pair<D>(p, kR, rb).kn) / area;
   const auto r = pull_apart<D>(p, rb);
   MESSAGE("F_c^n = ", r.strength, " N, U_p,max k_n / F_c^n = ", r.limit * r.kn / r.strength,
-          ", dissipated / (G_f A) - 1 = ", r.w.energy.dissipated_contacts / (p.fracture_energy * area) - 1);
+          ", dissipated / (G_f A) - 1 = ", r.w.energy.dissipated_bonds / (p.fracture_energy * area) - 1);
   CHECK(r.strength != p.normal_mean);  // drawn
   // As in the pull above: exact but for the step onto the softening line at the peak, ~1e-7.
-  CHECK(r.w.energy.dissipated_contacts / (p.fracture_energy * area) == doctest::Approx(1.0).epsilon(1e-5));
+  CHECK(r.w.energy.dissipated_bonds / (p.fracture_energy * area) == doctest::Approx(1.0).epsilon(1e-5));
 }
 
 template <int D>
