@@ -3,11 +3,13 @@
 // writes its block of `summary`. Each is a plug-in: scene/analyses/<name>.{hpp,cpp} and one line in the registry
 // (scene/analysis.cpp). It observes bodies and groups only, not a solver's internals, so it serves every solver.
 #pragma once
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "engine/crack.hpp"
 #include "engine/opening_gauge.hpp"
 #include "engine/particles.hpp"
 #include "engine/system.hpp"  // Series
@@ -20,6 +22,21 @@ struct Scene;
 
 // A run's histories by name (the output file's /history).
 using Histories = std::map<std::string, std::vector<double>>;
+
+// One entry of a run's crack log (the output file's /cracks): a bond's break or first yield.
+struct LoggedCrack {
+  double time = 0;                          // [s]
+  std::array<double, 3> position{};         // the contact point [m]; 2D: z = 0
+  CrackMode mode = CrackMode::None;
+  CrackKind kind = CrackKind::Break;
+  int phase_a = 0, phase_b = 0;             // indices into Scene::phases
+};
+
+// What a run recorded, as its analyses read it for `summary`.
+struct RunRecord {
+  const Histories& histories;
+  const std::vector<LoggedCrack>& cracks;  // empty without a crack log
+};
 
 // What an analysis may observe of a running system: its bodies (particles, or rigid cells), the members of the
 // scene's [[groups]], its walls and its opening gauges (one per opening probe, Scene::opening_gauge). All null
@@ -44,8 +61,8 @@ class Analysis {
   // Once the whole scene is read: what it reads is recorded and what it needs is declared. Fails through `t`,
   // its own table, naming the key.
   virtual void check(const Table& t, const Scene& s, const std::vector<std::string>& histories) const = 0;
-  // Its block of `summary`: a JSON value computed from the run's histories.
-  virtual std::string summary_json(const Histories& h) const = 0;
+  // Its block of `summary`: a JSON value computed from what the run recorded.
+  virtual std::string summary_json(const RunRecord& run) const = 0;
 };
 
 // Reads every analysis table the scene has (the rest of the scene read already: groups, bonds …).

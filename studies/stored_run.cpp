@@ -1,5 +1,7 @@
 #include "studies/stored_run.hpp"
 
+#include <algorithm>
+
 #include "engine/errors.hpp"
 #include "io/h5_file.hpp"
 #include "scene/toml_reader.hpp"
@@ -34,6 +36,28 @@ Histories read_histories(const H5File& f) {
   return h;
 }
 
+// The crack log (/cracks; none: empty), its tables cut to the shortest (a run killed mid-append).
+std::vector<LoggedCrack> read_cracks(const H5File& f, int dimension) {
+  std::vector<LoggedCrack> out;
+  if (!f.exists("/cracks/position")) return out;
+  const std::vector<double> time = f.read_doubles("/cracks/time"), pos = f.read_doubles("/cracks/position");
+  const std::vector<std::int64_t> mode = f.read_ints("/cracks/mode"), kind = f.read_ints("/cracks/kind");
+  const std::vector<std::int64_t> pa = f.read_ints("/cracks/phase_a"), pb = f.read_ints("/cracks/phase_b");
+  const std::size_t d = static_cast<std::size_t>(dimension);
+  const std::size_t n = std::min({time.size(), pos.size() / d, mode.size(), kind.size(), pa.size(), pb.size()});
+  out.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    LoggedCrack& c = out[k];
+    c.time = time[k];
+    for (std::size_t a = 0; a < d; ++a) c.position[a] = pos[k * d + a];
+    c.mode = static_cast<CrackMode>(mode[k]);
+    c.kind = static_cast<CrackKind>(kind[k]);
+    c.phase_a = static_cast<int>(pa[k]);
+    c.phase_b = static_cast<int>(pb[k]);
+  }
+  return out;
+}
+
 // The stored scene, re-read and validated: one this version refuses makes the file unreadable here (a file error).
 Scene read_stored_scene(const H5File& f) {
   const std::string& file = f.path();
@@ -53,6 +77,7 @@ StoredRun read_stored_run(const std::string& output_file) {
   StoredRun r;
   r.histories = read_histories(f);
   r.scene = read_stored_scene(f);
+  r.cracks = read_cracks(f, r.scene.dimension);
   for (const auto& s : r.scene.summaries)
     if (!r.histories.count(s.of))
       throw IoError(output_file + ": /history/" + s.of + ", which the scene's [[summary]] '" + s.name +

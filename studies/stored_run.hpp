@@ -14,6 +14,7 @@ namespace mc {
 struct StoredRun {
   Scene scene;
   Histories histories;
+  std::vector<LoggedCrack> cracks;  // the crack log; empty without one
   std::string status, status_message;
   std::int64_t particles = 0;
   // What generating the specimen measured (its /specimen attributes: packing_*, aggregate_*, bonds_* …).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "engine/errors.hpp"
@@ -34,6 +35,62 @@ std::vector<int> named(const Table& t, const std::string& key, std::size_t n, co
   return out;
 }
 
+using V3 = std::array<double, 3>;
+
+V3 v3(const std::vector<double>& v) {
+  V3 o{};
+  for (std::size_t k = 0; k < std::min<std::size_t>(3, v.size()); ++k) o[k] = v[k];
+  return o;
+}
+double dot(const V3& a, const V3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+V3 minus(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+V3 unit(const V3& a) {
+  const double n = std::sqrt(dot(a, a));
+  return {a[0] / n, a[1] / n, a[2] / n};
+}
+
+// A wall's centre: a segment's midpoint, a rectangle's centre, a plane's point.
+V3 wall_centre(const WallSpec& w) {
+  if (w.kind != WallSpec::Kind::Segment) return v3(w.point);
+  const V3 a = v3(w.a), b = v3(w.b);
+  return {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]), 0.5 * (a[2] + b[2])};
+}
+
+// A wall's unit normal towards the material (a segment's: across it, on the side of its `inside` point).
+V3 wall_normal(const WallSpec& w) {
+  if (w.kind != WallSpec::Kind::Segment) return unit(v3(w.normal));
+  const V3 t = minus(v3(w.b), v3(w.a));
+  V3 n = unit(V3{-t[1], t[0], 0});
+  if (dot(n, minus(v3(w.inside), v3(w.a))) < 0) n = {-n[0], -n[1], 0};
+  return n;
+}
+
+std::string pair_name(const std::vector<std::string>& names, int a, int b) {
+  auto name = [&](int k) { return k >= 0 && k < int(names.size()) ? names[k] : "phase" + std::to_string(k); };
+  return a <= b ? name(a) + "-" + name(b) : name(b) + "-" + name(a);
+}
+
+// The crack log up to `until` as JSON: per phase pair, the tensile and shear breaks and the first yields.
+std::string crack_counts_json(const std::vector<LoggedCrack>& cracks, double until,
+                              const std::vector<std::string>& names) {
+  std::map<std::string, std::array<long, 3>> n;  // tensile breaks, shear breaks, first yields
+  for (const LoggedCrack& c : cracks) {
+    if (c.time > until) continue;
+    auto& k = n[pair_name(names, c.phase_a, c.phase_b)];
+    ++k[c.kind == CrackKind::Yield ? 2 : c.mode == CrackMode::Shear ? 1 : 0];
+  }
+  std::ostringstream o;
+  o << "{";
+  bool first = true;
+  for (const auto& [pair, k] : n) {
+    o << (first ? "" : ",") << "\n      " << json_quote(pair) << ": {\"tensile_breaks\": " << k[0]
+      << ", \"shear_breaks\": " << k[1] << ", \"first_yields\": " << k[2] << "}";
+    first = false;
+  }
+  o << (first ? "}" : "\n    }");
+  return o.str();
+}
+
 }  // namespace
 
 std::shared_ptr<const Analysis> read_bending(const Table& t, const Scene& s) {
@@ -52,6 +109,10 @@ std::shared_ptr<const Analysis> read_bending(const Table& t, const Scene& s) {
         named(t, "deflection_groups", 3, s.groups, [](const GroupSpec& x) { return x.name; }, "[[groups]]");
     b->deflection_groups = {g[0], g[1], g[2]};
   }
+  for (const PhaseSpec& p : s.phases) b->phase_names.push_back(p.name);
+  b->top = wall_centre(s.walls[b->load_wall]);
+  b->down = wall_normal(s.walls[b->load_wall]);
+  b->along = unit(minus(wall_centre(s.walls[b->supports[1]]), wall_centre(s.walls[b->supports[0]])));
   b->cmod_probe = t.string("cmod");
   b->cmod_gauge = s.opening_gauge(b->cmod_probe);
   if (b->cmod_gauge < 0)
@@ -147,6 +208,8 @@ BendingResult BendingAnalysis::result(const Histories& h) const {
   if (n < 2) return r;
   const std::size_t peak = static_cast<std::size_t>(std::max_element(load.begin(), load.begin() + n) - load.begin());
   r.peak_load = load[peak];
+  const std::vector<double>& time = series("time");
+  if (peak < time.size()) r.peak_time = time[peak];
   r.cmod_at_peak = cmod[peak];
   r.deflection_at_peak = defl[peak];
   double w0 = 0;
@@ -167,7 +230,68 @@ BendingResult BendingAnalysis::result(const Histories& h) const {
   return r;
 }
 
-std::string BendingAnalysis::summary_json(const Histories& h) const {
+CrackPath BendingAnalysis::crack_path(const std::vector<LoggedCrack>& cracks, double until) const {
+  const int nb = CrackPath::kBands;
+  const double band = ligament / nb, bottom = depth - ligament;  // heights above the beam's underside [m]
+  std::vector<std::vector<double>> at(nb);                      // positions along the beam, per band
+  for (const LoggedCrack& c : cracks) {
+    if (c.time > until || c.kind != CrackKind::Break) continue;
+    const V3 r = minus(c.position, top);
+    const double s = dot(r, along), height = depth - dot(r, down);
+    if (std::abs(s) > 0.5 * depth || height < bottom || height >= depth) continue;
+    at[std::min(nb - 1, static_cast<int>((height - bottom) / band))].push_back(s);
+  }
+  CrackPath p;
+  double length = 0, first = 0, prev_s = 0, prev_h = 0;
+  for (int k = 0; k < nb; ++k) {
+    std::vector<double>& v = at[k];
+    if (v.empty()) continue;
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    const double s = v[v.size() / 2], h = bottom + (k + 0.5) * band;
+    if (p.bands > 0) length += std::hypot(s - prev_s, h - prev_h);
+    else first = h;
+    prev_s = s, prev_h = h, ++p.bands;
+  }
+  if (p.bands >= 2) {
+    p.length = length;
+    p.height = prev_h - first;
+    p.tortuosity = length / p.height;
+  }
+  return p;
+}
+
+namespace {
+
+// The energy balance of the whole test from the energy histories (scene with [physics] energy = true): the work
+// of the walls (the loading point; fixed supports do no work) against what is stored, dissipated and moving.
+// "null" without them.
+std::string energy_json(const Histories& h, double ligament_area) {
+  const char* names[] = {"energy.boundary_work", "energy.body_work", "energy.strain", "energy.kinetic",
+                         "energy.dissipated_bonds", "energy.dissipated_contacts", "energy.dissipated_local",
+                         "energy.residual"};
+  for (const char* n : names)
+    if (!h.count(n) || h.at(n).empty()) return "null";
+  const std::vector<double>& work = h.at("energy.boundary_work");
+  const std::vector<double>& residual = h.at("energy.residual");
+  // |residual| / work at every recorded row once the work is 1 % of its final value (before, both are noise).
+  double worst = 0;
+  for (std::size_t k = 0; k < work.size(); ++k)
+    if (work[k] >= 0.01 * work.back()) worst = std::max(worst, std::abs(residual[k]) / work[k]);
+  std::ostringstream o;
+  o << "{";
+  for (const char* n : names) o << "\n      " << json_quote(std::string(n).substr(7)) << ": " << json_number(h.at(n).back()) << ",";
+  o << "\n      \"worst_residual_over_work\": " << json_number(worst)
+    << ",\n      \"G_F_bonds\": " << json_number(h.at("energy.dissipated_bonds").back() / ligament_area)
+    << ",\n      \"definition\": \"final values [J, simulated thickness]; worst |residual|/work over the rows where the "
+       "work is at least 1 % of its final value; G_F_bonds = energy dissipated by bond breakage and softening over "
+       "the ligament area\"\n    }";
+  return o.str();
+}
+
+}  // namespace
+
+std::string BendingAnalysis::summary_json(const RunRecord& run) const {
+  const Histories& h = run.histories;
   const BendingResult r = result(h);
   if (!std::isfinite(r.peak_load)) return "null";
   const double f = load_scale();
@@ -193,7 +317,18 @@ std::string BendingAnalysis::summary_json(const Histories& h) const {
     << json_quote(gravity ? "m g delta0, m the beam's mass between the supports"
                           : "none: gravity is off, so no self-weight acts and the load returns to zero by itself")
     << ",\n    \"final_deflection\": " << json_number(r.final_deflection)
-    << ",\n    \"final_load_over_peak\": " << json_number(r.final_load_ratio) << "\n  }";
+    << ",\n    \"final_load_over_peak\": " << json_number(r.final_load_ratio);
+  if (!run.cracks.empty()) {
+    const CrackPath p = crack_path(run.cracks, kInf);
+    o << ",\n    \"crack_path\": {\"bands\": " << p.bands << ", \"length\": " << json_number(p.length)
+      << ", \"height\": " << json_number(p.height) << ", \"tortuosity\": " << json_number(p.tortuosity)
+      << ", \"height_over_ligament\": " << json_number(p.height / ligament)
+      << ",\n      \"definition\": \"the broken bonds within half a depth of mid-span, median position along the beam in "
+         "each of 20 bands of the ligament, joined; tortuosity = length / height spanned\"}"
+      << ",\n    \"cracks_at_peak\": " << crack_counts_json(run.cracks, r.peak_time, phase_names)
+      << ",\n    \"cracks_final\": " << crack_counts_json(run.cracks, kInf, phase_names);
+  }
+  o << ",\n    \"energy\": " << energy_json(h, ligament_area()) << "\n  }";
   return o.str();
 }
 

@@ -301,8 +301,8 @@ UniaxialResult UniaxialAnalysis::result_from(const Histories& h, const std::stri
   return r;
 }
 
-std::string UniaxialAnalysis::summary_json(const Histories& h) const {
-  const UniaxialResult r = result(h);
+std::string UniaxialAnalysis::summary_json(const RunRecord& run) const {
+  const UniaxialResult r = result(run.histories);
   if (!std::isfinite(r.ucs)) return "null";
   std::ostringstream o;
   o << "{\n    \"loading\": " << (tension ? "\"tension\"" : "\"compression\"");

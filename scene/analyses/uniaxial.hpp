@@ -63,7 +63,7 @@ class UniaxialAnalysis final : public Analysis {
   void add_histories(std::vector<Series>& out, const Observed<2>& o) const override;
   void add_histories(std::vector<Series>& out, const Observed<3>& o) const override;
   void check(const Table& t, const Scene& s, const std::vector<std::string>& histories) const override;
-  std::string summary_json(const Histories& h) const override;
+  std::string summary_json(const RunRecord& run) const override;
 
   UniaxialResult result(const Histories& h) const;
 
