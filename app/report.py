@@ -23,7 +23,7 @@ import numpy as np
 # found there whichever folder Python was started from.
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_plots import ReportError, plot_energy, plot_history, plot_xy  # noqa: E402
-from report_specimen import plot_cracks, plot_specimen  # noqa: E402
+from report_specimen import plot_cracks, plot_cracks_at_peak, plot_specimen  # noqa: E402
 
 FORMAT = "mesocrack-1"
 
@@ -119,15 +119,17 @@ def read_outlines(spec):
 
 def read_cracks(f, D, spec):
     """The crack log (None without one): positions, normals, mode (1 tensile, 2 shear), kind (0 break,
-    1 first yield), phase pair, and the crack's length in the plane (2·min(R_a, R_b))."""
+    1 first yield), phase pair, time, and the crack's length in the plane (2·min(R_a, R_b))."""
     g = f.get("cracks")
     if not isinstance(g, h5py.Group) or "position" not in g:
         return None
-    n = min(g[k].shape[0] for k in ("position", "normal", "mode", "kind", "phase_a", "phase_b", "id_a", "id_b"))
+    n = min(g[k].shape[0] for k in ("position", "normal", "mode", "kind", "phase_a", "phase_b", "id_a", "id_b",
+                                     "time"))
     c = {"position": np.asarray(g["position"][:n], dtype=float).reshape(-1, D),
          "normal": np.asarray(g["normal"][:n], dtype=float).reshape(-1, D),
          "mode": np.asarray(g["mode"][:n], dtype=int), "kind": np.asarray(g["kind"][:n], dtype=int),
          "phase_a": np.asarray(g["phase_a"][:n], dtype=int), "phase_b": np.asarray(g["phase_b"][:n], dtype=int),
+         "time": np.asarray(g["time"][:n], dtype=float),
          "size": np.zeros(n)}
     if spec is not None and "id" in f["specimen"]:
         ids = np.asarray(f["specimen"]["id"], dtype=np.int64)
@@ -157,17 +159,13 @@ def main(argv=None):
         except OSError as e:
             raise ReportError(f"cannot create output directory {out_dir}: {e.strerror}")
         stem = os.path.splitext(os.path.basename(args.file))[0]
-        for plot in (plot_history, plot_xy, plot_energy, plot_specimen, plot_cracks):
+        for plot in (plot_history, plot_xy, plot_energy, plot_specimen, plot_cracks, plot_cracks_at_peak):
             for path in plot(run, stem, out_dir):
                 print(path, flush=True)
     except ReportError as e:  # every ReportError is about a file: exit 3, as `mesocrack` does for file errors
         print(f"error: report: {args.file}: {e}", file=sys.stderr)
         return 3
     return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
 
 
 if __name__ == "__main__":

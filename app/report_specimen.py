@@ -174,15 +174,30 @@ def crack_segments(c, sel, factor):
     return np.stack([p - t, p + t], axis=1) * factor
 
 
-def plot_cracks(run, stem, out_dir):
+def plot_cracks_at_peak(run, stem, out_dir):
+    """A three-point bending run ([bending]): the cracks up to the peak load (Tang Figs. 7.7-7.8, first panel)."""
+    h = run["history"]
+    if "bending.load" not in h or "time" not in h or len(h["time"]["data"]) == 0:
+        return []
+    peak = int(np.argmax(h["bending.load"]["data"]))
+    return plot_cracks(run, stem, out_dir, until=float(h["time"]["data"][peak]))
+
+
+def plot_cracks(run, stem, out_dir, until=None):
     """2D: every crack as a segment across its bond (perpendicular to the normal, as long as the smaller
     diameter), over the specimen; colour = mode, line style = phase pair; first yields of softening bonds
-    dotted. 3D: crack positions projected on the x-z plane."""
+    dotted. 3D: crack positions projected on the x-z plane. `until` [s]: only those logged by then
+    (<stem>_cracks_peak.png), drawn over the last frame."""
     c = run["cracks"]
     if c is None or run["specimen"] is None:
         return []
+    if until is not None:
+        c = {k: v[c["time"] <= until] for k, v in c.items()}
     xy, r, _, _, (ax0, ax1), limits, when = section(run)
-    fig, ax = plt.subplots(figsize=(7, 6), constrained_layout=True)
+    # The figure takes the specimen's shape (a beam is four times as long as deep), with room for the legend.
+    aspect = (limits[1][1] - limits[0][1]) / max(limits[1][0] - limits[0][0], 1e-300)
+    fig, ax = plt.subplots(figsize=(10, min(8, max(3, 6.5 * aspect + 1.2))) if aspect < 0.6 else (7, 6),
+                           constrained_layout=True)
     factor, lunit = si_scale(np.abs(limits).ravel(), "m")
     if run["dimension"] == 2:
         draw_discs(ax, xy, r, limits, factor, facecolors="0.92")
@@ -214,6 +229,9 @@ def plot_cracks(run, stem, out_dir):
                     p = c["position"][sel]
                     handles.append(ax.scatter(p[:, 0] * factor, p[:, 2] * factor, s=4 if kind == 0 else 1, c=colour,
                                               marker="o" if k == 0 else "x", label=label))
+    if until is not None:
+        tf, tu = si_scale([until], "s")
+        when = f"cracks to the peak load (t = {until * tf:.4g} {tu}), over the last frame"
     if run["dimension"] == 3:
         when += " (cracks: all, projected on the x-z plane)"
     if handles:
@@ -222,4 +240,4 @@ def plot_cracks(run, stem, out_dir):
         ax.text(0.5, 0.5, "no bond has broken", ha="center", transform=ax.transAxes)
     breaks = int((c["kind"] == 0).sum())
     ax.set_title(f"{stem}: {breaks} broken bonds; {when}", fontsize="medium")
-    return [save(fig, out_dir, stem, "cracks", dpi=200 if len(r) > 10000 else 120)]
+    return [save(fig, out_dir, stem, "cracks" if until is None else "cracks_peak", dpi=200 if len(r) > 10000 else 120)]

@@ -21,7 +21,6 @@ plot per relation (relation_6_K.png: our means ± one standard deviation over se
   benchmarks/tang_relations.py --dims 2 --only friction      # one sweep
   benchmarks/tang_relations.py --analyse                     # tables and plots from results.csv
 """
-import argparse
 import csv
 import math
 import sys
@@ -30,7 +29,8 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from uniaxial_accuracy import MEAN, ROOT, geometry_2d, geometry_3d, mean_cv, run_appending  # noqa: E402
+from uniaxial_accuracy import (MEAN, geometry_2d, geometry_3d, mean_cv, run_appending,  # noqa: E402
+                               study_arguments)
 
 # Table 5.1: the reference point of every sweep.
 REFERENCE = {
@@ -248,16 +248,11 @@ FIELDS = ["key", "dim", "seed", *SWEEPS, "Ec", "E", "E_platens", "E_inside", "nu
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--mesocrack", default=str(ROOT / "build" / "mesocrack"))
-    ap.add_argument("--out", default=str(ROOT / "out" / "tang_relations"))
-    ap.add_argument("--jobs", type=int, default=1, help="runs at once (each on one thread)")
+    ap = study_arguments(__doc__, "tang_relations", ",".join(SWEEPS))
     ap.add_argument("--dims", default="2,3")
-    ap.add_argument("--only", default=",".join(SWEEPS))
     ap.add_argument("--seeds", type=int, default=3)
     ap.add_argument("--lr2", type=float, default=60, help="2D L/R (Table 5.1: 120)")
     ap.add_argument("--lr3", type=float, default=15, help="3D L/R (Table 5.1: 38)")
-    ap.add_argument("--analyse", action="store_true", help="only redraw tables and plots from results.csv")
     a = ap.parse_args()
     if a.seeds < 3:
         sys.exit("--seeds: at least 3, for a spread per point")

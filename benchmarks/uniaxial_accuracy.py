@@ -117,9 +117,10 @@ def plan(full, dims, only, seeds):
     return runs
 
 
-def run_one(exe, out, key, dim, overrides):
-    scene = ROOT / "scenes" / f"uniaxial_{dim}d.toml"
-    h5 = out / "runs" / f"{key}.h5"
+def timed_run(exe, scene, h5, overrides, keep=False):
+    """`mesocrack run scene -o h5` on one thread with --set overrides; its summary (JSON as a dict), and the CPU
+    seconds (user + system of the child: the cost on one core, robust to whatever else the machine is doing) and
+    wall seconds it took. The output files are deleted unless `keep`: the numbers are in the summary."""
     cmd = [exe, "run", str(scene), "-o", str(h5), "--threads", "1"]
     for o in overrides:
         cmd += ["--set", o]
@@ -127,18 +128,35 @@ def run_one(exe, out, key, dim, overrides):
     p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env={**os.environ, "OMP_NUM_THREADS": "1"})
     _, status, usage = os.wait4(p.pid, 0)
     err = p.stderr.read().decode()
-    p.returncode = os.waitstatus_to_exitcode(status)
+    code = os.waitstatus_to_exitcode(status)
     wall = time.monotonic() - t0
-    if p.returncode != 0:
-        raise RuntimeError(f"{key}: exit {p.returncode}: {err[-2000:]}")
+    if code != 0:
+        raise RuntimeError(f"{h5.stem}: exit {code}: {err[-2000:]}")
     s = json.loads(subprocess.run([exe, "summary", str(h5)], capture_output=True, check=True, text=True).stdout)
+    if not keep:
+        for f in h5.parent.glob(h5.stem + "*"):
+            f.unlink()
+    return s, usage.ru_utime + usage.ru_stime, wall
+
+
+def study_arguments(doc, out_name, only):
+    """The options every study shares: the binary, the output folder, the runs at once, the sweeps, re-analysis."""
+    ap = argparse.ArgumentParser(description=doc, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--mesocrack", default=str(ROOT / "build" / "mesocrack"))
+    ap.add_argument("--out", default=str(ROOT / "out" / out_name))
+    ap.add_argument("--jobs", type=int, default=1, help="runs at once (each on one thread)")
+    ap.add_argument("--only", default=only)
+    ap.add_argument("--analyse", action="store_true", help="only redraw tables and plots from results.csv")
+    return ap
+
+
+def run_one(exe, out, key, dim, overrides):
+    s, cpu, wall = timed_run(exe, ROOT / "scenes" / f"uniaxial_{dim}d.toml", out / "runs" / f"{key}.h5", overrides)
     u = s["uniaxial"] or {}
-    for f in h5.parent.glob(h5.stem + "*"):        # keep the disk small: the numbers are in results.csv
-        f.unlink()
     return {"E": u.get("E"), "E_platens": u.get("E_platens"), "E_inside": u.get("E_inside"), "nu": u.get("nu"),
             "ucs": u.get("ucs"), "init_ratio": u.get("crack_initiation_ratio"),
             "particles": s["particles"], "steps": s["steps"],
-            "cpu_s": usage.ru_utime + usage.ru_stime, "wall_s": wall}
+            "cpu_s": cpu, "wall_s": wall}
 
 
 def run_appending(exe, out, jobs, csv_path, fields, todo, done):
@@ -306,15 +324,10 @@ def analyse(rows, out):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--mesocrack", default=str(ROOT / "build" / "mesocrack"))
-    ap.add_argument("--out", default=str(ROOT / "out" / "accuracy"))
-    ap.add_argument("--jobs", type=int, default=1, help="runs at once (each on one thread)")
+    ap = study_arguments(__doc__, "accuracy", "rate,resolution,timestep,density")
     ap.add_argument("--full", action="store_true", help="Tang's full ranges (hours)")
     ap.add_argument("--dims", default="2,3")
-    ap.add_argument("--only", default="rate,resolution,timestep,density")
     ap.add_argument("--seeds", type=int, default=5, help="realizations per point of the resolution sweep")
-    ap.add_argument("--analyse", action="store_true", help="only redraw tables and plots from results.csv")
     a = ap.parse_args()
     out = Path(a.out)
     (out / "runs").mkdir(parents=True, exist_ok=True)
