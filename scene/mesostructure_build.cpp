@@ -91,6 +91,10 @@ std::vector<std::vector<std::array<double, 2>>> outlines(const AggregateLayout<D
 
 template <int D>
 void apply_mesostructure(const Scene& s, Particles<D>& p, SpecimenInfo& info) {
+  if (s.mesostructure.fraction == 0) {
+    info.facts.push_back({"aggregate_fraction_target", 0.0});
+    return;
+  }
   AggregateLayout<D> layout;
   try {
     layout = place_aggregates<D>(placement_spec<D>(s, p));

@@ -93,7 +93,9 @@ void read_mesostructure(const Table& root, Scene& s) {
   const int d = s.dimension;
   MesostructureSpec& m = s.mesostructure;
   m.present = true;
-  m.fraction = t->number("fraction", Unit::None, Range{0.0, 1.0, true, true});
+  // 0: no aggregate at all, the mortar alone (the same scene without its coarse aggregate, e.g. to check the
+  // mortar's fracture energy in the beam it is part of).
+  m.fraction = t->number("fraction", Unit::None, Range::open_fraction());
   // Tang Table 4.1 (4–8, 8–16, 16–32, 32–64 mm at 2:2:3:3), scaled by size_scale; or explicit ranges.
   const std::string grading = t->choice("grading", {"table_4_1", "ranges"}, "table_4_1");
   const double scale = t->number("size_scale", Unit::None, Range::positive(), 1.0);
