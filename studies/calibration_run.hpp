@@ -28,6 +28,11 @@ std::string run_file(const std::string& output, int iteration, const std::string
 // not at all.
 void write_scene(const std::string& scene_file, const std::vector<std::string>& overrides, const std::string& output);
 
+// Tang's procedure (§6.3) on the scene's parallel_bond entry `entry` (studies/calibration_bonded.cpp); options.tolerance
+// is set.
+CalibrationResult calibrate_bonded(const std::string& scene_file, const std::vector<std::string>& overrides, int entry,
+                                   const CalibrationTarget& target, const CalibrationOptions& options, std::FILE* log);
+
 // Šmilauer's procedure on the scene's cpm entry `entry` (studies/calibration_cpm.cpp); options.tolerance is set.
 CalibrationResult calibrate_cpm(const std::string& scene_file, const std::vector<std::string>& overrides, int entry,
                                 const CalibrationTarget& target, const CalibrationOptions& options, std::FILE* log);
