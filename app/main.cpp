@@ -213,13 +213,18 @@ int main(int argc, char** argv) {
       ->check(whole_number(1, kAnyCount, "the number of packings"))
       ->excludes("--resume");
   auto* calibrate_cmd = app.add_subcommand(
-      "calibrate", "find micro-parameters matching target E, nu, UCS (Tang 6.3) or E, nu, ft, fc (CPM, Smilauer)");
+      "calibrate",
+      "find micro-parameters matching target E, nu, UCS (bonds in compression, Tang 6.3), E, nu, ft, Gf (bonds in "
+      "tension, Tang ch. 7) or E, nu, ft, fc (CPM, Smilauer)");
   calibrate_cmd
       ->add_option("scene", scene,
-                   "scene file (TOML) with [uniaxial] and one parallel_bond (compression) or cpm (tension) contact entry")
+                   "scene file (TOML) with [uniaxial] and one parallel_bond (compression or tension), softening_bond "
+                   "(tension) or cpm (tension) contact entry")
       ->required();
   calibrate_cmd
-      ->add_option("--target", targets, "targets, e.g. E=30GPa,nu=0.2,ucs=40MPa or E=30GPa,nu=0.2,ft=3MPa,fc=40MPa")
+      ->add_option("--target", targets,
+                   "targets, e.g. E=30GPa,nu=0.2,ucs=40MPa, E=35GPa,nu=0.16,ft=3.2MPa,Gf=170.4N/m or "
+                   "E=30GPa,nu=0.2,ft=3MPa,fc=40MPa")
       ->required();
   calibrate_cmd->add_option("--compression", compression,
                             "cpm with an fc target: the compression test scene (same specimen and material entry)");

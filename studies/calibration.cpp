@@ -1,5 +1,6 @@
 #include "studies/calibration.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -39,50 +40,47 @@ CalibrationTarget parse_targets(const std::string& text) {
     c.ucs = t.number("ucs", Unit::Pressure, Range::positive(), kNaN);
     c.tensile = t.number("ft", Unit::Pressure, Range::positive(), kNaN);
     c.compressive = t.number("fc", Unit::Pressure, Range::positive(), kNaN);
+    c.fracture_energy = t.number("Gf", Unit::EnergyPerArea, Range::positive(), kNaN);
     t.finish();
     if (std::isnan(c.modulus) && std::isnan(c.poisson) && std::isnan(c.ucs) && std::isnan(c.tensile) &&
-        std::isnan(c.compressive))
-      throw InputError("--target '" + text + "': name at least one of E, nu, ucs, ft, fc");
+        std::isnan(c.compressive) && std::isnan(c.fracture_energy))
+      throw InputError("--target '" + text + "': name at least one of E, nu, ucs, ft, fc, Gf");
     return c;
   } catch (const InputError& e) {
     throw InputError(std::string(e.what()) +
-                     " (allowed targets: E [Pa], nu in (0, 0.5), and ucs [Pa] for parallel_bond scenes or ft, fc "
-                     "[Pa] for cpm scenes)");
+                     " (allowed targets: E [Pa], nu in (0, 0.5); ucs [Pa] for parallel_bond scenes in compression; "
+                     "ft [Pa] for parallel_bond and softening_bond scenes in tension, with Gf [N/m] for "
+                     "softening_bond; ft, fc [Pa] for cpm scenes)");
   }
 }
 
-// Which procedure: the scene's calibrated [[contacts]] entry decides, and the targets must be ones it can reach.
+// Which procedure: the scene's calibrated [[contacts]] entry decides; the procedure refuses targets it cannot reach.
 CalibrationResult calibrate(const std::string& scene_file, const std::vector<std::string>& overrides,
                             const CalibrationTarget& target, const CalibrationOptions& options, std::FILE* log) {
   if (options.output.empty()) throw InputError("calibrate: give the calibrated scene's file with -o CALIBRATED.toml");
   const TomlDoc doc = TomlDoc::load(scene_file, overrides);
-  const int bonded = contacts_entry(doc, "parallel_bond"), cpm = contacts_entry(doc, "cpm");
-  if ((bonded >= 0) == (cpm >= 0))
+  const int parallel = contacts_entry(doc, "parallel_bond"), softening = contacts_entry(doc, "softening_bond"),
+            cpm = contacts_entry(doc, "cpm");
+  const int found = (parallel >= 0) + (softening >= 0) + (cpm >= 0);
+  if (found != 1)
     throw InputError(scene_file +
-                     ": calibrate needs one [[contacts]] entry with model = \"parallel_bond\" (Tang §6.3) or "
+                     ": calibrate needs one [[contacts]] entry with model = \"parallel_bond\" (Tang §6.3 in "
+                     "compression, ch. 7 in tension), model = \"softening_bond\" (Tang ch. 7, in tension) or "
                      "model = \"cpm\" (Šmilauer, \"Parameter calibration\")" +
-                     (bonded >= 0 ? "; this scene has both: calibrate each material in its own scene" : ""));
-  auto refuse = [&](double value, const char* name, const char* model, const char* allowed) {
-    if (!std::isnan(value))
-      throw InputError("--target " + std::string(name) + ": not a target for a " + model +
-                       " scene (its targets: " + allowed + ")");
-  };
+                     (found > 1 ? "; this scene has several: calibrate each material in its own scene" : ""));
   CalibrationOptions o = options;
   if (cpm >= 0) {
-    refuse(target.ucs, "ucs", "cpm", "E, nu, ft, fc; its compressive strength is fc");
+    auto refuse = [](double value, const std::string& name, const std::string& why) {
+      if (!std::isnan(value))
+        throw InputError("--target " + name + ": not a target for a cpm scene (its targets: E, nu, ft, fc)" + why);
+    };
+    refuse(target.ucs, "ucs", "; its compressive strength is fc");
+    refuse(target.fracture_energy, "Gf", "; its G_f follows from relative_ductility, which calibrate holds");
     if (std::isnan(o.tolerance)) o.tolerance = 0.03;
     return calibrate_cpm(scene_file, overrides, cpm, target, o, log);
   }
-  refuse(target.tensile, "ft", "parallel_bond", "E with nu, ucs");
-  refuse(target.compressive, "fc", "parallel_bond", "E with nu, ucs; its compressive strength is ucs");
-  if (std::isnan(target.modulus) != std::isnan(target.poisson))
-    throw InputError("--target: give E and nu together for a parallel_bond scene (both depend on E_c and k_n/k_s, "
-                     "Tang §6.3)");
-  if (!o.compression_scene.empty())
-    throw InputError("--compression: only for cpm scenes with an fc target; a parallel_bond scene is calibrated in "
-                     "its own compression test");
   if (std::isnan(o.tolerance)) o.tolerance = 0.05;
-  return calibrate_bonded(scene_file, overrides, bonded, target, o, log);
+  return calibrate_bonded(scene_file, overrides, std::max(parallel, softening), target, o, log);
 }
 
 namespace calibration {

@@ -1,7 +1,14 @@
-// Tang's calibration of a parallel-bonded specimen (§6.3) as a loop of runs of the scene's uniaxial compression
-// test: elastic runs (bonds made strong) until E and ν match, then full runs until UCS does.
+// Tang's calibration of a bonded-particle specimen as a loop of runs of the scene's uniaxial test. Parallel bonds
+// in compression (§6.3): elastic runs (bonds made strong) until E and ν match, then full runs until UCS does.
+// Parallel or softening bonds in tension (ch. 7: "the micro-parameters of DEM model are calibrated by performing
+// virtual tensile tests on each component phase"): the same elastic runs, then full runs until f_t and, for
+// softening bonds, G_f match. In tension the unbonded grain contacts open, so E differs from compression's.
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "engine/errors.hpp"
 #include "scene/scene.hpp"
@@ -15,45 +22,83 @@ namespace {
 
 // The micro-parameters being calibrated, as factors on the scene's own values.
 struct Knobs {
-  double modulus = 1;   // E_c and Ē_c, both times this
-  double ratio = 0;     // k_n/k_s of the grains (the bonds' ratio keeps its proportion to it)
-  double strength = 1;  // every bond strength (means and spreads) times this
+  double modulus = 1;    // the moduli (E_c; a parallel bond's Ē_c and its spread) times this
+  double ratio = 0;      // k_n/k_s of the grains (a parallel bond's ratio keeps its proportion to it)
+  double strength = 1;   // every bond strength (means and spreads) times this
+  double ductility = 1;  // softening bonds: U_p,max k_n / F_c^n times this (see softening_factor)
 };
 
-// What the scene's parallel-bond entry holds.
+// What the scene's bonded entry holds: the values the knobs scale, under their keys.
 struct Entry {
   int index = -1;
-  double modulus = 0, bond_modulus = 0, ratio = 1, bond_ratio = 1;
-  std::vector<std::pair<std::string, double>> strengths;  // key → value [Pa]
+  bool softening = false;  // softening_bond (Tang 3.42–3.48); else parallel_bond (3.37–3.41)
+  double ratio = 1, bond_ratio = 1;
+  std::vector<std::pair<std::string, double>> moduli;     // key → value [Pa]
+  std::vector<std::pair<std::string, double>> strengths;  // key → value [Pa], softening bonds [N]
+  // Softening bonds: how far they soften, bond_fracture_energy G_f [J/m²] (power 2) or bond_plastic_limit
+  // U_p,max [m] (power 1), the power being how it scales with the strength at fixed ductility.
+  std::string softening_key;
+  double softening_value = 0;
+  int softening_power = 0;
 };
 
-Entry find_entry(const std::string& scene_file, const std::vector<std::string>& overrides, int index) {
-  const TomlDoc doc = TomlDoc::load(scene_file, overrides);
+// The keys of `keys` that the entry gives, with their values.
+std::vector<std::pair<std::string, double>> given(const Table& t, std::initializer_list<const char*> keys, Unit u) {
+  std::vector<std::pair<std::string, double>> out;
+  for (const char* k : keys)
+    if (t.has(k)) out.push_back({k, t.number(k, u, Range::non_negative())});
+  return out;
+}
+
+Entry find_entry(const TomlDoc& doc, int index) {
   const Table t = doc.root().tables("contacts")[static_cast<std::size_t>(index)];
   Entry e;
   e.index = index;
-  e.modulus = t.number("modulus", Unit::Pressure, Range::positive());
-  e.bond_modulus = t.number("bond_modulus", Unit::Pressure, Range::positive());
+  e.softening = t.string("model") == "softening_bond";
   e.ratio = t.number("kn_ks_ratio", Unit::None, Range::positive(), 1.0);
-  e.bond_ratio = t.number("bond_kn_ks_ratio", Unit::None, Range::positive(), 1.0);
-  for (const char* k :
-       {"bond_tensile_strength", "bond_tensile_strength_std", "bond_shear_strength", "bond_shear_strength_std"})
-    if (t.has(k)) e.strengths.push_back({k, t.number(k, Unit::Pressure, Range::non_negative())});
+  // The contact bond's springs are the ball springs, k_n = 2tE_c (3.38): E_c is its only modulus.
+  e.moduli = {{"modulus", t.number("modulus", Unit::Pressure, Range::positive())}};
+  if (e.softening) {
+    e.strengths =
+        given(t, {"bond_normal_strength", "bond_normal_strength_std", "bond_shear_strength", "bond_shear_strength_std"},
+              Unit::Force);
+    const bool energy = t.has("bond_fracture_energy");
+    e.softening_key = energy ? "bond_fracture_energy" : "bond_plastic_limit";
+    e.softening_value = t.number(e.softening_key, energy ? Unit::EnergyPerArea : Unit::Length, Range::positive());
+    e.softening_power = energy ? 2 : 1;
+  } else {
+    e.bond_ratio = t.number("bond_kn_ks_ratio", Unit::None, Range::positive(), 1.0);
+    for (const auto& m : given(t, {"bond_modulus", "bond_modulus_std"}, Unit::Pressure)) e.moduli.push_back(m);
+    e.strengths = given(
+        t, {"bond_tensile_strength", "bond_tensile_strength_std", "bond_shear_strength", "bond_shear_strength_std"},
+        Unit::Pressure);
+  }
   return e;
 }
 
-std::string set(const Entry& e, const std::string& key, double v) { return set_key(e.index, key, v); }
+// The softening key's factor that keeps the bond's shape at ductility ρ when the strengths are times s and the
+// moduli times m. A softening bond's strengths fall linearly to zero at U_p,max (3.48), with U_p,max = 2 G_f A /
+// F_c^n for a G_f; its shape is U_p,max over the elastic displacement at the strength, F_c^n/k_n. With G_f times
+// ρ s²/m (U_p,max times ρ s/m) that ratio is times ρ alone, and every force and displacement of a quasi-static
+// test scales as s and s/m: f_t ∝ s, G_f ∝ s²/m, and Hillerborg's l_ch = E G_f / f_t² depends on ρ only.
+double softening_factor(const Entry& e, const Knobs& k) {
+  return k.ductility * std::pow(k.strength, e.softening_power) / k.modulus;
+}
 
+// The knobs as --set strings; the strengths are times `strength` (an elastic run's are made strong).
 std::vector<std::string> knob_overrides(const Entry& e, const Knobs& k, double strength) {
-  std::vector<std::string> o{set(e, "modulus", e.modulus * k.modulus),
-                             set(e, "bond_modulus", e.bond_modulus * k.modulus), set(e, "kn_ks_ratio", k.ratio),
-                             set(e, "bond_kn_ks_ratio", e.bond_ratio / e.ratio * k.ratio)};
-  for (const auto& [key, v] : e.strengths) o.push_back(set(e, key, v * strength));
+  std::vector<std::string> o;
+  for (const auto& [key, v] : e.moduli) o.push_back(set_key(e.index, key, v * k.modulus));
+  o.push_back(set_key(e.index, "kn_ks_ratio", k.ratio));
+  if (!e.softening) o.push_back(set_key(e.index, "bond_kn_ks_ratio", e.bond_ratio / e.ratio * k.ratio));
+  for (const auto& [key, v] : e.strengths) o.push_back(set_key(e.index, key, v * strength));
+  if (e.softening) o.push_back(set_key(e.index, e.softening_key, e.softening_value * softening_factor(e, k)));
   return o;
 }
 
 // E/E_c as a function of k_n/k_s, Tang (6.2) for 2D and (6.3) for 3D: used only to predict how a change of the
-// ratio moves E, so that E_c can be corrected for it in the same iteration.
+// ratio moves E, so that E_c can be corrected for it in the same iteration (measured in compression; in tension
+// it is a first guess that the next run corrects).
 double modulus_shape(int dimension, double ratio) {
   return dimension == 2 ? 1.57 - 0.42 * std::log(ratio) : 1.36 - 0.39 * std::log(ratio);
 }
@@ -65,7 +110,28 @@ struct Trial {
   std::string file;
 };
 
-// Tang §6.3 as a loop of runs: elastic runs (bonds made strong) until E and ν match, then full runs until UCS does.
+// A slope dy/dx measured between successive points: update() records a point and, when it lies more than
+// min_step from the previous one along x and the slope between them within (lo, hi), takes that slope; until
+// then the slope given at construction holds.
+class Secant {
+ public:
+  explicit Secant(double slope) : slope_(slope) {}
+  double update(double x, double y, double min_step, double lo, double hi) {
+    if (std::isfinite(x_) && std::abs(x - x_) > min_step) {
+      const double s = (y - y_) / (x - x_);
+      if (s > lo && s < hi) slope_ = s;
+    }
+    x_ = x, y_ = y;
+    return slope_;
+  }
+  double last() const { return slope_; }
+
+ private:
+  double slope_, x_ = kNaN, y_ = kNaN;
+};
+
+// Tang's procedure as a loop of runs: elastic runs (bonds made strong) until E and ν match, then full runs until
+// the strength (UCS, or f_t) and G_f do, correcting E and ν too if the bonds that break before the peak move them.
 class Calibration {
  public:
   Calibration(const std::string& scene_file, const std::vector<std::string>& overrides, int entry,
@@ -75,46 +141,51 @@ class Calibration {
         target_(target),
         options_(options),
         log_(log),
-        entry_(find_entry(scene_file, overrides, entry)),
-        base_(read_scene(TomlDoc::load(scene_file, overrides), scene_file)) {
-    if (!base_.analysis<UniaxialAnalysis>())
-      throw InputError(scene_file + ": calibrate needs a [uniaxial] table: it matches the E, ν and UCS it reports");
+        base_(read_scene(TomlDoc::load(scene_file, overrides), scene_file)),
+        entry_(find_entry(TomlDoc::load(scene_file, overrides), entry)) {
+    const auto* u = base_.analysis<UniaxialAnalysis>();
+    if (!u)
+      throw InputError(scene_file +
+                       ": calibrate needs a [uniaxial] table: it matches the E, ν and strength it reports");
+    tension_ = u->tension;
+    check_targets();
     std::vector<std::string> outputs{options_.output, options_.output + ".tmp"};
     for (int it = 1; it <= options_.max_iterations; ++it)
       for (const auto& f : run_files(run_file(it))) outputs.push_back(f);
     refuse_inputs_as_outputs(base_, outputs);
     knobs_.ratio = entry_.ratio;
-    elastic_ = elastic_targets();
-    // The elastic runs stop at half the target's elastic strain at the peak: far enough for the secant between
-    // 25 % and 50 % of their last stress, and a fraction of a full test's steps.
-    elastic_stop_ = strength_target() && elastic_targets() ? 0.5 * target.ucs / target.modulus : 5e-4;
+    elastic_ = e_target();
+    // The elastic runs stop at half the target's elastic strain at the peak in compression: far enough for the
+    // secant between 25 % and 50 % of their last stress, and a fraction of a full test's steps. In tension at
+    // that strain itself (as the CPM's, studies/calibration_cpm.cpp): the supports start at full speed, and their
+    // secant window is then the full test's, read as long after the start. Without both targets: 5e-4 in
+    // compression, 1e-4 (of the order of f_t/E of a concrete) in tension.
+    elastic_stop_ = peak_target() && e_target() ? (tension_ ? 1.0 : 0.5) * peak() / target.modulus
+                    : tension_                  ? 1e-4
+                                                : 5e-4;
   }
 
   CalibrationResult run() {
-    std::fprintf(log_, "%3s %-8s %10s %7s %9s | %9s %7s %9s | %s\n", "it", "run", "E_c [GPa]", "kn/ks", "strength",
-                 "E [GPa]", "nu", "UCS [MPa]", "wall [s]");
+    log_header();
     Knobs ran = knobs_;  // what the last run used: the calibrated scene gets these, never untested values
     for (int it = 1; it <= options_.max_iterations; ++it) {
       ran = knobs_;
       const Trial t = trial(it);
       const UniaxialResult& u = t.result;
       res_.iterations = it;
-      const bool e_ok = !elastic_targets() || (rel(u.modulus, target_.modulus) <= options_.tolerance &&
-                                               rel(u.poisson, target_.poisson) <= options_.tolerance);
+      const bool e_ok = elastic_ok(u);
       if (!elastic_) res_.last = u;
-      if (elastic_ && e_ok && strength_target()) {  // the stiffnesses are found: now the strengths, in full tests
+      if (elastic_ && e_ok && peak_target()) {  // the stiffnesses are found: now the strengths, in full tests
         elastic_ = false;
         continue;
       }
-      const bool s_ok = !strength_target() || (!elastic_ && rel(u.ucs, target_.ucs) <= options_.tolerance);
-      if (e_ok && s_ok) {
+      if (e_ok && (elastic_ || strengths_ok(u))) {
         if (elastic_) res_.last = u;
         res_.converged = true;
         break;
       }
       if (!e_ok) adjust_stiffness(u);
-      if (!elastic_ && strength_target() && rel(u.ucs, target_.ucs) > options_.tolerance)
-        knobs_.strength *= target_.ucs / u.ucs;  // UCS in proportion to the bond strengths at fixed strength ratio
+      if (!elastic_) adjust_strength(u);
     }
     res_.overrides = knob_overrides(entry_, ran, ran.strength);
     write_scene(scene_file_, with_user_overrides(res_.overrides), options_.output);
@@ -122,8 +193,63 @@ class Calibration {
   }
 
  private:
-  bool elastic_targets() const { return !std::isnan(target_.modulus); }
-  bool strength_target() const { return !std::isnan(target_.ucs); }
+  bool e_target() const { return !std::isnan(target_.modulus); }
+  bool nu_target() const { return !std::isnan(target_.poisson); }
+  bool gf_target() const { return !std::isnan(target_.fracture_energy); }
+  // The strength the test measures: UCS in compression, f_t in tension.
+  double peak() const { return tension_ ? target_.tensile : target_.ucs; }
+  bool peak_target() const { return !std::isnan(peak()); }
+
+  bool within(double value, double target) const {
+    return std::isnan(target) || rel(value, target) <= options_.tolerance;
+  }
+  bool elastic_ok(const UniaxialResult& u) const {
+    return within(u.modulus, target_.modulus) && within(u.poisson, target_.poisson);
+  }
+  bool strengths_ok(const UniaxialResult& u) const {
+    return within(u.ucs, peak()) && within(u.fracture_energy, target_.fracture_energy);
+  }
+
+  // What each model and loading can be calibrated to; InputError naming the first target that does not fit.
+  void check_targets() const {
+    const std::string model = entry_.softening ? "softening_bond" : "parallel_bond";
+    if (entry_.softening && !tension_)
+      throw InputError(scene_file_ +
+                       ": calibrate runs a softening_bond scene as its uniaxial tension test (Tang ch. 7: \"virtual "
+                       "tensile tests on each component phase\"); give [uniaxial] loading = \"tension\"");
+    const std::string allowed = !tension_          ? "E with nu, ucs"
+                                : entry_.softening ? "E, nu with E, ft, Gf with ft"
+                                                   : "E, nu with E, ft";
+    auto refuse = [&](double value, const std::string& name, const std::string& why) {
+      if (!std::isnan(value))
+        throw InputError("--target " + name + ": not a target for a " + model + " scene in " +
+                         (tension_ ? "tension" : "compression") + " (its targets: " + allowed + ")" + why);
+    };
+    refuse(target_.compressive, "fc", tension_ ? "; fc is a cpm target" : "; its compressive strength is ucs");
+    if (tension_) {
+      refuse(target_.ucs, "ucs", "; in tension its strength is ft");
+      if (!entry_.softening)
+        refuse(target_.fracture_energy, "Gf",
+               "; a parallel bond breaks brittle, with no softening to fit G_f to: Gf is a target of softening_bond "
+               "scenes");
+      if (nu_target() && !e_target())
+        throw InputError("--target: give E with nu (both depend on E_c and k_n/k_s, Tang §6.3)");
+      if (gf_target() && std::isnan(target_.tensile))
+        throw InputError(
+            "--target: give ft with Gf (a softening bond's G_f moves with the square of its strength; "
+            "the ductility is fitted to l_ch = E G_f / f_t²)");
+    } else {
+      refuse(target_.tensile, "ft", "; its strength in compression is ucs");
+      refuse(target_.fracture_energy, "Gf", "; G_f is measured in tension");
+      if (e_target() != nu_target())
+        throw InputError(
+            "--target: give E and nu together for a parallel_bond scene in compression (both depend on "
+            "E_c and k_n/k_s, Tang §6.3)");
+    }
+    if (!options_.compression_scene.empty())
+      throw InputError("--compression: only for cpm scenes with an fc target; a " + model +
+                       " scene is calibrated in its own uniaxial test");
+  }
 
   // Run `it` with the current knobs (an elastic run: bonds 1000× stronger, stopped early), logged as a line.
   Trial trial(int it) {
@@ -140,37 +266,78 @@ class Calibration {
     ro.output = run_file(it);
     Trial t{{}, run_scene(scene, ro), ro.output};
     t.result = uniaxial_result(ro.output);
+    log_line(it, t);
     const UniaxialResult& u = t.result;
-    char ucs[32] = "-";  // an elastic run has no peak
-    if (!elastic_) std::snprintf(ucs, sizeof ucs, "%.4g", u.ucs * 1e-6);
-    std::fprintf(log_, "%3d %-8s %10.4g %7.4g %9.4g | %9.4g %7.4g %9s | %.1f\n", it, elastic_ ? "elastic" : "full",
-                 entry_.modulus * knobs_.modulus * 1e-9, knobs_.ratio, knobs_.strength, u.modulus * 1e-9, u.poisson,
-                 ucs, t.run.wall_seconds);
-    std::fflush(log_);
     if (!std::isfinite(u.modulus) || !std::isfinite(u.poisson) || (!elastic_ && !std::isfinite(u.ucs)))
-      throw InputError(t.file + ": the uniaxial test gave no E, ν or UCS (" + t.run.status +
+      throw InputError(t.file + ": the uniaxial test gave no E, ν or strength (" + t.run.status +
                        "); check that the scene loads the specimen to its peak");
+    if (!elastic_ && gf_target() && !std::isfinite(u.fracture_energy))
+      throw InputError(t.file + ": the tension test gave no G_f (" + t.run.status +
+                       "): it needs the stress to fall to 0.2 f_t after the peak; let the run go on that far (e.g. "
+                       "[[run.stop]] post_peak_fraction = 0.15 on uniaxial.stress)");
     return t;
+  }
+
+  void log_header() const {
+    std::fprintf(log_, "%3s %-8s %10s %7s %9s", "it", "run", "E_c [GPa]", "kn/ks", "strength");
+    if (entry_.softening) std::fprintf(log_, " %9s", "ductility");
+    std::fprintf(log_, " | %9s %7s %9s", "E [GPa]", "nu", tension_ ? "f_t [MPa]" : "UCS [MPa]");
+    if (tension_) std::fprintf(log_, " %9s", "G_f [N/m]");
+    std::fprintf(log_, " | %s\n", "wall [s]");
+  }
+
+  void log_line(int it, const Trial& t) const {
+    const UniaxialResult& u = t.result;
+    char peak[32] = "-", gf[32] = "-";  // an elastic run has no peak and no softening
+    if (!elastic_) std::snprintf(peak, sizeof peak, "%.4g", u.ucs * 1e-6);
+    if (!elastic_) std::snprintf(gf, sizeof gf, "%.4g", u.fracture_energy);
+    std::fprintf(log_, "%3d %-8s %10.4g %7.4g %9.4g", it, elastic_ ? "elastic" : "full",
+                 entry_.moduli.front().second * knobs_.modulus * 1e-9, knobs_.ratio, knobs_.strength);
+    if (entry_.softening) std::fprintf(log_, " %9.4g", knobs_.ductility);
+    std::fprintf(log_, " | %9.4g %7.4g %9s", u.modulus * 1e-9, u.poisson, peak);
+    if (tension_) std::fprintf(log_, " %9s", gf);
+    std::fprintf(log_, " | %.1f\n", t.run.wall_seconds);
+    std::fflush(log_);
   }
 
   // ν through k_n/k_s on its logarithmic law (6.2)/(6.3), with the slope the last two runs measured when they tell
   // one; E through E_c (linear, 6.1), corrected for what the new ratio does to E/E_c.
   void adjust_stiffness(const UniaxialResult& u) {
-    const double lnr = std::log(knobs_.ratio);
-    if (std::isfinite(prev_lnr_) && std::abs(lnr - prev_lnr_) > 1e-3) {
-      const double measured = (u.poisson - prev_nu_) / (lnr - prev_lnr_);
-      if (measured > 0.02 && measured < 0.5) slope_ = measured;
+    double ratio = knobs_.ratio;
+    if (nu_target()) {
+      const double lnr = std::log(knobs_.ratio);
+      const double slope = nu_slope_.update(lnr, u.poisson, 1e-3, 0.02, 0.5);
+      ratio = std::clamp(std::exp(lnr + (target_.poisson - u.poisson) / slope), 0.25, 20.0);
+      if (ratio == knobs_.ratio)
+        throw InputError("calibrate: ν = " + std::to_string(target_.poisson) +
+                         " is out of reach for this packing: k_n/k_s at its bound " + std::to_string(ratio) +
+                         " gives ν = " + std::to_string(u.poisson));
     }
-    prev_lnr_ = lnr, prev_nu_ = u.poisson;
-    const double ratio = std::clamp(std::exp(lnr + (target_.poisson - u.poisson) / slope_), 0.25, 20.0);
-    if (ratio == knobs_.ratio)
-      throw InputError("calibrate: ν = " + std::to_string(target_.poisson) +
-                       " is out of reach for this packing: "
-                       "k_n/k_s at its bound " +
-                       std::to_string(ratio) + " gives ν = " + std::to_string(u.poisson));
     const int d = base_.dimension;
     knobs_.modulus *= target_.modulus / u.modulus * modulus_shape(d, knobs_.ratio) / modulus_shape(d, ratio);
     knobs_.ratio = ratio;
+  }
+
+  // A full run's strength and G_f. At a fixed ductility the strength is proportional to the bond strengths (every
+  // force of the test scales with them), so they are scaled by target/measured (Tang §6.3 for UCS). With a G_f
+  // target the ductility ρ first moves l_ch = E G_f / f_t², which depends on ρ alone (softening_factor): a secant
+  // step in ln ρ on ln l_ch, with the slope the last two full runs measured (1 until they do: G_f in proportion to
+  // the bonds' G_f). A more ductile bond network is also stronger, f_t/s ∝ ρ^a (a measured likewise, 0 until
+  // then), so the strength step undoes what the new ρ will add.
+  void adjust_strength(const UniaxialResult& u) {
+    const double rho = knobs_.ductility;
+    if (gf_target()) {
+      const double lnr = std::log(rho);
+      const double lch = u.modulus * u.fracture_energy / (u.ucs * u.ucs);
+      const double modulus = e_target() ? target_.modulus : u.modulus;
+      const double want = modulus * target_.fracture_energy / (target_.tensile * target_.tensile);
+      const double b = lch_slope_.update(lnr, std::log(lch), 0.02, 0.1, 3.0);
+      strength_slope_.update(lnr, std::log(u.ucs / knobs_.strength), 0.02, -1.0, 1.0);
+      // At most a factor 4 a step: far from the target the slope of ln l_ch on ln ρ is not yet known.
+      knobs_.ductility = rho * std::exp(std::clamp(std::log(want / lch) / b, -std::log(4.0), std::log(4.0)));
+    }
+    if (!within(u.ucs, peak()) || knobs_.ductility != rho)
+      knobs_.strength *= peak() / u.ucs * std::pow(rho / knobs_.ductility, strength_slope_.last());
   }
 
   std::string run_file(int it) const { return calibration::run_file(options_.output, it); }
@@ -186,21 +353,22 @@ class Calibration {
   const CalibrationTarget target_;
   const CalibrationOptions options_;
   std::FILE* log_;
+  const Scene base_;  // read first: the scene reader checks the entry's keys before find_entry reads them
   const Entry entry_;
-  const Scene base_;
+  bool tension_ = false;
   Knobs knobs_;
   bool elastic_ = false;
   double elastic_stop_ = 5e-4;
-  double slope_ = 0.11;  // dν/d ln(k_n/k_s), Tang (6.2) and (6.3); replaced by what the runs measure
-  double prev_lnr_ = kNaN, prev_nu_ = kNaN;
+  Secant nu_slope_{0.11};       // dν/d ln(k_n/k_s), Tang (6.2) and (6.3); then what the runs measure
+  Secant lch_slope_{1.0};       // d ln l_ch / d ln ρ
+  Secant strength_slope_{0.0};  // d ln(f_t/s) / d ln ρ
   CalibrationResult res_;
 };
 
 }  // namespace
 
 CalibrationResult calibrate_bonded(const std::string& scene_file, const std::vector<std::string>& overrides, int entry,
-                                   const CalibrationTarget& target, const CalibrationOptions& options,
-                                   std::FILE* log) {
+                                   const CalibrationTarget& target, const CalibrationOptions& options, std::FILE* log) {
   return Calibration(scene_file, overrides, entry, target, options, log).run();
 }
 

@@ -1,5 +1,5 @@
-// What the calibration procedures (Tang §6.3 for parallel bonds, Šmilauer's for the CPM) share: the scene's
-// one calibrated [[contacts]] entry, its values as --set strings, the iteration runs' files beside the
+// What the calibration procedures (Tang's for parallel and softening bonds, Šmilauer's for the CPM) share: the
+// scene's one calibrated [[contacts]] entry, its values as --set strings, the iteration runs' files beside the
 // calibrated scene, and writing that scene. Internal to studies/calibration*.cpp.
 #pragma once
 #include <cmath>
@@ -28,8 +28,8 @@ std::string run_file(const std::string& output, int iteration, const std::string
 // not at all.
 void write_scene(const std::string& scene_file, const std::vector<std::string>& overrides, const std::string& output);
 
-// Tang's procedure (§6.3) on the scene's parallel_bond entry `entry` (studies/calibration_bonded.cpp); options.tolerance
-// is set.
+// Tang's procedure (§6.3; ch. 7 in tension) on the scene's parallel_bond or softening_bond entry `entry`
+// (studies/calibration_bonded.cpp); options.tolerance is set.
 CalibrationResult calibrate_bonded(const std::string& scene_file, const std::vector<std::string>& overrides, int entry,
                                    const CalibrationTarget& target, const CalibrationOptions& options, std::FILE* log);
 
