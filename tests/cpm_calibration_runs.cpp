@@ -111,8 +111,11 @@ TEST_CASE("CPM calibration reaches E, nu and f_t targets on a small specimen") {
 TEST_CASE("CPM calibration refuses targets its model cannot reach") {
   const TempDir d;
   write_file(d / "tension.toml", kTension);
-  const std::vector<std::pair<std::string, std::string>> bad = {
-      {"ucs=40MPa", "ucs"}, {"nu=0.3", "nu=0.3"}, {"fc=40MPa", "--compression"}, {"ft=-1MPa", "ft"}};
+  const std::vector<std::pair<std::string, std::string>> bad = {{"ucs=40MPa", "ucs"},
+                                                                {"nu=0.3", "nu=0.3"},
+                                                                {"fc=40MPa", "--compression"},
+                                                                {"ft=-1MPa", "ft"},
+                                                                {"ft=3MPa,Gf=100N/m", "--target Gf"}};
   for (const auto& [target, named] : bad) {
     const Result r = mesocrack({"calibrate", "tension.toml", "--target", target, "-o", "c.toml"}, d.dir);
     CHECK_MESSAGE(r.code == 2, target, ": ", r.describe());
