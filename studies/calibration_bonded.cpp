@@ -124,7 +124,6 @@ class Secant {
     x_ = x, y_ = y;
     return slope_;
   }
-  double last() const { return slope_; }
 
  private:
   double slope_, x_ = kNaN, y_ = kNaN;
@@ -326,18 +325,19 @@ class Calibration {
   // then), so the strength step undoes what the new ρ will add.
   void adjust_strength(const UniaxialResult& u) {
     const double rho = knobs_.ductility;
+    double a = 0;  // d ln(f_t/s) / d ln ρ
     if (gf_target()) {
       const double lnr = std::log(rho);
       const double lch = u.modulus * u.fracture_energy / (u.ucs * u.ucs);
       const double modulus = e_target() ? target_.modulus : u.modulus;
       const double want = modulus * target_.fracture_energy / (target_.tensile * target_.tensile);
       const double b = lch_slope_.update(lnr, std::log(lch), 0.02, 0.1, 3.0);
-      strength_slope_.update(lnr, std::log(u.ucs / knobs_.strength), 0.02, -1.0, 1.0);
+      a = strength_slope_.update(lnr, std::log(u.ucs / knobs_.strength), 0.02, -1.0, 1.0);
       // At most a factor 4 a step: far from the target the slope of ln l_ch on ln ρ is not yet known.
       knobs_.ductility = rho * std::exp(std::clamp(std::log(want / lch) / b, -std::log(4.0), std::log(4.0)));
     }
     if (!within(u.ucs, peak()) || knobs_.ductility != rho)
-      knobs_.strength *= peak() / u.ucs * std::pow(rho / knobs_.ductility, strength_slope_.last());
+      knobs_.strength *= peak() / u.ucs * std::pow(rho / knobs_.ductility, a);
   }
 
   std::string run_file(int it) const { return calibration::run_file(options_.output, it); }
