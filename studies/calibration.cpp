@@ -48,9 +48,8 @@ CalibrationTarget parse_targets(const std::string& text) {
     return c;
   } catch (const InputError& e) {
     throw InputError(std::string(e.what()) +
-                     " (allowed targets: E [Pa], nu in (0, 0.5); ucs [Pa] for parallel_bond scenes in compression; "
-                     "ft [Pa] for parallel_bond and softening_bond scenes in tension, with Gf [N/m] for "
-                     "softening_bond; ft, fc [Pa] for cpm scenes)");
+                     " (allowed targets: E [Pa], nu in (0, 0.5); ucs [Pa] in compression; ft [Pa] in tension, with "
+                     "Gf [N/m] for softening bonds and fc [Pa] for cpm)");
   }
 }
 
