@@ -1,0 +1,267 @@
+#!/usr/bin/python3
+"""Tang (2013) ch. 7: the notched three-phase concrete beam in three-point bending under CMOD control.
+
+Runs, each single-threaded through the real `mesocrack run` on scenes/bending_tang_softening_2d.toml and
+scenes/bending_tang_brittle_2d.toml (--set overrides):
+  scenes  the four beams of Tang §7.2: aggregate 40 % and 60 % (`mesostructure.fraction`, one packing) with
+          softening or brittle mortar; a table (peak load per 100 mm, CMOD at the peak, G_F by RILEM and by the
+          bonds, tortuosity, broken bonds per phase pair at the peak and at the end) beside independent estimates
+          (the elastic net-section first-crack load and the cohesive-hinge peak for the mortar's E, f_t and G_F);
+          the load-CMOD curves of the four in one plot; the crack pictures at the peak and at the end (report)
+  mortar  the softening beam without aggregate (fraction 0): its bonds must dissipate the mortar's G_F (Table 7.1,
+          170.4 N/m) over the ligament within 10 %
+  rate    the softening 40 % beam at servo rates 40, 20 and 5 mm/s (and 10, its scene's): peak load and G_F against the slowest rate,
+          with the CPU seconds of each run (the accuracy-versus-time method of benchmarks/uniaxial_accuracy.py)
+Output (--out): results.csv (one row per run), bending.md (the tables), load_cmod.png, rate.png and, for the kept
+runs, their report pictures.
+
+  benchmarks/bending_tang.py --jobs 2                      # everything: about 2 CPU hours
+  benchmarks/bending_tang.py --only scenes,mortar --jobs 2
+"""
+import csv
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from uniaxial_accuracy import ROOT, study_arguments, timed_run  # noqa: E402
+
+THICKNESS = 0.1                  # m, Tang's beam; the discs have unit thickness and summary scales to this
+SPAN, DEPTH, LIGAMENT = 0.3, 0.1, 0.09
+MORTAR = {"E": 35e9, "ft": 3.2e6, "GF": 170.4}   # Table 7.1
+RATES = [40e-3, 20e-3, 5e-3]                     # m/s of the servo gauge; 10 mm/s, the scenes' own, is their run
+FRACTIONS = [0.4, 0.6]
+MORTAR_RATE = 40e-3
+
+
+def net_section_load(ft, h=LIGAMENT, t=THICKNESS, s=SPAN):
+    """The load at which the elastic bending stress of the net section, 6M/(t h²) with M = P S / 4, reaches f_t."""
+    return 2 * ft * t * h * h / (3 * s)
+
+
+def hinge_peak(E, ft, GF, h=LIGAMENT, t=THICKNESS, s=SPAN, zeta=0.5):
+    """Peak load of Olesen's (2001) cohesive hinge with a linear softening law σ = f_t (1 - w/w_c), w_c = 2 G_F/f_t:
+    the ligament h as a hinge of length ζh whose plane ends rotate by φ each; a fibre at depth y (from the top)
+    lengthens by δ = 2φ (y - y0), elastic (σ = E δ / (ζh)) up to f_t, beyond it cracked with δ = σ ζh/E + w. The
+    neutral depth y0 balances the normal force; M = ∫σ y dy t, and P = 4 M / S. Solved on 2000 fibres."""
+    L = zeta * h
+    wc = 2 * GF / ft
+    y = (np.arange(2000) + 0.5) * h / 2000
+    dy = h / 2000
+
+    def stress(delta):
+        sig = E * delta / L
+        cracked = sig > ft
+        soft = (delta - wc) / (L / E - wc / ft)        # δ = σ L/E + w_c (1 - σ/f_t)
+        return np.where(cracked, np.clip(soft, 0, ft), sig)
+
+    best = 0.0
+    for phi in np.logspace(-7, -2, 600):
+        lo, hi = 0.0, h
+        for _ in range(80):                             # the normal force falls as the neutral axis goes down
+            y0 = 0.5 * (lo + hi)
+            n = stress(2 * phi * (y - y0)).sum()
+            lo, hi = (y0, hi) if n > 0 else (lo, y0)
+        sig = stress(2 * phi * (y - y0))
+        best = max(best, 4 * (sig * y).sum() * dy * t / SPAN)
+    return best
+
+
+def servo(rate):
+    """--set lines for the servo at `rate` [m/s]: its speed limit stays three times the rate, as in the scenes."""
+    return [f'walls[2].rate="{rate * 1e3:g} mm/s"', f'walls[2].max_speed="{3 * rate * 1e3:g} mm/s"']
+
+
+def plan(only):
+    """(key, scene, overrides, row fields known before the run, keep the run for pictures)."""
+    todo = []
+    if "scenes" in only:
+        for mortar in ("softening", "brittle"):
+            for f in FRACTIONS:
+                todo.append((f"{mortar}_{round(f * 100)}", mortar, [f"mesostructure.fraction={f}"],
+                             {"study": "scenes", "mortar": mortar, "fraction": f, "rate": 10e-3}, True))
+    if "mortar" in only:
+        # Until the ligament has parted (an underside opening of 1.5 mm), at the rate the rate study finds good
+        # for G_F within a few per cent.
+        todo.append(("mortar_only", "softening", ["mesostructure.fraction=0", "run.stop[0].above=1.5e-3",
+                                                  *servo(MORTAR_RATE)],
+                     {"study": "mortar", "mortar": "softening", "fraction": 0.0, "rate": MORTAR_RATE}, False))
+    if "rate" in only:
+        for r in RATES:
+            todo.append((f"rate_{r * 1e3:g}", "softening", servo(r),
+                         {"study": "rate", "mortar": "softening", "fraction": 0.4, "rate": r}, False))
+    return todo
+
+
+FIELDS = ["study", "mortar", "fraction", "rate", "peak_kN", "cmod_peak_um", "deflection_peak_um", "G_F", "G_F_bonds",
+          "tortuosity", "crack_height_over_ligament", "final_load_over_peak", "worst_residual",
+          "mm_breaks_peak", "itz_breaks_peak", "agg_breaks_peak", "yields_peak",
+          "mm_breaks_end", "itz_breaks_end", "agg_breaks_end", "yields_end", "particles", "steps", "cpu_s"]
+
+
+def breaks(block, pair):
+    c = (block or {}).get(pair) or {}
+    return (c.get("tensile_breaks") or 0) + (c.get("shear_breaks") or 0)
+
+
+def row_of(summary, known, cpu):
+    b = summary["bending"] or {}
+    e = b.get("energy") or {}
+    path = b.get("crack_path") or {}
+    peak, end = b.get("cracks_at_peak"), b.get("cracks_final")
+    yields = lambda blk: sum((c.get("first_yields") or 0) for c in (blk or {}).values())  # noqa: E731
+    return {**known, "peak_kN": b["peak_load"] * 1e-3, "cmod_peak_um": b["cmod_at_peak"] * 1e6,
+            "deflection_peak_um": b["deflection_at_peak"] * 1e6, "G_F": b["G_F"], "G_F_bonds": e.get("G_F_bonds"),
+            "tortuosity": path.get("tortuosity"), "crack_height_over_ligament": path.get("height_over_ligament"),
+            "final_load_over_peak": b["final_load_over_peak"], "worst_residual": e.get("worst_residual_over_work"),
+            "mm_breaks_peak": breaks(peak, "mortar-mortar"), "itz_breaks_peak": breaks(peak, "mortar-aggregate"),
+            "agg_breaks_peak": breaks(peak, "aggregate-aggregate"), "yields_peak": yields(peak),
+            "mm_breaks_end": breaks(end, "mortar-mortar"), "itz_breaks_end": breaks(end, "mortar-aggregate"),
+            "agg_breaks_end": breaks(end, "aggregate-aggregate"), "yields_end": yields(end),
+            "particles": summary["particles"], "steps": summary["steps"], "cpu_s": cpu}
+
+
+def run_all(exe, out, jobs, todo, csv_path):
+    import concurrent.futures as cf
+    new = not csv_path.exists()
+
+    def one(item):
+        key, mortar, ov, known, keep = item
+        h5 = out / "runs" / f"{key}.h5"
+        s, cpu, _ = timed_run(exe, ROOT / "scenes" / f"bending_tang_{mortar}_2d.toml", h5, ov, keep=keep)
+        if keep:
+            curve(h5, out / f"{key}_curve.csv")
+            subprocess.run([sys.executable, str(ROOT / "app" / "report.py"), str(h5)], check=True,
+                           capture_output=True)
+            for f in h5.parent.glob(h5.stem + "*"):
+                if f.suffix != ".png":
+                    f.unlink()
+        return row_of(s, known, cpu)
+
+    with open(csv_path, "a", newline="") as f, cf.ThreadPoolExecutor(jobs) as pool:
+        w = csv.DictWriter(f, fieldnames=FIELDS)
+        if new:
+            w.writeheader()
+        for fut in cf.as_completed([pool.submit(one, t) for t in todo]):
+            r = fut.result()
+            w.writerow(r)
+            f.flush()
+            print(f"{r['study']} {r['mortar']} {r['fraction']:g} {r['rate'] * 1e3:g} mm/s: peak {r['peak_kN']:.2f} kN, "
+                  f"G_F {r['G_F']:.1f} N/m, {r['cpu_s']:.0f} CPU s", flush=True)
+
+
+def curve(h5, path):
+    """The load-CMOD and load-deflection curves of a kept run, as CSV (the plot of the four is drawn from them)."""
+    import h5py
+    with h5py.File(h5, "r") as f:
+        h = f["history"]
+        cols = {"time": h["time"][:], "cmod": h["bending.cmod"][:], "deflection": h["bending.deflection"][:],
+                "load_kN": h["bending.load"][:] * THICKNESS * 1e-3}
+    np.savetxt(path, np.column_stack(list(cols.values())), delimiter=",", header=",".join(cols), comments="")
+
+
+def read_rows(csv_path):
+    rows = []
+    if csv_path.exists():
+        with open(csv_path) as f:
+            for r in csv.DictReader(f):
+                rows.append({k: (r[k] if k in ("study", "mortar") else
+                                 float(r[k]) if r[k] not in ("", "None") else None) for k in FIELDS})
+    return rows
+
+
+def fmt(x, spec):
+    return "-" if x is None else format(x, spec)
+
+
+def analyse(rows, out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    lines = ["# Three-point bending of the notched three-phase beam (Tang ch. 7)\n"]
+    p_net = net_section_load(MORTAR["ft"])
+    p_hinge = hinge_peak(MORTAR["E"], MORTAR["ft"], MORTAR["GF"])
+    lines += [f"Independent estimates for the mortar's E, f_t, G_F (Table 7.1), span {SPAN * 1e3:g} mm, ligament "
+              f"{LIGAMENT * 1e3:g} mm, thickness {THICKNESS * 1e3:g} mm: elastic net-section first-crack load "
+              f"**{p_net * 1e-3:.2f} kN**; cohesive hinge (Olesen 2001, linear softening, hinge 0.5 h) peak "
+              f"**{p_hinge * 1e-3:.2f} kN**.\n"]
+    scenes = sorted([r for r in rows if r["study"] == "scenes"], key=lambda r: (r["mortar"], r["fraction"]))
+    if scenes:
+        lines += ["| mortar | aggregate | peak [kN] | CMOD at peak [µm] | G_F RILEM [N/m] | G_F bonds [N/m] | "
+                  "tortuosity | crack height / ligament | breaks at peak M-M / ITZ / A-A | breaks at end M-M / ITZ / A-A "
+                  "| ITZ share of breaks at end | energy residual | CPU s |", "|" + "---|" * 13]
+        for r in scenes:
+            tot = r["mm_breaks_end"] + r["itz_breaks_end"] + r["agg_breaks_end"]
+            lines.append(
+                f"| {r['mortar']} | {r['fraction']:.0%} | {r['peak_kN']:.2f} | {r['cmod_peak_um']:.1f} | "
+                f"{r['G_F']:.1f} | {fmt(r['G_F_bonds'], '.1f')} | {fmt(r['tortuosity'], '.2f')} | "
+                f"{fmt(r['crack_height_over_ligament'], '.2f')} | {r['mm_breaks_peak']:.0f} / {r['itz_breaks_peak']:.0f} / "
+                f"{r['agg_breaks_peak']:.0f} | {r['mm_breaks_end']:.0f} / {r['itz_breaks_end']:.0f} / "
+                f"{r['agg_breaks_end']:.0f} | {r['itz_breaks_end'] / max(tot, 1):.0%} | {fmt(r['worst_residual'], '.2%')} | "
+                f"{r['cpu_s']:.0f} |")
+    for r in rows:
+        if r["study"] == "mortar":
+            lines.append(f"\nMortar alone (no aggregate): G_F by the bonds {fmt(r['G_F_bonds'], '.1f')} N/m against "
+                         f"Table 7.1's {MORTAR['GF']} N/m ({(r['G_F_bonds'] or 0) / MORTAR['GF'] - 1:+.1%}); RILEM "
+                         f"G_F {r['G_F']:.1f} N/m; peak {r['peak_kN']:.2f} kN (hinge {p_hinge * 1e-3:.2f} kN); "
+                         f"{r['cpu_s']:.0f} CPU s.")
+    rate = sorted([r for r in rows if r["study"] == "rate" or (r["study"] == "scenes" and r["mortar"] == "softening"
+                                                               and r["fraction"] == 0.4)], key=lambda r: -r["rate"])
+    if rate:
+        ref = rate[-1]
+        lines += [f"\n### Servo rate (softening mortar, 40 %; reference {ref['rate'] * 1e3:g} mm/s)\n",
+                  "| rate [mm/s] | peak [kN] | err peak | G_F [N/m] | err G_F | steps | CPU s |", "|---|---|---|---|---|---|---|"]
+        for r in rate:
+            lines.append(f"| {r['rate'] * 1e3:g} | {r['peak_kN']:.3f} | {r['peak_kN'] / ref['peak_kN'] - 1:+.1%} | "
+                         f"{r['G_F']:.1f} | {r['G_F'] / ref['G_F'] - 1:+.1%} | {r['steps']:.0f} | {r['cpu_s']:.0f} |")
+        fig, ax = plt.subplots(figsize=(6, 4))
+        for q, lab in (("peak_kN", "peak load"), ("G_F", "G_F")):
+            ax.plot([r["cpu_s"] for r in rate[:-1]], [abs(r[q] / ref[q] - 1) * 100 for r in rate[:-1]], "o-",
+                    label=lab)
+            for r in rate[:-1]:
+                ax.annotate(f"{r['rate'] * 1e3:g} mm/s", (r["cpu_s"], abs(r[q] / ref[q] - 1) * 100), fontsize=7)
+        ax.axhline(2, color="0.5", ls=":", lw=1)
+        ax.set_xlabel("CPU seconds per run")
+        ax.set_ylabel(f"|error| against {ref['rate'] * 1e3:g} mm/s [%]")
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(out / "rate.png", dpi=110)
+    (out / "bending.md").write_text("\n".join(lines) + "\n")
+    curves = sorted(out.glob("*_curve.csv"))
+    if curves:
+        fig, ax = plt.subplots(figsize=(7, 4.5))
+        for c in curves:
+            d = np.genfromtxt(c, delimiter=",", names=True)
+            ax.plot(d["cmod"] * 1e3, d["load_kN"], label=c.stem.replace("_curve", "").replace("_", " ") + " %")
+        ax.axhline(p_hinge * 1e-3, color="0.4", ls="--", lw=1, label="cohesive hinge, mortar")
+        ax.axhline(p_net * 1e-3, color="0.6", ls=":", lw=1, label="net-section first crack, mortar")
+        ax.set_xlabel("CMOD [mm]")
+        ax.set_ylabel("load [kN per 100 mm]")
+        ax.set_title("Tang Fig. 7.5: load-CMOD of the four beams")
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(out / "load_cmod.png", dpi=110)
+    print("\n".join(lines))
+
+
+def main():
+    a = study_arguments(__doc__, "bending_tang", "scenes,mortar,rate").parse_args()
+    out = Path(a.out)
+    (out / "runs").mkdir(parents=True, exist_ok=True)
+    csv_path = out / "results.csv"
+    if not a.analyse:
+        if not shutil.which(a.mesocrack) and not Path(a.mesocrack).exists():
+            sys.exit(f"{a.mesocrack}: not found (build first: make demo, or give --mesocrack)")
+        done = {(r["study"], r["mortar"], r["fraction"], r["rate"]) for r in read_rows(csv_path)}
+        todo = [t for t in plan(set(a.only.split(","))) if
+                (t[3]["study"], t[3]["mortar"], t[3]["fraction"], t[3]["rate"]) not in done]
+        print(f"{len(todo)} runs to do ({len(done)} already in {csv_path})", flush=True)
+        run_all(a.mesocrack, out, a.jobs, todo, csv_path)
+    analyse(read_rows(csv_path), out)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
