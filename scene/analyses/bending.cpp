@@ -91,6 +91,33 @@ std::string crack_counts_json(const std::vector<LoggedCrack>& cracks, double unt
   return o.str();
 }
 
+// The energy balance of the whole test from the energy histories (scene with [physics] energy = true): the work
+// of the walls (the loading point; fixed supports do no work) against what is stored, dissipated and moving.
+// "null" without them.
+std::string energy_json(const Histories& h, double ligament_area) {
+  const char* names[] = {"energy.boundary_work", "energy.body_work", "energy.strain", "energy.kinetic",
+                         "energy.dissipated_bonds", "energy.dissipated_contacts", "energy.dissipated_local",
+                         "energy.residual"};
+  for (const char* n : names)
+    if (!h.count(n) || h.at(n).empty()) return "null";
+  const std::vector<double>& work = h.at("energy.boundary_work");
+  const std::vector<double>& residual = h.at("energy.residual");
+  // |residual| / work at every recorded row once the work is 1 % of its final value (before, both are noise).
+  double worst = 0;
+  for (std::size_t k = 0; k < work.size(); ++k)
+    if (work[k] >= 0.01 * work.back()) worst = std::max(worst, std::abs(residual[k]) / work[k]);
+  std::ostringstream o;
+  o << "{";
+  for (const char* n : names)
+    o << "\n      " << json_quote(std::string(n).substr(7)) << ": " << json_number(h.at(n).back()) << ",";
+  o << "\n      \"worst_residual_over_work\": " << json_number(worst)
+    << ",\n      \"G_F_bonds\": " << json_number(h.at("energy.dissipated_bonds").back() / ligament_area)
+    << ",\n      \"definition\": \"final values [J, simulated thickness]; worst |residual|/work over the rows where the "
+       "work is at least 1 % of its final value; G_F_bonds = energy dissipated by bond breakage and softening over "
+       "the ligament area\"\n    }";
+  return o.str();
+}
+
 }  // namespace
 
 std::shared_ptr<const Analysis> read_bending(const Table& t, const Scene& s) {
@@ -259,36 +286,6 @@ CrackPath BendingAnalysis::crack_path(const std::vector<LoggedCrack>& cracks, do
   }
   return p;
 }
-
-namespace {
-
-// The energy balance of the whole test from the energy histories (scene with [physics] energy = true): the work
-// of the walls (the loading point; fixed supports do no work) against what is stored, dissipated and moving.
-// "null" without them.
-std::string energy_json(const Histories& h, double ligament_area) {
-  const char* names[] = {"energy.boundary_work", "energy.body_work", "energy.strain", "energy.kinetic",
-                         "energy.dissipated_bonds", "energy.dissipated_contacts", "energy.dissipated_local",
-                         "energy.residual"};
-  for (const char* n : names)
-    if (!h.count(n) || h.at(n).empty()) return "null";
-  const std::vector<double>& work = h.at("energy.boundary_work");
-  const std::vector<double>& residual = h.at("energy.residual");
-  // |residual| / work at every recorded row once the work is 1 % of its final value (before, both are noise).
-  double worst = 0;
-  for (std::size_t k = 0; k < work.size(); ++k)
-    if (work[k] >= 0.01 * work.back()) worst = std::max(worst, std::abs(residual[k]) / work[k]);
-  std::ostringstream o;
-  o << "{";
-  for (const char* n : names) o << "\n      " << json_quote(std::string(n).substr(7)) << ": " << json_number(h.at(n).back()) << ",";
-  o << "\n      \"worst_residual_over_work\": " << json_number(worst)
-    << ",\n      \"G_F_bonds\": " << json_number(h.at("energy.dissipated_bonds").back() / ligament_area)
-    << ",\n      \"definition\": \"final values [J, simulated thickness]; worst |residual|/work over the rows where the "
-       "work is at least 1 % of its final value; G_F_bonds = energy dissipated by bond breakage and softening over "
-       "the ligament area\"\n    }";
-  return o.str();
-}
-
-}  // namespace
 
 std::string BendingAnalysis::summary_json(const RunRecord& run) const {
   const Histories& h = run.histories;
