@@ -298,8 +298,8 @@ class ContactSet final : public ContactSetBase<D> {
 
  private:
   template <bool Energy>
-  Dissipated forces_impl(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, Slots<D>& s, std::size_t off,
-                     std::size_t woff) {
+  Dissipated forces_impl(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, Slots<D>& s,
+                         std::size_t off, std::size_t woff) {
     const std::size_t n = pairs_.size();
     // A local copy: the compiler then knows no store in the loop changes it, and hoists what depends on the
     // parameters alone (reciprocals) out of the loop.

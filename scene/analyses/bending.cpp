@@ -112,9 +112,9 @@ std::string energy_json(const Histories& h, double ligament_area) {
     o << "\n      " << json_quote(std::string(n).substr(7)) << ": " << json_number(h.at(n).back()) << ",";
   o << "\n      \"worst_residual_over_work\": " << json_number(worst)
     << ",\n      \"G_F_bonds\": " << json_number(h.at("energy.dissipated_bonds").back() / ligament_area)
-    << ",\n      \"definition\": \"final values [J, simulated thickness]; worst |residual|/work over the rows where the "
-       "work is at least 1 % of its final value; G_F_bonds = energy dissipated by bond breakage and softening over "
-       "the ligament area\"\n    }";
+    << ",\n      \"definition\": \"final values [J, simulated thickness]; worst |residual|/work over the rows where "
+       "the work is at least 1 % of its final value; G_F_bonds = energy dissipated by bond breakage and softening "
+       "over the ligament area\"\n    }";
   return o.str();
 }
 
@@ -320,8 +320,8 @@ std::string BendingAnalysis::summary_json(const RunRecord& run) const {
     o << ",\n    \"crack_path\": {\"bands\": " << p.bands << ", \"length\": " << json_number(p.length)
       << ", \"height\": " << json_number(p.height) << ", \"tortuosity\": " << json_number(p.tortuosity)
       << ", \"height_over_ligament\": " << json_number(p.height / ligament)
-      << ",\n      \"definition\": \"the broken bonds within half a depth of mid-span, median position along the beam in "
-         "each of 20 bands of the ligament, joined; tortuosity = length / height spanned\"}"
+      << ",\n      \"definition\": \"the broken bonds within half a depth of mid-span, median position along the "
+         "beam in each of 20 bands of the ligament, joined; tortuosity = length / height spanned\"}"
       << ",\n    \"cracks_at_peak\": " << crack_counts_json(run.cracks, r.peak_time, phase_names)
       << ",\n    \"cracks_final\": " << crack_counts_json(run.cracks, kInf, phase_names);
   }
