@@ -18,6 +18,7 @@ runs, their report pictures.
   benchmarks/bending_tang.py --jobs 2                      # everything: about 2.5 CPU hours (a beam: 10-12 min)
   benchmarks/bending_tang.py --only scenes,mortar --jobs 2
 """
+import concurrent.futures as cf
 import csv
 import shutil
 import subprocess
@@ -30,7 +31,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from uniaxial_accuracy import ROOT, study_arguments, timed_run  # noqa: E402
 
 THICKNESS = 0.1                  # m, Tang's beam; the discs have unit thickness and summary scales to this
-SPAN, DEPTH, LIGAMENT = 0.3, 0.1, 0.09
+SPAN, LIGAMENT = 0.3, 0.09
 MORTAR = {"E": 35e9, "ft": 3.2e6, "GF": 170.4}   # Table 7.1
 RATES = [40e-3, 20e-3, 10e-3, 5e-3]              # m/s of the servo gauge (the scenes' own: 10 mm/s)
 FRACTIONS = [0.4, 0.6]
@@ -66,7 +67,7 @@ def hinge_peak(E, ft, GF, h=LIGAMENT, t=THICKNESS, s=SPAN, zeta=0.5):
             n = stress(2 * phi * (y - y0)).sum()
             lo, hi = (y0, hi) if n > 0 else (lo, y0)
         sig = stress(2 * phi * (y - y0))
-        best = max(best, 4 * (sig * y).sum() * dy * t / SPAN)
+        best = max(best, 4 * (sig * y).sum() * dy * t / s)
     return best
 
 
@@ -124,7 +125,6 @@ def row_of(summary, known, cpu):
 
 
 def run_all(exe, out, jobs, todo, csv_path):
-    import concurrent.futures as cf
     new = not csv_path.exists()
 
     def one(item):
