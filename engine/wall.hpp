@@ -37,10 +37,13 @@ struct Wall {
   double servo_max_speed = kInf;  // [m/s], both servos
   // Opening: the wall moves along its normal so that the opening gauge `gauge` (World::gauges) grows at
   // `opening_rate`, reached over ramp_time like the velocity ramp. Proportional control, as PFC's servos:
-  // v = clamp(opening_gain (target − reading), ±servo_max_speed), positive into the material.
+  // v = clamp(opening_gain (target − reading), −retreat_speed, servo_max_speed), positive into the material.
+  // Backing off slower than advancing keeps the loading point on a damped beam that springs back slowly after
+  // a crack jump: a fast retreat outruns it and the load drops to zero and recovers, again and again.
   int gauge = -1;
-  double opening_rate = 0;  // [m/s]
-  double opening_gain = 0;  // [1/s]
+  double opening_rate = 0;   // [m/s]
+  double opening_gain = 0;   // [1/s]
+  double retreat_speed = kInf;  // [m/s]
 
   Vec<D> velocity = Vec<D>::Zero();
   Vec<D> displacement = Vec<D>::Zero();  // since the start of the run [m]
@@ -104,7 +107,7 @@ struct Wall {
       }
       case WallControl::Opening: {
         const double target = opening_rate * ramped_time(t + dt);
-        velocity = std::clamp(opening_gain * (target - opening), -servo_max_speed, servo_max_speed) * normal;
+        velocity = std::clamp(opening_gain * (target - opening), -retreat_speed, servo_max_speed) * normal;
         break;
       }
     }

@@ -22,6 +22,7 @@ WallControl read_motion(const Table& t, WallSpec& w, int d) {
     w.ramp_time = t.number("ramp_time", Unit::Time, Range::non_negative(), 0.0);
     w.opening_gain = t.number("gain", Unit::Rate, Range::positive());
     w.max_speed = t.number("max_speed", Unit::Velocity, Range::positive());
+    w.retreat_speed = t.number("retreat_speed", Unit::Velocity, Range::positive(), w.max_speed);
     return WallControl::Opening;
   }
   if (m == "velocity") {

@@ -32,6 +32,7 @@ Wall<D> make_wall(const WallSpec& w) {
   out.servo_area = w.servo_area;
   out.servo_gain = w.gain;
   out.servo_max_speed = w.max_speed;
+  out.retreat_speed = w.retreat_speed;
   out.opening_rate = w.opening_rate;
   out.opening_gain = w.opening_gain;
   return out;

@@ -89,6 +89,7 @@ struct WallSpec {
   std::vector<double> velocity;  // Velocity
   double ramp_time = 0;
   double stress = 0, servo_area = kNaN, gain = 0.5, max_speed = kInf;  // Servo (max_speed: Opening too)
+  double retreat_speed = kInf;                                          // Opening
   std::vector<std::string> area_between;                               // Servo: names of opposite walls, in pairs
   std::string probe;                                                   // Opening: the opening probe it drives
   double opening_rate = 0, opening_gain = 0;                           // Opening: [m/s], [1/s]

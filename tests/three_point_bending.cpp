@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/wall.hpp"
 #include "preprocess/regular_packing.hpp"
 #include "tests/common/cli_harness.hpp"
 
@@ -203,6 +204,25 @@ TEST_CASE("notched_beam_energy_balance_closes_within_one_percent_with_fracture_t
   CHECK(e["dissipated_local"].number < 0.2 * work);
 }
 
+// The opening servo's law (wall.hpp): v = clamp(gain (rate·τ(t + Δt) − reading), −retreat_speed, max_speed) along
+// the wall's normal, τ the ramped time. Inside the band the wall moves at gain × the gauge's lag; far behind its
+// target it advances at max_speed; far ahead (a crack has jumped) it backs off no faster than retreat_speed.
+TEST_CASE("opening_servo_is_proportional_inside_its_band_and_backs_off_no_faster_than_its_retreat_speed") {
+  mc::Wall<2> w = mc::Wall<2>::segment({-1, 0}, {1, 0}, {0, 1});
+  w.control = mc::WallControl::Opening;
+  w.opening_rate = 10e-3, w.opening_gain = 8000, w.servo_max_speed = 30e-3, w.retreat_speed = 10e-3;
+  const double t = 2e-3, dt = 1e-7, target = w.opening_rate * (t + dt);  // no ramp: τ(t) = t
+  w.control_velocity(t, dt, target - 1e-6);                               // 1 µm behind: 8 mm/s
+  CHECK(w.velocity.dot(w.normal) == doctest::Approx(8e-3).epsilon(1e-9));
+  w.control_velocity(t, dt, target + 0.5e-6);  // 0.5 µm ahead: backs off at 4 mm/s, inside the retreat limit
+  CHECK(w.velocity.dot(w.normal) == doctest::Approx(-4e-3).epsilon(1e-9));
+  w.control_velocity(t, dt, target - 1e-3);  // far behind: advances at max_speed
+  CHECK(w.velocity.dot(w.normal) == doctest::Approx(30e-3).epsilon(1e-12));
+  w.control_velocity(t, dt, target + 1e-3);  // far ahead: backs off at retreat_speed only
+  CHECK(w.velocity.dot(w.normal) == doctest::Approx(-10e-3).epsilon(1e-12));
+  CHECK(std::abs(w.velocity.dot(w.axis[0])) < 1e-15);  // along the normal only
+}
+
 // A run under opening control stopped and resumed goes on exactly as one never stopped (the opening gauge's
 // start and the wall's velocity are in the checkpoint; the controller itself holds no other state), on 1 or 2
 // threads.
@@ -244,6 +264,8 @@ TEST_CASE("bad_bending_and_opening_control_keys_are_refused_naming_the_key") {
       {"thickness = \"100 mm\"", "thickness = \"100 mm\"\nnotch = 1", {"bending.notch"}},
       {"probe = \"cmod\"", "probe = \"gauge\"", {"walls[2].probe", "'gauge'", "opening probe", "declared: cmod"}},
       {"gain = \"50000 /s\"", "gain = 0", {"walls[2].gain", "> 0"}},
+      {"max_speed = \"500 mm/s\"", "max_speed = \"500 mm/s\"\nretreat_speed = \"0 mm/s\"",
+       {"walls[2].retreat_speed", "> 0"}},
       {"groups = \"mouth_left mouth_right\"", "groups = \"mouth_left\"", {"probes[0].groups", "two [[groups]]"}},
   };
   for (const Case& c : cases) {
