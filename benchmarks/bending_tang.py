@@ -10,12 +10,15 @@ scenes/bending_tang_brittle_2d.toml (--set overrides):
           the load-CMOD curves of the four in one plot; the crack pictures at the peak and at the end (report)
   mortar  the softening beam without aggregate (fraction 0): its bonds must dissipate the mortar's G_F (Table 7.1,
           170.4 N/m) over the ligament within 10 %
-  rate    the softening 40 % beam at servo rates 40, 20, 10 and 5 mm/s: peak load and G_F against the slowest rate,
-          with the CPU seconds of each run (the accuracy-versus-time method of benchmarks/uniaxial_accuracy.py)
+  rate    the softening 40 % beam at servo rates 40, 20, 5 and 2.5 mm/s (10 mm/s: the scenes' own run): peak load
+          and G_F against the slowest rate, with the CPU seconds of each run (the accuracy-versus-time method of
+          benchmarks/uniaxial_accuracy.py)
+  layouts the softening beams at 40 % and 60 % on other seeds (packing, aggregate layout and bond strengths): whether
+          the scenes' differences between the two fractions are a trend or one layout's chance
 Output (--out): results.csv (one row per run), bending.md (the tables), load_cmod.png, rate.png and, for the kept
 runs, their report pictures.
 
-  benchmarks/bending_tang.py --jobs 2                      # everything: about 2.5 CPU hours (a beam: 10-12 min)
+  benchmarks/bending_tang.py --jobs 2                      # everything: about 3 CPU hours (a beam: 10-12 min)
   benchmarks/bending_tang.py --only scenes,mortar --jobs 2
 """
 import concurrent.futures as cf
@@ -33,7 +36,9 @@ from uniaxial_accuracy import ROOT, study_arguments, timed_run  # noqa: E402
 THICKNESS = 0.1                  # m, Tang's beam; the discs have unit thickness and summary scales to this
 SPAN, LIGAMENT = 0.3, 0.09
 MORTAR = {"E": 35e9, "ft": 3.2e6, "GF": 170.4}   # Table 7.1
-RATES = [40e-3, 20e-3, 10e-3, 5e-3]              # m/s of the servo gauge (the scenes' own: 10 mm/s)
+RATES = [40e-3, 20e-3, 5e-3, 2.5e-3]             # m/s of the servo gauge (the scenes' own, 10 mm/s, from "scenes")
+SCENE_RATE = 10e-3
+SEEDS = [8]                                      # the layouts beside the scenes' seed 7
 FRACTIONS = [0.4, 0.6]
 MORTAR_RATE = 10e-3
 
@@ -72,8 +77,12 @@ def hinge_peak(E, ft, GF, h=LIGAMENT, t=THICKNESS, s=SPAN, zeta=0.5):
 
 
 def servo(rate):
-    """--set lines for the servo at `rate` [m/s]: its speed limit stays three times the rate, as in the scenes."""
-    return [f'walls[2].rate="{rate * 1e3:g} mm/s"', f'walls[2].max_speed="{3 * rate * 1e3:g} mm/s"']
+    """--set lines for the servo at `rate` [m/s]: the scenes' servo (10 mm/s, gain 2000 /s, advancing at up to three
+    times the rate, backing off at up to the rate) slowed as a whole, its gain with the rate, so that only the time
+    scale of the test changes."""
+    s = rate / SCENE_RATE
+    return [f'walls[2].rate="{rate * 1e3:g} mm/s"', f'walls[2].gain="{2000 * s:g} /s"',
+            f'walls[2].max_speed="{3 * rate * 1e3:g} mm/s"', f'walls[2].retreat_speed="{rate * 1e3:g} mm/s"']
 
 
 def plan(only):
@@ -83,23 +92,34 @@ def plan(only):
         for mortar in ("softening", "brittle"):
             for f in FRACTIONS:
                 todo.append((f"{mortar}_{round(f * 100)}", mortar, [f"mesostructure.fraction={f}"],
-                             {"study": "scenes", "mortar": mortar, "fraction": f, "rate": 10e-3}, True))
+                             {"study": "scenes", "mortar": mortar, "fraction": f, "rate": SCENE_RATE, "seed": 7},
+                             True))
     if "mortar" in only:
-        # Until the ligament has parted (an underside opening of 1.5 mm; about an hour of CPU at the scenes' rate).
-        todo.append(("mortar_only", "softening", ["mesostructure.fraction=0", "run.stop[0].above=1.5e-3",
+        # Until the ligament has nearly parted (an underside opening of 0.8 mm; half an hour of CPU at the scenes'
+        # rate); its curve keeps the bonds' dissipation against the opening, to see it level off.
+        todo.append(("mortar_only", "softening", ["mesostructure.fraction=0", "run.stop[0].above=0.8e-3",
                                                   *servo(MORTAR_RATE)],
-                     {"study": "mortar", "mortar": "softening", "fraction": 0.0, "rate": MORTAR_RATE}, False))
+                     {"study": "mortar", "mortar": "softening", "fraction": 0.0, "rate": MORTAR_RATE, "seed": 7},
+                     True))
     if "rate" in only:
         for r in RATES:
             todo.append((f"rate_{r * 1e3:g}", "softening", servo(r),
-                         {"study": "rate", "mortar": "softening", "fraction": 0.4, "rate": r}, False))
-    return todo
+                         {"study": "rate", "mortar": "softening", "fraction": 0.4, "rate": r, "seed": 7}, False))
+    if "layouts" in only:
+        for seed in SEEDS:
+            for f in FRACTIONS:
+                todo.append((f"layout_{seed}_{round(f * 100)}", "softening", [f"mesostructure.fraction={f}",
+                                                                               f"seed={seed}"],
+                             {"study": "layouts", "mortar": "softening", "fraction": f, "rate": SCENE_RATE,
+                              "seed": seed}, False))
+    return sorted(todo, key=lambda t: t[3]["rate"] if t[3]["study"] != "mortar" else 0)  # the longest first
 
 
-FIELDS = ["study", "mortar", "fraction", "rate", "peak_kN", "cmod_peak_um", "deflection_peak_um", "G_F", "G_F_bonds",
+FIELDS = ["study", "mortar", "fraction", "rate", "seed", "peak_kN", "cmod_peak_um", "deflection_peak_um", "G_F", "G_F_bonds",
           "tortuosity", "crack_height_over_ligament", "final_load_over_peak", "worst_residual",
           "mm_breaks_peak", "itz_breaks_peak", "agg_breaks_peak", "yields_peak",
-          "mm_breaks_end", "itz_breaks_end", "agg_breaks_end", "yields_end", "particles", "steps", "cpu_s"]
+          "mm_breaks_end", "itz_breaks_end", "agg_breaks_end", "yields_end", "mm_yields_end", "itz_yields_end",
+          "particles", "steps", "cpu_s"]
 
 
 def breaks(block, pair):
@@ -121,6 +141,8 @@ def row_of(summary, known, cpu):
             "agg_breaks_peak": breaks(peak, "aggregate-aggregate"), "yields_peak": yields(peak),
             "mm_breaks_end": breaks(end, "mortar-mortar"), "itz_breaks_end": breaks(end, "mortar-aggregate"),
             "agg_breaks_end": breaks(end, "aggregate-aggregate"), "yields_end": yields(end),
+            "mm_yields_end": ((end or {}).get("mortar-mortar") or {}).get("first_yields"),
+            "itz_yields_end": ((end or {}).get("mortar-aggregate") or {}).get("first_yields"),
             "particles": summary["particles"], "steps": summary["steps"], "cpu_s": cpu}
 
 
@@ -158,7 +180,8 @@ def curve(h5, path):
     with h5py.File(h5, "r") as f:
         h = f["history"]
         cols = {"time": h["time"][:], "cmod": h["bending.cmod"][:], "deflection": h["bending.deflection"][:],
-                "load_kN": h["bending.load"][:] * THICKNESS * 1e-3}
+                "load_kN": h["bending.load"][:] * THICKNESS * 1e-3, "underside": h["underside"][:],
+                "G_bonds": h["energy.dissipated_bonds"][:] / LIGAMENT}  # N/m: the bonds' dissipation per ligament
     np.savetxt(path, np.column_stack(list(cols.values())), delimiter=",", header=",".join(cols), comments="")
 
 
@@ -174,6 +197,33 @@ def read_rows(csv_path):
 
 def fmt(x, spec):
     return "-" if x is None else format(x, spec)
+
+
+def layouts_table(rows):
+    """The softening beams at 40 % and 60 % for every seed run (the scenes' seed 7 and the layouts study's), and the
+    mean: does the 60 % beam crack more through the ITZ, whatever the layout?"""
+    soft = sorted([r for r in rows if r["mortar"] == "softening" and r["study"] in ("scenes", "layouts")],
+                  key=lambda r: (r["seed"], r["fraction"]))
+    if len({r["seed"] for r in soft}) < 2:
+        return []
+    share = lambda r: r["itz_breaks_end"] / max(r["mm_breaks_end"] + r["itz_breaks_end"] + r["agg_breaks_end"], 1)  # noqa
+    out = ["\n### Layouts (softening mortar; seed = packing, aggregate layout and bond strengths)\n",
+           "| seed | aggregate | peak [kN] | G_F [N/m] | tortuosity | breaks at end M-M / ITZ / A-A | ITZ share | "
+           "yields at end M-M / ITZ |", "|---|---|---|---|---|---|---|---|"]
+    for r in soft:
+        out.append(f"| {r['seed']:.0f} | {r['fraction']:.0%} | {r['peak_kN']:.2f} | {r['G_F']:.1f} | "
+                   f"{fmt(r['tortuosity'], '.2f')} | {r['mm_breaks_end']:.0f} / {r['itz_breaks_end']:.0f} / "
+                   f"{r['agg_breaks_end']:.0f} | {share(r):.0%} | "
+                   f"{fmt(r['mm_yields_end'], '.0f')} / {fmt(r['itz_yields_end'], '.0f')} |")
+    for f in FRACTIONS:
+        g = [r for r in soft if r["fraction"] == f]
+        mean = lambda q: np.mean([q(r) for r in g])  # noqa: E731
+        out.append(f"| mean of {len(g)} | {f:.0%} | {mean(lambda r: r['peak_kN']):.2f} | {mean(lambda r: r['G_F']):.1f} "
+                   f"| {mean(lambda r: r['tortuosity'] or 0):.2f} | {mean(lambda r: r['mm_breaks_end']):.1f} / "
+                   f"{mean(lambda r: r['itz_breaks_end']):.1f} / {mean(lambda r: r['agg_breaks_end']):.1f} | "
+                   f"{mean(share):.0%} | {mean(lambda r: r['mm_yields_end'] or 0):.0f} / "
+                   f"{mean(lambda r: r['itz_yields_end'] or 0):.0f} |")
+    return out
 
 
 def analyse(rows, out):
@@ -207,7 +257,10 @@ def analyse(rows, out):
                          f"Table 7.1's {MORTAR['GF']} N/m ({(r['G_F_bonds'] or 0) / MORTAR['GF'] - 1:+.1%}); RILEM "
                          f"G_F {r['G_F']:.1f} N/m; peak {r['peak_kN']:.2f} kN (hinge {p_hinge * 1e-3:.2f} kN); "
                          f"{r['cpu_s']:.0f} CPU s.")
-    rate = sorted([r for r in rows if r["study"] == "rate"], key=lambda r: -r["rate"])
+    # The scenes' softening 40 % beam is the rate study's point at the scenes' own rate.
+    lines += layouts_table(rows)
+    rate = sorted([r for r in rows if r["study"] == "rate" or (r["study"] == "scenes" and r["mortar"] == "softening"
+                                                               and r["fraction"] == 0.4)], key=lambda r: -r["rate"])
     if rate:
         ref = rate[-1]
         lines += [f"\n### Servo rate (softening mortar, 40 %; reference {ref['rate'] * 1e3:g} mm/s)\n",
@@ -228,7 +281,7 @@ def analyse(rows, out):
         fig.tight_layout()
         fig.savefig(out / "rate.png", dpi=110)
     (out / "bending.md").write_text("\n".join(lines) + "\n")
-    curves = sorted(out.glob("*_curve.csv"))
+    curves = sorted(c for c in out.glob("*_curve.csv") if not c.name.startswith("mortar"))
     if curves:
         fig, ax = plt.subplots(figsize=(7, 4.5))
         for c in curves:
@@ -246,16 +299,16 @@ def analyse(rows, out):
 
 
 def main():
-    a = study_arguments(__doc__, "bending_tang", "scenes,mortar,rate").parse_args()
+    a = study_arguments(__doc__, "bending_tang", "scenes,mortar,rate,layouts").parse_args()
     out = Path(a.out)
     (out / "runs").mkdir(parents=True, exist_ok=True)
     csv_path = out / "results.csv"
     if not a.analyse:
         if not shutil.which(a.mesocrack) and not Path(a.mesocrack).exists():
             sys.exit(f"{a.mesocrack}: not found (build first: make demo, or give --mesocrack)")
-        done = {(r["study"], r["mortar"], r["fraction"], r["rate"]) for r in read_rows(csv_path)}
-        todo = [t for t in plan(set(a.only.split(","))) if
-                (t[3]["study"], t[3]["mortar"], t[3]["fraction"], t[3]["rate"]) not in done]
+        key = lambda r: (r["study"], r["mortar"], r["fraction"], r["rate"], r["seed"])  # noqa: E731
+        done = {key(r) for r in read_rows(csv_path)}
+        todo = [t for t in plan(set(a.only.split(","))) if key(t[3]) not in done]
         print(f"{len(todo)} runs to do ({len(done)} already in {csv_path})", flush=True)
         run_all(a.mesocrack, out, a.jobs, todo, csv_path)
     analyse(read_rows(csv_path), out)
