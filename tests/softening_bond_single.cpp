@@ -209,8 +209,41 @@ void in_compression_slips_at_mu_fn_plus_softened_cohesion() {
   CHECK(std::abs(w.energy.residual() - half_step) < 1e-6 * w.energy.boundary_work);
 }
 
+// Tang §8.1's adhesive: a softening bond whose shear strength equals its normal one, given its mode-II fracture
+// energy as G_f, slid without normal load (touching, no overlap) until it breaks. In pure slip the force angle
+// of (3.42) is 90°, so the strength is F_c^s = F_c^n and the work is ½ F_c^s U_p,max = G_f A (3.48), A the
+// section of (3.39). The slide turns the line of centres by s/d ≲ 3e-3 and opens the pair by d (s/d)²/2, a
+// normal component ≲ 1e-5 of the slide's work: 1 % holds that with room for the step onto the softening line.
+template <int D>
+void slid_without_normal_load_dissipates_its_mode_ii_fracture_energy() {
+  auto p = params(5.0, 5.0);
+  const double area = D == 2 ? 2 * kR : M_PI * kR * kR;  // Tang (3.39), λ̄ = 1, t = 1 m
+  const auto c = SofteningBond::pair<D>(p, kR, kR);
+  // Such that U_p,max = 5 F_c^s/k_s: the elastic rise over ~1000 steps, the softening over ~5000.
+  p.fracture_energy = 0.5 * p.shear_mean * (5 * p.shear_mean / c.ks) / area;
+  auto w = test::held_bonded_pair<D, SofteningBond>(p, kR, kR, 0.0);
+  const double rate = p.shear_mean / c.ks / (1000 * w.dt);
+  w.particles.v[1][1] = 0.5 * rate;
+  w.particles.v[0][1] = -0.5 * rate;
+  test::start_energy(w);
+  for (int step = 0; step < 20000 && SofteningBond::bonded<D>(bond_of(w)); ++step) w.step();
+  REQUIRE(!SofteningBond::bonded<D>(bond_of(w)));
+  w.update_energy();
+  const double g = w.energy.dissipated_bonds / area;
+  MESSAGE("dissipated / A = ", g, " N/m against G_II = ", p.fracture_energy, " N/m (", g / p.fracture_energy - 1,
+          "); breaks in shear: ", w.crack_count(CrackKind::Break, CrackMode::Shear));
+  CHECK(w.crack_count(CrackKind::Break, CrackMode::Shear) == 1);
+  CHECK(g == doctest::Approx(p.fracture_energy).epsilon(0.01));
+}
+
 }  // namespace
 
+TEST_CASE("softening_bond_slid_without_normal_load_dissipates_its_mode_ii_fracture_energy_2d") {
+  slid_without_normal_load_dissipates_its_mode_ii_fracture_energy<2>();
+}
+TEST_CASE("softening_bond_slid_without_normal_load_dissipates_its_mode_ii_fracture_energy_3d") {
+  slid_without_normal_load_dissipates_its_mode_ii_fracture_energy<3>();
+}
 TEST_CASE("softening_bond_pulled_apart_dissipates_the_area_under_its_softening_curve_2d") {
   pulled_apart_dissipates_the_area_under_its_softening_curve<2>();
 }
