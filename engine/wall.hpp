@@ -1,7 +1,7 @@
 // Rigid walls: 2D line segments, 3D planar rectangles, and infinite lines/planes in either dimension.
 // A wall moves by translation only, under one of four controls: fixed, prescribed velocity with a smooth
-// ramp, a normal-stress servo (PFC), or an opening servo (CMOD control, Tang §7.1). It records the force and moment the balls exert on it and its
-// displacement.
+// ramp, a normal-stress servo (PFC), or an opening servo (CMOD control, Tang §7.1). It records the force and moment the
+// balls exert on it and its displacement.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -41,8 +41,8 @@ struct Wall {
   // Backing off slower than advancing keeps the loading point on a damped beam that springs back slowly after
   // a crack jump: a fast retreat outruns it and the load drops to zero and recovers, again and again.
   int gauge = -1;
-  double opening_rate = 0;   // [m/s]
-  double opening_gain = 0;   // [1/s]
+  double opening_rate = 0;      // [m/s]
+  double opening_gain = 0;      // [1/s]
   double retreat_speed = kInf;  // [m/s]
 
   Vec<D> velocity = Vec<D>::Zero();

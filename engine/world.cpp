@@ -387,6 +387,7 @@ void World<D>::step() {
     refresh_timestep();
   }
   compute_forces();
+  for (const DrivenGroup<D>& g : driven) g.drive(particles, time);
   const bool damp = local_damping > 0, grav = gravity.has_value();
   Motion motion;
   // One instantiation per combination of declared effects: an effect the scene leaves out is not in the loop.

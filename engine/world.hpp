@@ -11,6 +11,7 @@
 
 #include "engine/archive.hpp"
 #include "engine/contact_set.hpp"
+#include "engine/driven_group.hpp"
 #include "engine/opening_gauge.hpp"
 #include "engine/particles.hpp"
 #include "engine/wall.hpp"
@@ -46,6 +47,7 @@ class World {
   Particles<D> particles;
   std::vector<Wall<D>> walls;
   std::vector<OpeningGauge<D>> gauges;  // read by walls under opening control (and by the scene's probes)
+  std::vector<DrivenGroup<D>> driven;   // particle groups moved at a ramped velocity
   std::vector<std::unique_ptr<ContactSetBase<D>>> sets;
   std::vector<std::vector<int>> model_of;  // [phase_a][phase_b] → index in sets; −1: no interaction
 
@@ -117,8 +119,8 @@ class World {
   void compute_forces();
   void log_cracks();
   struct Motion {
-    double moved = 0;   // the largest displacement since the last rebuild [m]
-    int too_far = -1;   // the first particle that moved more than half its radius in the step (or went non-finite)
+    double moved = 0;  // the largest displacement since the last rebuild [m]
+    int too_far = -1;  // the first particle that moved more than half its radius in the step (or went non-finite)
   };
   template <bool Damp, bool Gravity, bool Applied, bool Energy>
   Motion move_particles();

@@ -1,6 +1,7 @@
 #include "scene/analysis.hpp"
 
 #include "scene/analyses/bending.hpp"
+#include "scene/analyses/pullout.hpp"
 #include "scene/analyses/uniaxial.hpp"
 #include "scene/scene.hpp"
 
@@ -16,6 +17,7 @@ struct Entry {
 constexpr Entry kAnalyses[] = {
     {"uniaxial", read_uniaxial},
     {"bending", read_bending},
+    {"pullout", read_pullout},
 };
 
 }  // namespace

@@ -158,6 +158,20 @@ void read_walls(const Table& root, Scene& s) {
     }
 }
 
+// A group driven at its velocity through a ramp: the velocity is held on fixed translations only (a free one
+// would be changed by the law of motion the next step), so each non-zero component needs its axis fixed.
+void check_driven(const Table& t, GroupSpec& g, int d) {
+  g.driven = true;
+  g.ramp_time = t.number("ramp_time", Unit::Time, Range::non_negative());
+  if (g.velocity.empty()) t.fail("ramp_time", "a ramp needs the 'velocity' it rises to");
+  const char* axis = "xyz";
+  for (int k = 0; k < d; ++k)
+    if (g.velocity[k] != 0 && !(g.fix & (1u << k)))
+      t.fail("fix", "the group is driven along " + std::string(1, axis[k]) + " (velocity " +
+                        std::to_string(g.velocity[k]) + " m/s through a ramp), so " + axis[k] +
+                        " must be fixed: add it to 'fix'");
+}
+
 void read_groups(const Table& root, Scene& s) {
   const int d = s.dimension, r = d == 2 ? 1 : 3;
   for (const Table& t : root.tables("groups")) {
@@ -175,6 +189,7 @@ void read_groups(const Table& root, Scene& s) {
     g.fix = parse_fix(t, d);
     g.velocity = opt_vec(t, "velocity", Unit::Velocity, d);
     g.angular_velocity = opt_vec(t, "angular_velocity", Unit::Rate, r);
+    if (t.has("ramp_time")) check_driven(t, g, d);
     g.force = opt_vec(t, "force", Unit::Force, d);
     g.moment = opt_vec(t, "moment", Unit::Moment, r);
     s.groups.push_back(g);

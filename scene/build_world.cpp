@@ -112,6 +112,11 @@ void apply_groups(const Scene& s, World<D>& w, const std::vector<int>& tags, Spe
       }
     }
     if (members.empty()) throw InputError(s.file + ": group '" + g.name + "' selects no particle");
+    if (g.driven) {
+      DrivenGroup<D>& dg = w.driven.emplace_back();
+      dg.members = members, dg.velocity = vec_of<D>(g.velocity), dg.ramp_time = g.ramp_time;
+      for (int i : members) p.v[i] = dg.velocity_at(0);  // the ramp starts from rest
+    }
   }
 }
 
@@ -136,8 +141,9 @@ void add_gauges(const Scene& s, World<D>& w, const SpecimenInfo& info) {
     }
     const Vec<D> dir = p.direction.empty() ? g.span(w.particles) : vec_of<D>(p.direction);
     if (!(dir.norm() > 0))
-      throw InputError(s.file + ": probe '" + p.name + "': its two sides have the same centre at the start, so the "
-                                "opening has no direction; give 'direction'");
+      throw InputError(s.file + ": probe '" + p.name +
+                       "': its two sides have the same centre at the start, so the "
+                       "opening has no direction; give 'direction'");
     g.direction = dir.normalized();
     g.start = g.separation(w.particles);
     w.gauges.push_back(std::move(g));

@@ -7,8 +7,8 @@
 #include <functional>
 #include <memory>
 #include <optional>
-#include <utility>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "engine/world.hpp"
@@ -61,6 +61,12 @@ struct SpecimenSpec {
   int floater_contacts = 0;  // PFC's n_f (1 … D + 1): particles with fewer neighbours fill their cage; 0: off
   // Boxes (lo, hi) whose particles are removed after the specimen is made: notches (Tang §7.1).
   std::vector<std::pair<std::vector<double>, std::vector<double>>> cuts;
+  // Boxes whose particles join a phase (an FRP sheet on a concrete prism, Tang §8.1); a later box wins.
+  struct Region {
+    std::vector<double> lo, hi;
+    int phase = 0;
+  };
+  std::vector<Region> regions;
 };
 
 // Coarse aggregate laid over the specimen (Tang ch. 4): particles of the mortar phase whose centres fall in an
@@ -89,7 +95,7 @@ struct WallSpec {
   std::vector<double> velocity;  // Velocity
   double ramp_time = 0;
   double stress = 0, servo_area = kNaN, gain = 0.5, max_speed = kInf;  // Servo (max_speed: Opening too)
-  double retreat_speed = kInf;                                          // Opening
+  double retreat_speed = kInf;                                         // Opening
   std::vector<std::string> area_between;                               // Servo: names of opposite walls, in pairs
   std::string probe;                                                   // Opening: the opening probe it drives
   double opening_rate = 0, opening_gain = 0;                           // Opening: [m/s], [1/s]
@@ -102,7 +108,9 @@ struct GroupSpec {
   std::vector<double> box_lo, box_hi;
   FixMask fix = 0;
   std::vector<double> velocity, angular_velocity;  // set at the start (held if the DOF is fixed)
-  std::vector<double> force, moment;               // applied loads
+  bool driven = false;                             // velocity reached over ramp_time on the held translations
+  double ramp_time = 0;
+  std::vector<double> force, moment;  // applied loads
 };
 
 struct RegionSpec {

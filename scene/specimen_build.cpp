@@ -217,6 +217,23 @@ void cut_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags, std::
   reorder<D>(p, tags, ids, kept);
 }
 
+// [[specimen.regions]]: the particles whose centres fall inside a box join its phase, with that phase's density
+// (Tang §8.1: the FRP rows on the prism); where boxes overlap, the later one wins.
+template <int D>
+void assign_regions(const Scene& s, Particles<D>& p) {
+  for (const SpecimenSpec::Region& g : s.specimen.regions) {
+    const double rho = s.phases[g.phase].density;
+    for (int i = 0; i < p.size(); ++i) {
+      bool inside = true;
+      for (int k = 0; k < D; ++k) inside &= p.x[i][k] >= g.lo[k] && p.x[i][k] <= g.hi[k];
+      if (!inside) continue;
+      p.phase[i] = g.phase;
+      p.mass[i] = rho * Dim<D>::volume(p.radius[i]);
+      p.inertia[i] = Dim<D>::inertia_factor * p.mass[i] * p.radius[i] * p.radius[i];
+    }
+  }
+}
+
 }  // namespace
 
 template <int D>
@@ -241,6 +258,7 @@ void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags, Speci
   }
   if (!sp.cuts.empty()) cut_specimen<D>(s, p, tags, info.ids);
   if (p.size() == 0) throw InputError(s.file + ": [[specimen.cuts]] remove every particle of the specimen");
+  assign_regions<D>(s, p);
   // Inline particles keep the order the scene gives them, lattices are local already.
   if (sp.kind == K::SphereList || sp.kind == K::RandomBox || sp.kind == K::Packing) spatial_sort<D>(p, tags, info.ids);
 }

@@ -84,6 +84,14 @@ void read_specimen(const Table& root, Scene& s) {
     sp.cuts.emplace_back(std::move(lo), std::move(hi));
     c.finish();
   }
+  for (const Table& r : t.tables("regions")) {
+    SpecimenSpec::Region g;
+    g.lo = vec(r, "box_lo", Unit::Length, d), g.hi = vec(r, "box_hi", Unit::Length, d);
+    check_box(r, "box_lo", g.lo, "box_hi", g.hi);
+    g.phase = phase_index(r, "phase", s.phases);
+    sp.regions.push_back(std::move(g));
+    r.finish();
+  }
   t.finish();
 }
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "engine/errors.hpp"
+#include "scene/analyses/records.hpp"
 #include "scene/json.hpp"
 #include "scene/scene.hpp"
 #include "scene/specimen_build.hpp"  // vec_of
@@ -13,27 +14,6 @@
 namespace mc {
 
 namespace {
-
-// Names separated by spaces, exactly `n` of them, each found in `known` (by `name_of`); their indices.
-template <class T, class Name>
-std::vector<int> named(const Table& t, const std::string& key, std::size_t n, const std::vector<T>& known,
-                       Name name_of, const std::string& what) {
-  std::stringstream ss(t.string(key));
-  std::vector<std::string> names;
-  for (std::string x; ss >> x;) names.push_back(x);
-  if (names.size() != n)
-    t.fail(key, "give the names of " + std::to_string(n) + " " + what + ", separated by spaces");
-  std::vector<int> out;
-  for (const auto& x : names) {
-    int found = -1;
-    for (std::size_t k = 0; k < known.size(); ++k)
-      if (name_of(known[k]) == x) found = static_cast<int>(k);
-    if (found < 0) t.fail(key, "'" + x + "' is not the name of one of the " + what);
-    if (std::find(out.begin(), out.end(), found) != out.end()) t.fail(key, "names '" + x + "' twice");
-    out.push_back(found);
-  }
-  return out;
-}
 
 using V3 = std::array<double, 3>;
 
@@ -65,59 +45,6 @@ V3 wall_normal(const WallSpec& w) {
   return n;
 }
 
-std::string pair_name(const std::vector<std::string>& names, int a, int b) {
-  auto name = [&](int k) { return k >= 0 && k < int(names.size()) ? names[k] : "phase" + std::to_string(k); };
-  return a <= b ? name(a) + "-" + name(b) : name(b) + "-" + name(a);
-}
-
-// The crack log up to `until` as JSON: per phase pair, the tensile and shear breaks and the first yields.
-std::string crack_counts_json(const std::vector<LoggedCrack>& cracks, double until,
-                              const std::vector<std::string>& names) {
-  std::map<std::string, std::array<long, 3>> n;  // tensile breaks, shear breaks, first yields
-  for (const LoggedCrack& c : cracks) {
-    if (c.time > until) continue;
-    auto& k = n[pair_name(names, c.phase_a, c.phase_b)];
-    ++k[c.kind == CrackKind::Yield ? 2 : c.mode == CrackMode::Shear ? 1 : 0];
-  }
-  std::ostringstream o;
-  o << "{";
-  bool first = true;
-  for (const auto& [pair, k] : n) {
-    o << (first ? "" : ",") << "\n      " << json_quote(pair) << ": {\"tensile_breaks\": " << k[0]
-      << ", \"shear_breaks\": " << k[1] << ", \"first_yields\": " << k[2] << "}";
-    first = false;
-  }
-  o << (first ? "}" : "\n    }");
-  return o.str();
-}
-
-// The energy balance of the whole test from the energy histories (scene with [physics] energy = true): the work
-// of the walls (the loading point; fixed supports do no work) against what is stored, dissipated and moving.
-// "null" without them.
-std::string energy_json(const Histories& h, double ligament_area) {
-  const char* names[] = {"energy.boundary_work", "energy.body_work", "energy.strain", "energy.kinetic",
-                         "energy.dissipated_bonds", "energy.dissipated_contacts", "energy.dissipated_local",
-                         "energy.residual"};
-  for (const char* n : names)
-    if (!h.count(n) || h.at(n).empty()) return "null";
-  const std::vector<double>& work = h.at("energy.boundary_work");
-  const std::vector<double>& residual = h.at("energy.residual");
-  // |residual| / work at every recorded row once the work is 1 % of its final value (before, both are noise).
-  double worst = 0;
-  for (std::size_t k = 0; k < work.size(); ++k)
-    if (work[k] >= 0.01 * work.back()) worst = std::max(worst, std::abs(residual[k]) / work[k]);
-  std::ostringstream o;
-  o << "{";
-  for (const char* n : names)
-    o << "\n      " << json_quote(std::string(n).substr(7)) << ": " << json_number(h.at(n).back()) << ",";
-  o << "\n      \"worst_residual_over_work\": " << json_number(worst)
-    << ",\n      \"G_F_bonds\": " << json_number(h.at("energy.dissipated_bonds").back() / ligament_area)
-    << ",\n      \"definition\": \"final values [J, simulated thickness]; worst |residual|/work over the rows where "
-       "the work is at least 1 % of its final value; G_F_bonds = energy dissipated by bond breakage and softening "
-       "over the ligament area\"\n    }";
-  return o.str();
-}
-
 }  // namespace
 
 std::shared_ptr<const Analysis> read_bending(const Table& t, const Scene& s) {
@@ -132,8 +59,8 @@ std::shared_ptr<const Analysis> read_bending(const Table& t, const Scene& s) {
   if (b->supports[0] == b->load_wall || b->supports[1] == b->load_wall)
     t.fail("supports", "names the loading wall '" + s.walls[b->load_wall].name + "': give the two support walls");
   if (t.has("deflection_groups")) {
-    const std::vector<int> g =
-        named(t, "deflection_groups", 3, s.groups, [](const GroupSpec& x) { return x.name; }, "[[groups]]");
+    const std::vector<int> g = named(
+        t, "deflection_groups", 3, s.groups, [](const GroupSpec& x) { return x.name; }, "[[groups]]");
     b->deflection_groups = {g[0], g[1], g[2]};
   }
   for (const PhaseSpec& p : s.phases) b->phase_names.push_back(p.name);
@@ -260,7 +187,7 @@ BendingResult BendingAnalysis::result(const Histories& h) const {
 CrackPath BendingAnalysis::crack_path(const std::vector<LoggedCrack>& cracks, double until) const {
   const int nb = CrackPath::kBands;
   const double band = ligament / nb, bottom = depth - ligament;  // heights above the beam's underside [m]
-  std::vector<std::vector<double>> at(nb);                      // positions along the beam, per band
+  std::vector<std::vector<double>> at(nb);                       // positions along the beam, per band
   for (const LoggedCrack& c : cracks) {
     if (c.time > until || c.kind != CrackKind::Break) continue;
     const V3 r = minus(c.position, top);
@@ -275,8 +202,10 @@ CrackPath BendingAnalysis::crack_path(const std::vector<LoggedCrack>& cracks, do
     if (v.empty()) continue;
     std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
     const double s = v[v.size() / 2], h = bottom + (k + 0.5) * band;
-    if (p.bands > 0) length += std::hypot(s - prev_s, h - prev_h);
-    else first = h;
+    if (p.bands > 0)
+      length += std::hypot(s - prev_s, h - prev_h);
+    else
+      first = h;
     prev_s = s, prev_h = h, ++p.bands;
   }
   if (p.bands >= 2) {
@@ -296,8 +225,7 @@ std::string BendingAnalysis::summary_json(const RunRecord& run) const {
   o << "{\n    \"thickness\": " << json_number(thickness) << ",\n    \"span\": " << json_number(span)
     << ",\n    \"depth\": " << json_number(depth) << ",\n    \"ligament\": " << json_number(ligament)
     << ",\n    \"peak_load\": " << json_number(r.peak_load * f)
-    << ",\n    \"peak_load_simulated\": " << json_number(r.peak_load)
-    << ",\n    \"load_definition\": "
+    << ",\n    \"peak_load_simulated\": " << json_number(r.peak_load) << ",\n    \"load_definition\": "
     << json_quote(dimension == 2 ? "peak_load for the beam's thickness; _simulated per metre of the discs' thickness"
                                  : "as simulated")
     << ",\n    \"cmod_at_peak\": " << json_number(r.cmod_at_peak)
@@ -309,8 +237,7 @@ std::string BendingAnalysis::summary_json(const RunRecord& run) const {
     << ",\n    \"G_F_definition\": \"RILEM 50-FMC: (W0 + m g delta0) / (ligament x thickness), W0 the area under "
        "load-deflection to the end of the record\""
     << ",\n    \"work_of_fracture\": " << json_number(r.work * f)
-    << ",\n    \"self_weight_work\": " << json_number(r.self_weight_work * f)
-    << ",\n    \"self_weight\": "
+    << ",\n    \"self_weight_work\": " << json_number(r.self_weight_work * f) << ",\n    \"self_weight\": "
     << json_quote(gravity ? "m g delta0, m the beam's mass between the supports"
                           : "none: gravity is off, so no self-weight acts and the load returns to zero by itself")
     << ",\n    \"final_deflection\": " << json_number(r.final_deflection)
@@ -325,7 +252,7 @@ std::string BendingAnalysis::summary_json(const RunRecord& run) const {
       << ",\n    \"cracks_at_peak\": " << crack_counts_json(run.cracks, r.peak_time, phase_names)
       << ",\n    \"cracks_final\": " << crack_counts_json(run.cracks, kInf, phase_names);
   }
-  o << ",\n    \"energy\": " << energy_json(h, ligament_area()) << "\n  }";
+  o << ",\n    \"energy\": " << energy_json(h, ligament_area(), "G_F_bonds", "ligament") << "\n  }";
   return o.str();
 }
 

@@ -1,0 +1,34 @@
+// A group of particles driven at a prescribed velocity on its held degrees of freedom, reached over a ramp as a
+// wall's (Tang §8.1: the FRP's loaded end pulled "in a controlled fashion to neglect possible inertia effect").
+// Held degrees of freedom keep their velocity in the law of motion; this sets it each step, so the group's
+// reaction is what it takes to drive it.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "engine/dim.hpp"
+#include "engine/particles.hpp"
+
+namespace mc {
+
+template <int D>
+struct DrivenGroup {
+  std::vector<int> members;
+  Vec<D> velocity = Vec<D>::Zero();  // [m/s], on the members' held translations only
+  double ramp_time = 0;              // [s]: the velocity rises as (1 − cos πt/T)/2, no jerk at the start
+
+  Vec<D> velocity_at(double t) const {
+    const double s = ramp_time > 0 ? std::min(t / ramp_time, 1.0) : 1.0;
+    return velocity * (0.5 * (1.0 - std::cos(M_PI * s)));
+  }
+
+  void drive(Particles<D>& p, double t) const {
+    const Vec<D> v = velocity_at(t);
+    for (int i : members)
+      for (int k = 0; k < D; ++k)
+        if (p.fix[i] & (1u << k)) p.v[i][k] = v[k];
+  }
+};
+
+}  // namespace mc

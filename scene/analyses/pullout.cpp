@@ -1,0 +1,231 @@
+#include "scene/analyses/pullout.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <sstream>
+
+#include "engine/errors.hpp"
+#include "engine/opening_gauge.hpp"
+#include "scene/analyses/records.hpp"
+#include "scene/json.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_read_parts.hpp"  // phase_index
+
+namespace mc {
+
+namespace {
+
+// The FRP particles whose centres lie within one radius of x = s (a column of the sheet; two discs where s falls
+// between them), with room for the round-off of lattice coordinates.
+template <int D>
+std::vector<int> frp_column(const Particles<D>& p, int frp, double s) {
+  std::vector<int> out;
+  for (int i = 0; i < p.size(); ++i)
+    if (p.phase[i] == frp && std::abs(p.x[i][0] - s) <= 1.001 * p.radius[i]) out.push_back(i);
+  return out;
+}
+
+// The first row where `load` reaches `level` on its way to the peak; −1 if it never does.
+long first_reaching(const std::vector<double>& load, std::size_t peak, double level) {
+  for (std::size_t k = 0; k <= peak && k < load.size(); ++k)
+    if (load[k] >= level) return static_cast<long>(k);
+  return -1;
+}
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return kNaN;
+  const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())));
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+  return v[k];
+}
+
+}  // namespace
+
+std::shared_ptr<const Analysis> read_pullout(const Table& t, const Scene& s) {
+  if (s.dimension != 2) t.fail("pullout", "the pull test is 2D (Tang §8.1: y up, the sheet on top, pulled along x)");
+  auto a = std::make_shared<PulloutAnalysis>();
+  a->scene_file = s.file;
+  a->pulled_group = named(
+      t, "pulled", 1, s.groups, [](const GroupSpec& g) { return g.name; }, "[[groups]]")[0];
+  const GroupSpec& g = s.groups[a->pulled_group];
+  if (!g.driven)
+    t.fail("pulled", "group '" + g.name + "' is not driven: give it 'velocity', 'fix' and 'ramp_time' ([[groups]])");
+  const double speed = std::hypot(g.velocity[0], g.velocity[1]);
+  if (!(speed > 0)) t.fail("pulled", "group '" + g.name + "' has velocity zero: the pulled end must move");
+  a->pull = {g.velocity[0] / speed, g.velocity[1] / speed};
+  a->slip_probe = t.string("slip");
+  a->slip_gauge = s.opening_gauge(a->slip_probe);
+  if (a->slip_gauge < 0)
+    t.fail("slip", "'" + a->slip_probe + "' is not the name of an opening probe ([[probes]] with kind = \"opening\")");
+  for (const PhaseSpec& p : s.phases) a->phase_names.push_back(p.name);
+  a->frp_phase = scene_read::phase_index(t, "frp_phase", s.phases);
+  a->bonded_from = t.number("bonded_from", Unit::Length, Range::any());
+  a->bonded_to = t.number("bonded_to", Unit::Length, Range::any());
+  if (a->bonded_length() <= 0) t.fail("bonded_to", "equals bonded_from: the bonded length must be positive");
+  a->gauges = static_cast<int>(t.integer("gauges", Range::closed(1, 1000), 10));
+  a->width = t.number("width", Unit::Length, Range::positive());
+  a->prism_width = t.number("prism_width", Unit::Length, Range::positive());
+  if (a->width > a->prism_width)
+    t.fail("width", "the sheet (" + json_number(a->width) + " m) is wider than the prism (" +
+                        json_number(a->prism_width) + " m): (8.1) holds for b_f ≤ b_c");
+  a->frp_modulus = t.number("frp_modulus", Unit::Pressure, Range::positive());
+  a->frp_thickness = t.number("frp_thickness", Unit::Length, Range::positive());
+  if (t.has("load_levels")) a->load_levels = t.numbers("load_levels", Unit::Force, Range::positive(), 0);
+  return a;
+}
+
+void PulloutAnalysis::check(const Table& t, const Scene& s, const std::vector<std::string>& histories) const {
+  (void)t, (void)s, (void)histories;  // it reads only the histories it records itself
+}
+
+double PulloutAnalysis::beta_w() const {
+  const double r = width / prism_width;
+  return std::sqrt((2 - r) / (1 + r));  // Tang (8.1), Chen & Teng 2001
+}
+
+void PulloutAnalysis::add_histories(std::vector<Series>& out, const Observed<2>& o) const {
+  const Particles<2>* p = o.bodies;
+  auto put = [&](std::string name, std::string unit, std::function<double()> f) {
+    out.push_back({std::move(name), std::move(unit), p ? std::move(f) : nullptr});
+  };
+  // The load: what holds the pulled end on its motion, along the pull (the rest of the specimen pulls it back).
+  const std::vector<int>* members = o.groups ? &(*o.groups)[pulled_group] : nullptr;
+  const Vec<2> e(pull[0], pull[1]);
+  put("pullout.load", "N", [p, members, e] {
+    double f = 0;
+    for (int i : *members) f -= p->f[i].dot(e);
+    return f;
+  });
+  put("pullout.slip", "m", [o, g = slip_gauge] { return (*o.gauges)[g].value(*o.bodies); });
+  // Gauge k: the FRP's strain between columns at the ends of its stretch of the bonded length, from the loaded
+  // end on.
+  const double dir = bonded_to > bonded_from ? 1.0 : -1.0, length = bonded_length() / gauges;
+  for (int k = 0; k < gauges; ++k) {
+    auto gauge = std::make_shared<OpeningGauge<2>>();
+    if (p) {
+      const double s0 = bonded_from + dir * k * length, s1 = bonded_from + dir * (k + 1) * length;
+      gauge->a = frp_column(*p, frp_phase, s0), gauge->b = frp_column(*p, frp_phase, s1);
+      if (gauge->a.empty() || gauge->b.empty())
+        throw InputError(scene_file + ": pullout.bonded_to = " + json_number(bonded_to) + " m: no particle of phase '" +
+                         phase_names[frp_phase] + "' within a radius of x = " +
+                         json_number(gauge->a.empty() ? s0 : s1) + " m, where strain gauge " + std::to_string(k) +
+                         " ends: the sheet must cover the bonded length [bonded_from, bonded_to]");
+      gauge->direction = Vec<2>(dir, 0);
+      gauge->start = gauge->separation(*p);
+    }
+    put("pullout.strain_" + std::to_string(k), "-", [p, gauge] { return gauge->value(*p) / gauge->start; });
+  }
+  // The interface (the sheet's underside) and the prism's bottom, for the depth of the concrete's cracks.
+  double interface = kInf, bottom = kInf;
+  if (p)
+    for (int i = 0; i < p->size(); ++i) {
+      if (p->phase[i] == frp_phase) interface = std::min(interface, p->x[i][1] - p->radius[i]);
+      bottom = std::min(bottom, p->x[i][1] - p->radius[i]);
+    }
+  put("pullout.interface_y", "m", [interface] { return interface; });
+  put("pullout.bottom_y", "m", [bottom] { return bottom; });
+}
+
+void PulloutAnalysis::add_histories(std::vector<Series>&, const Observed<3>&) const {
+  throw InputError(scene_file + ": [pullout]: the pull test is 2D");
+}
+
+// Tang §8.2.3: most joints fail in the concrete, a thin layer of it coming off with the sheet; an adhesive failure
+// is rare; with no free zone a wedge of concrete splits off at the loaded end (§8.2.4). The concrete breaks that
+// reach deeper than a third of the prism name the wedge.
+PulloutFailure PulloutAnalysis::failure(const std::vector<LoggedCrack>& cracks, double interface_y,
+                                        double bottom_y) const {
+  PulloutFailure f;
+  std::vector<double> depths;
+  for (const LoggedCrack& c : cracks) {
+    if (c.kind != CrackKind::Break) continue;
+    if (c.phase_a == frp_phase || c.phase_b == frp_phase) {
+      ++f.adhesive_breaks;
+    } else {
+      ++f.concrete_breaks;
+      depths.push_back(interface_y - c.position[1]);
+    }
+  }
+  f.depth_median = quantile(depths, 0.5);
+  f.depth_p90 = quantile(depths, 0.9);
+  f.depth_max = depths.empty() ? kNaN : *std::max_element(depths.begin(), depths.end());
+  if (f.adhesive_breaks + f.concrete_breaks == 0)
+    f.mode = "none";
+  else if (f.adhesive_breaks > f.concrete_breaks)
+    f.mode = "adhesive";
+  else if (f.depth_p90 > (interface_y - bottom_y) / 3)
+    f.mode = "concrete wedge";
+  else
+    f.mode = "thin concrete layer";
+  return f;
+}
+
+std::string PulloutAnalysis::summary_json(const RunRecord& run) const {
+  const Histories& h = run.histories;
+  auto series = [&](const std::string& n) -> const std::vector<double>* {
+    const auto it = h.find(n);
+    return it == h.end() || it->second.empty() ? nullptr : &it->second;
+  };
+  const std::vector<double>*load = series("pullout.load"), *slip = series("pullout.slip"), *time = series("time");
+  if (!load || !slip || !time) return "null";
+  const std::size_t peak = static_cast<std::size_t>(std::max_element(load->begin(), load->end()) - load->begin());
+  const double capacity = (*load)[peak];
+  std::ostringstream o;
+  o << "{\n    \"width\": " << json_number(width) << ",\n    \"prism_width\": " << json_number(prism_width)
+    << ",\n    \"beta_w\": " << json_number(beta_w()) << ",\n    \"bonded_length\": " << json_number(bonded_length())
+    << ",\n    \"capacity\": " << json_number(capacity * width)
+    << ",\n    \"capacity_beta_w\": " << json_number(capacity * width * beta_w())
+    << ",\n    \"capacity_simulated\": " << json_number(capacity)
+    << ",\n    \"load_definition\": \"capacity for the sheet's width b_f; _beta_w times Chen & Teng's width factor "
+       "(8.1); _simulated per metre of the discs' thickness\""
+    << ",\n    \"slip_at_capacity\": " << json_number((*slip)[peak])
+    << ",\n    \"final_load_over_capacity\": " << json_number(load->back() / capacity);
+  // Strain profiles at the declared loads, on the way to the capacity (Tang Fig. 8.8), with ε₀ of (8.5).
+  o << ",\n    \"strain_profiles\": [";
+  for (std::size_t l = 0; l < load_levels.size(); ++l) {
+    const long row = first_reaching(*load, peak, load_levels[l] / width);
+    o << (l ? "," : "") << "\n      {\"load\": " << json_number(load_levels[l])
+      << ", \"reached\": " << (row >= 0 ? "true" : "false");
+    if (row >= 0) {
+      const double f = (*load)[static_cast<std::size_t>(row)];
+      o << ", \"time\": " << json_number((*time)[static_cast<std::size_t>(row)])
+        << ", \"epsilon_0\": " << json_number(f / (frp_modulus * frp_thickness)) << ", \"positions\": [";
+      for (int k = 0; k < gauges; ++k) o << (k ? ", " : "") << json_number(gauge_position(k));
+      o << "], \"strains\": [";
+      for (int k = 0; k < gauges; ++k) {
+        const std::vector<double>* s = series("pullout.strain_" + std::to_string(k));
+        o << (k ? ", " : "") << json_number(s ? (*s)[static_cast<std::size_t>(row)] : kNaN);
+      }
+      o << "]";
+    }
+    o << "}";
+  }
+  o << (load_levels.empty() ? "]" : "\n    ]")
+    << ",\n    \"strain_definition\": \"gauge k spans the k-th of `gauges` equal stretches of the bonded length, "
+       "positions from its loaded end; epsilon_0 = F / (E_p t_p b_f), Tang (8.5)\"";
+  if (!run.cracks.empty()) {
+    o << ",\n    \"cracks\": {";
+    const double fractions[] = {0.31, 0.6, 0.9, 1.0};
+    for (double fr : fractions) {
+      const long row = first_reaching(*load, peak, fr * capacity);
+      o << "\n      \"at_" << static_cast<int>(std::lround(fr * 100)) << "_percent\": "
+        << crack_counts_json(run.cracks, (*time)[static_cast<std::size_t>(std::max(row, 0L))], phase_names) << ",";
+    }
+    o << "\n      \"final\": " << crack_counts_json(run.cracks, kInf, phase_names) << "\n    }";
+    const std::vector<double>*iface = series("pullout.interface_y"), *bottom = series("pullout.bottom_y");
+    if (iface && bottom) {
+      const PulloutFailure f = failure(run.cracks, iface->front(), bottom->front());
+      o << ",\n    \"failure\": {\"mode\": " << json_quote(f.mode) << ", \"adhesive_breaks\": " << f.adhesive_breaks
+        << ", \"concrete_breaks\": " << f.concrete_breaks << ", \"depth_median\": " << json_number(f.depth_median)
+        << ", \"depth_p90\": " << json_number(f.depth_p90) << ", \"depth_max\": " << json_number(f.depth_max)
+        << ",\n      \"definition\": \"breaks of pairs with the FRP phase (adhesive) against the others (concrete), "
+           "and the concrete breaks' depth below the sheet's underside: adhesive if those dominate, concrete wedge if "
+           "a tenth of the concrete breaks lie deeper than a third of the prism, else a thin concrete layer\"}";
+    }
+  }
+  o << ",\n    \"energy\": " << energy_json(h, bonded_length(), "G_bonds", "bonded") << "\n  }";
+  return o.str();
+}
+
+}  // namespace mc
