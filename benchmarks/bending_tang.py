@@ -10,7 +10,7 @@ scenes/bending_tang_brittle_2d.toml (--set overrides):
           the load-CMOD curves of the four in one plot; the crack pictures at the peak and at the end (report)
   mortar  the softening beam without aggregate (fraction 0): its bonds must dissipate the mortar's G_F (Table 7.1,
           170.4 N/m) over the ligament within 10 %
-  rate    the softening 40 % beam at servo rates 40, 20, 5 and 2.5 mm/s (10 mm/s: the scenes' own run): peak load
+  rate    the softening 40 % beam at servo rates 40, 20, 5, 2.5 and 1.25 mm/s (10 mm/s: the scenes' own run): peak load
           and G_F against the slowest rate, with the CPU seconds of each run (the accuracy-versus-time method of
           benchmarks/uniaxial_accuracy.py)
   layouts the softening beams at 40 % and 60 % on other seeds (packing, aggregate layout and bond strengths): whether
@@ -36,7 +36,7 @@ from uniaxial_accuracy import ROOT, study_arguments, timed_run  # noqa: E402
 THICKNESS = 0.1                  # m, Tang's beam; the discs have unit thickness and summary scales to this
 SPAN, LIGAMENT = 0.3, 0.09
 MORTAR = {"E": 35e9, "ft": 3.2e6, "GF": 170.4}   # Table 7.1
-RATES = [40e-3, 20e-3, 5e-3, 2.5e-3]             # m/s of the servo gauge (the scenes' own, 10 mm/s, from "scenes")
+RATES = "40,20,5,2.5,1.25"                       # mm/s of the servo gauge (the scenes' own, 10 mm/s, from "scenes")
 SCENE_RATE = 10e-3
 SEEDS = [8]                                      # the layouts beside the scenes' seed 7
 FRACTIONS = [0.4, 0.6]
@@ -79,13 +79,15 @@ def hinge_peak(E, ft, GF, h=LIGAMENT, t=THICKNESS, s=SPAN, zeta=0.5):
 def servo(rate):
     """--set lines for the servo at `rate` [m/s]: the scenes' servo (10 mm/s, gain 2000 /s, advancing at up to three
     times the rate, backing off at up to the rate) slowed as a whole, its gain with the rate, so that only the time
-    scale of the test changes."""
+    scale of the test changes; the run's time limit (0.1 s at 10 mm/s) stretches with it, so that every rate ends
+    where the scenes do, at an underside opening of 0.3 mm."""
     s = rate / SCENE_RATE
     return [f'walls[2].rate="{rate * 1e3:g} mm/s"', f'walls[2].gain="{2000 * s:g} /s"',
-            f'walls[2].max_speed="{3 * rate * 1e3:g} mm/s"', f'walls[2].retreat_speed="{rate * 1e3:g} mm/s"']
+            f'walls[2].max_speed="{3 * rate * 1e3:g} mm/s"', f'walls[2].retreat_speed="{rate * 1e3:g} mm/s"',
+            f'run.duration="{0.1 / s:g} s"']
 
 
-def plan(only):
+def plan(only, rates):
     """(key, scene, overrides, row fields known before the run, keep the run for pictures)."""
     todo = []
     if "scenes" in only:
@@ -102,7 +104,7 @@ def plan(only):
                      {"study": "mortar", "mortar": "softening", "fraction": 0.0, "rate": MORTAR_RATE, "seed": 7},
                      True))
     if "rate" in only:
-        for r in RATES:
+        for r in rates:
             todo.append((f"rate_{r * 1e3:g}", "softening", servo(r),
                          {"study": "rate", "mortar": "softening", "fraction": 0.4, "rate": r, "seed": 7}, False))
     if "layouts" in only:
@@ -157,8 +159,10 @@ def run_all(exe, out, jobs, todo, csv_path):
             curve(h5, out / f"{key}_curve.csv")
             subprocess.run([sys.executable, str(ROOT / "app" / "report.py"), str(h5)], check=True,
                            capture_output=True)
-            for f in h5.parent.glob(h5.stem + "*"):
-                if f.suffix != ".png":
+            for f in h5.parent.glob(h5.stem + "*"):  # the crack pictures at the peak and at the end are kept
+                if f.name in (h5.stem + "_cracks.png", h5.stem + "_cracks_peak.png"):
+                    f.replace(out / f.name)
+                else:
                     f.unlink()
         return row_of(s, known, cpu)
 
@@ -299,7 +303,9 @@ def analyse(rows, out):
 
 
 def main():
-    a = study_arguments(__doc__, "bending_tang", "scenes,mortar,rate,layouts").parse_args()
+    ap = study_arguments(__doc__, "bending_tang", "scenes,mortar,rate,layouts")
+    ap.add_argument("--rates", default=RATES, help="servo rates of the rate study [mm/s], comma-separated")
+    a = ap.parse_args()
     out = Path(a.out)
     (out / "runs").mkdir(parents=True, exist_ok=True)
     csv_path = out / "results.csv"
@@ -308,7 +314,8 @@ def main():
             sys.exit(f"{a.mesocrack}: not found (build first: make demo, or give --mesocrack)")
         key = lambda r: (r["study"], r["mortar"], r["fraction"], r["rate"], r["seed"])  # noqa: E731
         done = {key(r) for r in read_rows(csv_path)}
-        todo = [t for t in plan(set(a.only.split(","))) if key(t[3]) not in done]
+        rates = [float(r) * 1e-3 for r in a.rates.split(",")]
+        todo = [t for t in plan(set(a.only.split(",")), rates) if key(t[3]) not in done]
         print(f"{len(todo)} runs to do ({len(done)} already in {csv_path})", flush=True)
         run_all(a.mesocrack, out, a.jobs, todo, csv_path)
     analyse(read_rows(csv_path), out)
