@@ -57,12 +57,7 @@ TEST_CASE("frp_strain_profile_of_an_elastic_pull_follows_the_shear_lag_solution"
 // what is allowed; nothing written.
 TEST_CASE("bad_pullout_and_driven_group_keys_are_refused_naming_the_key") {
   const TempDir d;
-  const std::string text = slurp(kPull);
-  struct Case {
-    std::string what, with;
-    std::vector<std::string> parts;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<SceneEdit> edits = {
       {"pulled = \"grip\"", "pulled = \"prism\"", {"pullout.pulled", "not driven"}},
       {"pulled = \"grip\"", "pulled = \"hand\"", {"pullout.pulled", "'hand' is not the name"}},
       {"slip = \"slip\"\nfrp", "slip = \"prism\"\nfrp", {"pullout.slip", "opening probe"}},
@@ -75,11 +70,5 @@ TEST_CASE("bad_pullout_and_driven_group_keys_are_refused_naming_the_key") {
       {"ramp_time = \"50 us\"", "ramp_time = \"-1 us\"", {"groups[1].ramp_time"}},
       {"bonded_to = \"40 mm\"", "bonded_to = \"60 mm\"", {"strain gauge", "sheet must cover"}},
   };
-  for (const Case& c : cases) {
-    CAPTURE(c.with);
-    write_file(d / "scene.toml", edit(text, c.what, c.with));
-    std::vector<std::string> parts = c.parts;
-    parts.push_back("scene.toml");
-    check_refused(d.dir, {"run", "scene.toml"}, 2, parts);
-  }
+  check_edits_refused(d.dir, slurp(kPull), edits);
 }

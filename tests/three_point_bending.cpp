@@ -248,12 +248,7 @@ TEST_CASE("cmod_controlled_beam_resumed_from_a_checkpoint_continues_bit_for_bit"
 // the key, the value and what is allowed; nothing written.
 TEST_CASE("bad_bending_and_opening_control_keys_are_refused_naming_the_key") {
   const TempDir d;
-  const std::string text = slurp(kBeam);
-  struct Case {
-    std::string what, with;
-    std::vector<std::string> parts;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<SceneEdit> edits = {
       {"load_wall = \"load\"", "load_wall = \"top\"", {"bending.load_wall", "'top' is not the name"}},
       {"supports = \"left right\"", "supports = \"left\"", {"bending.supports", "names of 2 [[walls]]"}},
       {"supports = \"left right\"", "supports = \"left load\"", {"bending.supports", "loading wall"}},
@@ -268,11 +263,5 @@ TEST_CASE("bad_bending_and_opening_control_keys_are_refused_naming_the_key") {
        {"walls[2].retreat_speed", "> 0"}},
       {"groups = \"mouth_left mouth_right\"", "groups = \"mouth_left\"", {"probes[0].groups", "two [[groups]]"}},
   };
-  for (const Case& c : cases) {
-    CAPTURE(c.with);
-    write_file(d / "scene.toml", edit(text, c.what, c.with));
-    std::vector<std::string> parts = c.parts;
-    parts.push_back("scene.toml");
-    check_refused(d.dir, {"run", "scene.toml"}, 2, parts);
-  }
+  check_edits_refused(d.dir, slurp(kBeam), edits);
 }

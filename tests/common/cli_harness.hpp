@@ -424,6 +424,24 @@ void check_refused(const fs::path& dir, std::vector<std::string> args, int code,
     CHECK_MESSAGE((name.ends_with(".toml") || name.ends_with(".spheres")), "unexpected file ", name);
 }
 
+// An edit of a scene's text (the first `what` becomes `with`) and what its refusal must name.
+struct SceneEdit {
+  std::string what, with;
+  std::vector<std::string> parts;
+};
+
+// Each edit of `text`, written as this folder's scene.toml, is refused by `run` with exit 2 naming its parts and
+// the file, and writes nothing.
+void check_edits_refused(const fs::path& dir, const std::string& text, const std::vector<SceneEdit>& edits) {
+  for (const SceneEdit& c : edits) {
+    CAPTURE(c.with);
+    write_file(dir / "scene.toml", edit(text, c.what, c.with));
+    std::vector<std::string> parts = c.parts;
+    parts.push_back("scene.toml");
+    check_refused(dir, {"run", "scene.toml"}, 2, parts);
+  }
+}
+
 // 1-based line of the first occurrence of `what` in `text`.
 int line_of(const std::string& text, const std::string& what) {
   const auto at = text.find(what);
