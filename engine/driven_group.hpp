@@ -3,12 +3,11 @@
 // Held degrees of freedom keep their velocity in the law of motion; this sets it each step, so the group's
 // reaction is what it takes to drive it.
 #pragma once
-#include <algorithm>
-#include <cmath>
 #include <vector>
 
 #include "engine/dim.hpp"
 #include "engine/particles.hpp"
+#include "engine/ramp.hpp"
 
 namespace mc {
 
@@ -16,12 +15,9 @@ template <int D>
 struct DrivenGroup {
   std::vector<int> members;
   Vec<D> velocity = Vec<D>::Zero();  // [m/s], on the members' held translations only
-  double ramp_time = 0;              // [s]: the velocity rises as (1 − cos πt/T)/2, no jerk at the start
+  double ramp_time = 0;              // [s], engine/ramp.hpp
 
-  Vec<D> velocity_at(double t) const {
-    const double s = ramp_time > 0 ? std::min(t / ramp_time, 1.0) : 1.0;
-    return velocity * (0.5 * (1.0 - std::cos(M_PI * s)));
-  }
+  Vec<D> velocity_at(double t) const { return velocity * ramp_factor(t, ramp_time); }
 
   void drive(Particles<D>& p, double t) const {
     const Vec<D> v = velocity_at(t);

@@ -11,6 +11,7 @@
 
 #include "engine/contact_geometry.hpp"  // WallMaterial
 #include "engine/dim.hpp"
+#include "engine/ramp.hpp"
 
 namespace mc {
 
@@ -37,9 +38,9 @@ struct Wall {
   double servo_max_speed = kInf;  // [m/s], both servos
   // Opening: the wall moves along its normal so that the opening gauge `gauge` (World::gauges) grows at
   // `opening_rate`, reached over ramp_time like the velocity ramp. Proportional control, as PFC's servos:
-  // v = clamp(opening_gain (target − reading), −retreat_speed, servo_max_speed), positive into the material.
-  // Backing off slower than advancing keeps the loading point on a damped beam that springs back slowly after
-  // a crack jump: a fast retreat outruns it and the load drops to zero and recovers, again and again.
+  // v = clamp(opening_gain (target − reading), −retreat_speed, servo_max_speed), positive into the material:
+  // the wall may back off after a crack jump at another speed than it advances (on Tang's beam a retreat at the
+  // rate or at three times it made no measurable difference; the loop's gain sets how calm the branch is).
   int gauge = -1;
   double opening_rate = 0;      // [m/s]
   double opening_gain = 0;      // [1/s]
@@ -73,22 +74,13 @@ struct Wall {
     return -force.dot(normal) / a;
   }
 
-  // The time a constant rate has acted by t when it rises as (1 − cos πt/T)/2 over T = ramp_time: the integral
-  // of that ramp, so an opening target follows the wall velocities' own ramp.
-  double ramped_time(double t) const {
-    if (ramp_time <= 0) return t;
-    if (t >= ramp_time) return t - 0.5 * ramp_time;
-    return 0.5 * t - ramp_time / (2 * M_PI) * std::sin(M_PI * t / ramp_time);
-  }
-
   // Velocity for the next step, from the control law. t is the time since the run started; `opening` the
   // reading of the wall's gauge with the particles already moved to t + dt (Opening control only).
   void control_velocity(double t, double dt, double opening) {
     switch (control) {
       case WallControl::Fixed: velocity.setZero(); break;
       case WallControl::Velocity: {
-        const double s = ramp_time > 0 ? std::min(t / ramp_time, 1.0) : 1.0;
-        velocity = target_velocity * (0.5 * (1.0 - std::cos(M_PI * s)));
+        velocity = target_velocity * ramp_factor(t, ramp_time);
         break;
       }
       case WallControl::Servo: {
@@ -106,7 +98,8 @@ struct Wall {
         break;
       }
       case WallControl::Opening: {
-        const double target = opening_rate * ramped_time(t + dt);
+        // The target follows the velocities' own ramp: the time the ramped rate has acted.
+        const double target = opening_rate * ramped_time(t + dt, ramp_time);
         velocity = std::clamp(opening_gain * (target - opening), -retreat_speed, servo_max_speed) * normal;
         break;
       }

@@ -160,8 +160,7 @@ void read_walls(const Table& root, Scene& s) {
 
 // A group driven at its velocity through a ramp: the velocity is held on fixed translations only (a free one
 // would be changed by the law of motion the next step), so each non-zero component needs its axis fixed.
-void check_driven(const Table& t, GroupSpec& g, int d) {
-  g.driven = true;
+void read_driven(const Table& t, GroupSpec& g, int d) {
   g.ramp_time = t.number("ramp_time", Unit::Time, Range::non_negative());
   if (g.velocity.empty()) t.fail("ramp_time", "a ramp needs the 'velocity' it rises to");
   const char* axis = "xyz";
@@ -189,7 +188,7 @@ void read_groups(const Table& root, Scene& s) {
     g.fix = parse_fix(t, d);
     g.velocity = opt_vec(t, "velocity", Unit::Velocity, d);
     g.angular_velocity = opt_vec(t, "angular_velocity", Unit::Rate, r);
-    if (t.has("ramp_time")) check_driven(t, g, d);
+    if (t.has("ramp_time")) read_driven(t, g, d);
     g.force = opt_vec(t, "force", Unit::Force, d);
     g.moment = opt_vec(t, "moment", Unit::Moment, r);
     s.groups.push_back(g);

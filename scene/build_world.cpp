@@ -79,12 +79,7 @@ bool in_group(const GroupSpec& g, const Particles<D>& p, const std::vector<int>&
               const std::vector<std::int64_t>& ids, int i) {
   if (std::find(g.tags.begin(), g.tags.end(), tags[i]) != g.tags.end()) return true;
   if (std::find(g.ids.begin(), g.ids.end(), ids[i]) != g.ids.end()) return true;
-  if (!g.box_lo.empty()) {
-    for (int k = 0; k < D; ++k)
-      if (p.x[i][k] < g.box_lo[k] || p.x[i][k] > g.box_hi[k]) return false;
-    return true;
-  }
-  return false;
+  return !g.box_lo.empty() && in_box<D>(p.x[i], g.box_lo, g.box_hi);
 }
 
 // Each group's members, fixities, initial velocities and applied loads.
@@ -112,9 +107,9 @@ void apply_groups(const Scene& s, World<D>& w, const std::vector<int>& tags, Spe
       }
     }
     if (members.empty()) throw InputError(s.file + ": group '" + g.name + "' selects no particle");
-    if (g.driven) {
+    if (g.ramp_time) {
       DrivenGroup<D>& dg = w.driven.emplace_back();
-      dg.members = members, dg.velocity = vec_of<D>(g.velocity), dg.ramp_time = g.ramp_time;
+      dg.members = members, dg.velocity = vec_of<D>(g.velocity), dg.ramp_time = *g.ramp_time;
       for (int i : members) p.v[i] = dg.velocity_at(0);  // the ramp starts from rest
     }
   }

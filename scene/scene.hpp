@@ -108,9 +108,8 @@ struct GroupSpec {
   std::vector<double> box_lo, box_hi;
   FixMask fix = 0;
   std::vector<double> velocity, angular_velocity;  // set at the start (held if the DOF is fixed)
-  bool driven = false;                             // velocity reached over ramp_time on the held translations
-  double ramp_time = 0;
-  std::vector<double> force, moment;  // applied loads
+  std::optional<double> ramp_time;                 // given: driven, the velocity reached over it on held axes
+  std::vector<double> force, moment;               // applied loads
 };
 
 struct RegionSpec {

@@ -207,11 +207,7 @@ void cut_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags, std::
   std::vector<int> kept;
   for (int i = 0; i < p.size(); ++i) {
     bool inside_any = false;
-    for (const auto& [lo, hi] : s.specimen.cuts) {
-      bool inside = true;
-      for (int k = 0; k < D; ++k) inside &= p.x[i][k] >= lo[k] && p.x[i][k] <= hi[k];
-      inside_any |= inside;
-    }
+    for (const auto& [lo, hi] : s.specimen.cuts) inside_any |= in_box<D>(p.x[i], lo, hi);
     if (!inside_any) kept.push_back(i);
   }
   reorder<D>(p, tags, ids, kept);
@@ -224,9 +220,7 @@ void assign_regions(const Scene& s, Particles<D>& p) {
   for (const SpecimenSpec::Region& g : s.specimen.regions) {
     const double rho = s.phases[g.phase].density;
     for (int i = 0; i < p.size(); ++i) {
-      bool inside = true;
-      for (int k = 0; k < D; ++k) inside &= p.x[i][k] >= g.lo[k] && p.x[i][k] <= g.hi[k];
-      if (!inside) continue;
+      if (!in_box<D>(p.x[i], g.lo, g.hi)) continue;
       p.phase[i] = g.phase;
       p.mass[i] = rho * Dim<D>::volume(p.radius[i]);
       p.inertia[i] = Dim<D>::inertia_factor * p.mass[i] * p.radius[i] * p.radius[i];

@@ -14,6 +14,14 @@ Vec<D> vec_of(const std::vector<double>& v) {
   for (int k = 0; k < D; ++k) out[k] = v[k];
   return out;
 }
+
+// Whether x lies in the box [lo, hi], faces included.
+template <int D>
+bool in_box(const Vec<D>& x, const std::vector<double>& lo, const std::vector<double>& hi) {
+  for (int k = 0; k < D; ++k)
+    if (!(x[k] >= lo[k] && x[k] <= hi[k])) return false;
+  return true;
+}
 template <int D>
 Rot<D> rot_of(const std::vector<double>& v) {
   Rot<D> out;

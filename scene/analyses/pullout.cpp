@@ -49,7 +49,7 @@ std::shared_ptr<const Analysis> read_pullout(const Table& t, const Scene& s) {
   a->pulled_group = named(
       t, "pulled", 1, s.groups, [](const GroupSpec& g) { return g.name; }, "[[groups]]")[0];
   const GroupSpec& g = s.groups[a->pulled_group];
-  if (!g.driven)
+  if (!g.ramp_time)
     t.fail("pulled", "group '" + g.name + "' is not driven: give it 'velocity', 'fix' and 'ramp_time' ([[groups]])");
   const double speed = std::hypot(g.velocity[0], g.velocity[1]);
   if (!(speed > 0)) t.fail("pulled", "group '" + g.name + "' has velocity zero: the pulled end must move");
