@@ -5,9 +5,11 @@
 
 Writes <stem>_history.png, <stem>_xy.png (if the scene asks for x-y plots),
 <stem>_energy.png (if energy series exist), <stem>_specimen.png (2D) or
-<stem>_slice.png (3D) and <stem>_cracks.png (if the run logged cracks) next to
+<stem>_slice.png (3D), <stem>_cracks.png (if the run logged cracks) and, for a
+pull test ([pullout]), <stem>_pullout.png and <stem>_pullout_cracks.png next to
 OUT.h5 (or into DIR) and prints their paths. The figures are drawn by
-report_plots.py (time series) and report_specimen.py (specimen and cracks).
+report_plots.py (time series), report_specimen.py (specimen and cracks) and
+report_pullout.py (pull tests).
 The file is opened read-only and without HDF5 file locking, so a run that is
 still writing can be looked at.
 """
@@ -24,6 +26,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_plots import ReportError, plot_energy, plot_history, plot_xy  # noqa: E402
 from report_specimen import plot_cracks, plot_cracks_at_peak, plot_specimen  # noqa: E402
+from report_pullout import plot_pullout  # noqa: E402
 
 FORMAT = "mesocrack-1"
 
@@ -64,7 +67,8 @@ def read_run(f):
     """Everything the plots need, as numpy arrays (the file is closed afterwards)."""
     run = {"dimension": int(f.attrs.get("dimension", 2)),
            "scene_file": text(f.attrs.get("scene_file", "")),
-           "history": OrderedDict(), "xy_plots": [], "specimen": None, "frame": None}
+           "history": OrderedDict(), "xy_plots": [], "specimen": None, "frame": None,
+           "scene_text": text(f["scene"][()]) if isinstance(f.get("scene"), h5py.Dataset) else ""}
     if run["dimension"] not in (2, 3):
         raise ReportError(f"dimension attribute is {run['dimension']}, expected 2 or 3")
     D = run["dimension"]
@@ -159,7 +163,8 @@ def main(argv=None):
         except OSError as e:
             raise ReportError(f"cannot create output directory {out_dir}: {e.strerror}")
         stem = os.path.splitext(os.path.basename(args.file))[0]
-        for plot in (plot_history, plot_xy, plot_energy, plot_specimen, plot_cracks, plot_cracks_at_peak):
+        for plot in (plot_history, plot_xy, plot_energy, plot_specimen, plot_cracks, plot_cracks_at_peak,
+                     plot_pullout):
             for path in plot(run, stem, out_dir):
                 print(path, flush=True)
     except ReportError as e:  # every ReportError is about a file: exit 3, as `mesocrack` does for file errors

@@ -106,6 +106,16 @@ def make_run(path, dim, n, frames=3, history=True, xy=None, seed=1, cracks=0):
         f.create_group("checkpoint")
 
 
+PULL_SCENE = """[pullout]
+width = "50 mm"
+bonded_from = "5 mm"
+bonded_to = 0.015
+frp_modulus = "195.2 GPa"
+frp_thickness = "1.2 mm"
+load_levels = ["4 kN", "8 kN", "12 kN", "14 kN"]
+"""
+
+
 def run_report(path, *extra):
     return subprocess.run([sys.executable, REPORT, path, *extra], capture_output=True, text=True, timeout=300)
 
@@ -174,6 +184,23 @@ def main():
             w.flush()
             check_pngs("2D file open for writing", run_report(fw),
                        ["writing_history.png", "writing_energy.png", "writing_specimen.png"])
+
+        # A pull test ([pullout] in the stored scene): load-slip, strain profiles and the staged crack pictures.
+        fp = os.path.join(d, "pull.h5")
+        make_run(fp, 2, 2000, frames=0, cracks=300)
+        with h5py.File(fp, "r+") as w:
+            del w["scene"]
+            w.create_dataset("scene", data=fixed(PULL_SCENE))
+            h = w["history"]
+            s = np.linspace(0, 1, h["time"].shape[0])
+            load = 3e5 * np.sin(np.pi * s)  # N/m: up to 15 kN for b_f = 50 mm, and down again
+            series(h, "pullout.load", load, "N")
+            series(h, "pullout.slip", 1e-4 * s, "m")
+            for k in range(5):
+                series(h, f"pullout.strain_{k}", load / 2.34e8 * np.exp(-0.5 * k), "-")
+        check_pngs("pull test", run_report(fp),
+                   ["pull_history.png", "pull_energy.png", "pull_specimen.png", "pull_cracks.png", "pull_pullout.png",
+                    "pull_pullout_cracks.png"])
 
         missing = os.path.join(d, "no_such_run.h5")
         check_error("missing file", run_report(missing), missing, ["no such file"])

@@ -1,0 +1,137 @@
+"""Pictures of a single-shear pull test ([pullout], Tang ch. 8), for app/report.py: the load-slip curve, the FRP's
+strain profiles at the scene's load levels (Fig. 8.8) and the cracks at 31, 60, 90 and 100 % of the capacity and
+at the end (Fig. 8.12). The [pullout] keys (sheet width, bonded length, load levels) are read from the scene the
+run stored."""
+import re
+import tomllib
+
+import matplotlib
+
+matplotlib.use("Agg")  # headless: no display on compute nodes or CI
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.collections import LineCollection  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+
+from report_plots import save  # noqa: E402
+from report_specimen import MODE_COLOURS, crack_segments, draw_discs  # noqa: E402
+
+# The units a [pullout] length, force or modulus may carry (scene/units.cpp has them all; these are the ones of
+# these keys), in SI.
+UNITS = {"m": 1, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "N": 1, "kN": 1e3, "MN": 1e6,
+         "Pa": 1, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
+FRACTIONS = (0.31, 0.6, 0.9, 1.0)  # of the capacity: Tang §8.2.3
+
+
+def si(value):
+    """A scene value ("50 mm", 0.05) in SI, or None when it is not one of UNITS."""
+    if isinstance(value, (int, float)):
+        return float(value)
+    m = re.fullmatch(r"\s*([-+0-9.eE]+)\s*(\S*)\s*", str(value))
+    if not m or m.group(2) not in UNITS | {"": 1}:
+        return None
+    try:
+        return float(m.group(1)) * UNITS.get(m.group(2), 1)
+    except ValueError:
+        return None
+
+
+def pullout_keys(run):
+    """The scene's [pullout] table with its values in SI, or None (no [pullout], or a value not understood)."""
+    try:
+        t = tomllib.loads(run.get("scene_text") or "").get("pullout")
+    except tomllib.TOMLDecodeError:
+        return None
+    if not t:
+        return None
+    keys = {k: si(t[k]) for k in ("width", "bonded_from", "bonded_to", "frp_modulus", "frp_thickness") if k in t}
+    keys["load_levels"] = [si(v) for v in t.get("load_levels", [])]
+    if None in keys.values() or None in keys["load_levels"] or len(keys) < 6:
+        return None
+    return keys
+
+
+def first_reaching(load, peak, level):
+    """The first history row, up to the peak, at which the load reaches `level`, or None."""
+    hit = np.nonzero(load[:peak + 1] >= level)[0]
+    return int(hit[0]) if len(hit) else None
+
+
+def plot_pullout(run, stem, out_dir):
+    """<stem>_pullout.png (load-slip, strain profiles) and <stem>_pullout_cracks.png (cracks at the fractions
+    of the capacity), for a run with [pullout]."""
+    h = run["history"]
+    keys = pullout_keys(run)
+    if keys is None or "pullout.load" not in h or len(h["pullout.load"]["data"]) < 2:
+        return []
+    b = keys["width"]
+    load = h["pullout.load"]["data"] * b  # N for the sheet's width
+    slip = h["pullout.slip"]["data"]
+    time = h["time"]["data"]
+    peak = int(np.argmax(load))
+    length = abs(keys["bonded_to"] - keys["bonded_from"])
+    gauges = sorted((int(k.rsplit("_", 1)[1]), v["data"]) for k, v in h.items() if k.startswith("pullout.strain_"))
+    positions = (np.arange(len(gauges)) + 0.5) * length / max(len(gauges), 1)
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4), constrained_layout=True)
+    a1.plot(slip * 1e3, load * 1e-3, lw=1)
+    a1.plot(slip[peak] * 1e3, load[peak] * 1e-3, "o", color="tab:red",
+            label=f"capacity {load[peak] * 1e-3:.2f} kN at slip {slip[peak] * 1e3:.3f} mm")
+    a1.set_xlabel("slip at the bonded length's loaded end [mm]")
+    a1.set_ylabel(f"load for b_f = {b * 1e3:g} mm [kN]")
+    a1.legend(fontsize="small")
+    ep_tp = keys["frp_modulus"] * keys["frp_thickness"]
+    for k, level in enumerate(keys["load_levels"]):
+        row = first_reaching(load, peak, level)
+        if row is None or not gauges:
+            continue
+        colour = f"C{k}"
+        a2.plot(positions * 1e3, [g[row] * 1e6 for _, g in gauges], "o-", ms=3, color=colour,
+                label=f"{level * 1e-3:g} kN")
+        a2.plot(0, load[row] / (ep_tp * b) * 1e6, "s", color=colour, mfc="none")  # ε₀ of (8.5)
+    a2.set_xlabel("distance from the bonded length's loaded end [mm]")
+    a2.set_ylabel("FRP strain [µε]")
+    a2.set_title("strain profiles (squares: ε₀ = F/(E_p t_p b_f), (8.5))", fontsize="medium")
+    if a2.lines:
+        a2.legend(fontsize="small", title="load")
+    out = [save(fig, out_dir, stem, "pullout")]
+    if run["cracks"] is not None and run["specimen"] is not None:
+        out += plot_pullout_cracks(run, stem, out_dir, keys, load, time, peak)
+    return out
+
+
+def plot_pullout_cracks(run, stem, out_dir, keys, load, time, peak):
+    """The cracks near the bonded length (from 15 mm before its loaded end to 5 mm past its other end, 12 mm
+    deep) logged by the first time the load reached each fraction of the capacity, and all of them at the end."""
+    c, spec = run["cracks"], run["specimen"]
+    xy, r = spec["x"], spec["radius"]
+    top = (xy[:, 1] + r).max()
+    x0, x1 = sorted((keys["bonded_from"], keys["bonded_to"]))
+    x0, x1 = x0 - 15e-3, x1 + 5e-3
+    window = ((x0, top - 12e-3), (x1, top))
+    near = (xy[:, 0] > x0 - 1e-3) & (xy[:, 0] < x1 + 1e-3) & (xy[:, 1] > top - 13e-3)
+    stages = [(f"{f:.0%} of the capacity", time[first_reaching(load, peak, f * load[peak])]) for f in FRACTIONS]
+    stages.append(("end of the run", np.inf))
+    frp = spec["phase_names"].index("frp") if "frp" in spec["phase_names"] else -1
+    fig, axes = plt.subplots(len(stages), 1, figsize=(11, 2.0 * len(stages) + 0.6), constrained_layout=True)
+    factor = 1e3
+    for ax, (label, until) in zip(axes, stages):
+        draw_discs(ax, xy[near], r[near], window, factor, facecolors="0.92")
+        for mode, colour in MODE_COLOURS.items():
+            for glue, style in ((True, ":"), (False, "-")):
+                sel = (c["kind"] == 0) & (c["mode"] == mode) & (c["time"] <= until)
+                pair = (c["phase_a"] == frp) | (c["phase_b"] == frp)
+                sel &= pair if glue else ~pair
+                if sel.any():
+                    ax.add_collection(LineCollection(crack_segments(c, sel, factor), colors=colour,
+                                                     linewidths=1.0, linestyles=style))
+        n = int(((c["kind"] == 0) & (c["time"] <= until)).sum())
+        ax.set_title(f"{label}: {n} broken bonds", fontsize="medium", loc="left")
+        ax.set_ylabel("y [mm]")
+    axes[-1].set_xlabel("x [mm]")
+    handles = [Line2D([], [], color=MODE_COLOURS[1], label="tensile break"),
+               Line2D([], [], color=MODE_COLOURS[2], label="shear break"),
+               Line2D([], [], color="0.3", ls=":", label="adhesive (FRP-concrete)"),
+               Line2D([], [], color="0.3", ls="-", label="concrete")]
+    axes[0].legend(handles=handles, loc="lower left", bbox_to_anchor=(0, 1.15), ncol=4, fontsize="small")
+    fig.suptitle(f"{stem}: cracks near the bonded length (Tang Fig. 8.12), over the initial specimen")
+    return [save(fig, out_dir, stem, "pullout_cracks", dpi=150)]
