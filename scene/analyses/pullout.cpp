@@ -133,13 +133,18 @@ void PulloutAnalysis::add_histories(std::vector<Series>&, const Observed<3>&) co
 
 // Tang §8.2.3: most joints fail in the concrete, a thin layer of it coming off with the sheet; an adhesive failure
 // is rare; with no free zone a wedge of concrete splits off at the loaded end (§8.2.4). The concrete breaks that
-// reach deeper than a third of the prism name the wedge.
+// reach deeper than a third of the prism name the wedge. Only the breaks under the bonded length, or up to one
+// prism height before its loaded end (where the wedge forms), count: elsewhere the prism may crack where it is
+// held (its loaded face), which is not the joint's failure.
 PulloutFailure PulloutAnalysis::failure(const std::vector<LoggedCrack>& cracks, double interface_y,
                                         double bottom_y) const {
   PulloutFailure f;
   std::vector<double> depths;
+  const double height = interface_y - bottom_y, dir = bonded_to > bonded_from ? 1.0 : -1.0;
   for (const LoggedCrack& c : cracks) {
     if (c.kind != CrackKind::Break) continue;
+    const double along = dir * (c.position[0] - bonded_from);  // from the loaded end towards the far end
+    if (along < -height || along > bonded_length()) continue;
     if (c.phase_a == frp_phase || c.phase_b == frp_phase) {
       ++f.adhesive_breaks;
     } else {
@@ -220,8 +225,9 @@ std::string PulloutAnalysis::summary_json(const RunRecord& run) const {
         << ", \"concrete_breaks\": " << f.concrete_breaks << ", \"depth_median\": " << json_number(f.depth_median)
         << ", \"depth_p90\": " << json_number(f.depth_p90) << ", \"depth_max\": " << json_number(f.depth_max)
         << ",\n      \"definition\": \"breaks of pairs with the FRP phase (adhesive) against the others (concrete), "
-           "and the concrete breaks' depth below the sheet's underside: adhesive if those dominate, concrete wedge if "
-           "a tenth of the concrete breaks lie deeper than a third of the prism, else a thin concrete layer\"}";
+           "and the concrete breaks' depth below the sheet's underside, of the breaks under the bonded length or up to one "
+           "prism height before its loaded end: adhesive if those dominate, concrete wedge if a tenth of the concrete "
+           "breaks lie deeper than a third of the prism, else a thin concrete layer\"}";
     }
   }
   o << ",\n    \"energy\": " << energy_json(h, bonded_length(), "G_bonds", "bonded") << "\n  }";
