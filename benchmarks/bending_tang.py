@@ -18,12 +18,9 @@ scenes/bending_tang_brittle_2d.toml (--set overrides):
 Output (--out): results.csv (one row per run), bending.md (the tables), load_cmod.png, rate.png and, for the kept
 runs, their report pictures.
 
-  benchmarks/bending_tang.py --jobs 2                      # everything: about 3 CPU hours (a beam: 10-12 min)
+  benchmarks/bending_tang.py --jobs 2                      # everything: about 5 CPU hours (a beam: 10-12 min)
   benchmarks/bending_tang.py --only scenes,mortar --jobs 2
 """
-import concurrent.futures as cf
-import csv
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -31,14 +28,14 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from uniaxial_accuracy import ROOT, study_arguments, timed_run  # noqa: E402
+from uniaxial_accuracy import ROOT, append_rows, study_arguments, study_main, timed_run  # noqa: E402
 
 THICKNESS = 0.1                  # m, Tang's beam; the discs have unit thickness and summary scales to this
 SPAN, LIGAMENT = 0.3, 0.09
 MORTAR = {"E": 35e9, "ft": 3.2e6, "GF": 170.4}   # Table 7.1
 RATES = "40,20,5,2.5,1.25"                       # mm/s of the servo gauge (the scenes' own, 10 mm/s, from "scenes")
 SCENE_RATE = 10e-3
-SEEDS = [8]                                      # the layouts beside the scenes' seed 7
+SEEDS = [8, 9, 10]                              # the layouts beside the scenes' seed 7
 FRACTIONS = [0.4, 0.6]
 MORTAR_RATE = 10e-3
 
@@ -149,8 +146,6 @@ def row_of(summary, known, cpu):
 
 
 def run_all(exe, out, jobs, todo, csv_path):
-    new = not csv_path.exists()
-
     def one(item):
         key, mortar, ov, known, keep = item
         h5 = out / "runs" / f"{key}.h5"
@@ -166,16 +161,9 @@ def run_all(exe, out, jobs, todo, csv_path):
                     f.unlink()
         return row_of(s, known, cpu)
 
-    with open(csv_path, "a", newline="") as f, cf.ThreadPoolExecutor(jobs) as pool:
-        w = csv.DictWriter(f, fieldnames=FIELDS)
-        if new:
-            w.writeheader()
-        for fut in cf.as_completed([pool.submit(one, t) for t in todo]):
-            r = fut.result()
-            w.writerow(r)
-            f.flush()
-            print(f"{r['study']} {r['mortar']} {r['fraction']:g} {r['rate'] * 1e3:g} mm/s: peak {r['peak_kN']:.2f} kN, "
-                  f"G_F {r['G_F']:.1f} N/m, {r['cpu_s']:.0f} CPU s", flush=True)
+    append_rows(csv_path, FIELDS, jobs, todo, one,
+                lambda r: (f"{r['study']} {r['mortar']} {r['fraction']:g} {r['rate'] * 1e3:g} mm/s: "
+                           f"peak {r['peak_kN']:.2f} kN, G_F {r['G_F']:.1f} N/m, {r['cpu_s']:.0f} CPU s"))
 
 
 def curve(h5, path):
@@ -187,16 +175,6 @@ def curve(h5, path):
                 "load_kN": h["bending.load"][:] * THICKNESS * 1e-3, "underside": h["underside"][:],
                 "G_bonds": h["energy.dissipated_bonds"][:] / LIGAMENT}  # N/m: the bonds' dissipation per ligament
     np.savetxt(path, np.column_stack(list(cols.values())), delimiter=",", header=",".join(cols), comments="")
-
-
-def read_rows(csv_path):
-    rows = []
-    if csv_path.exists():
-        with open(csv_path) as f:
-            for r in csv.DictReader(f):
-                rows.append({k: (r[k] if k in ("study", "mortar") else
-                                 float(r[k]) if r[k] not in ("", "None") else None) for k in FIELDS})
-    return rows
 
 
 def fmt(x, spec):
@@ -305,20 +283,10 @@ def analyse(rows, out):
 def main():
     ap = study_arguments(__doc__, "bending_tang", "scenes,mortar,rate,layouts")
     ap.add_argument("--rates", default=RATES, help="servo rates of the rate study [mm/s], comma-separated")
-    a = ap.parse_args()
-    out = Path(a.out)
-    (out / "runs").mkdir(parents=True, exist_ok=True)
-    csv_path = out / "results.csv"
-    if not a.analyse:
-        if not shutil.which(a.mesocrack) and not Path(a.mesocrack).exists():
-            sys.exit(f"{a.mesocrack}: not found (build first: make demo, or give --mesocrack)")
-        key = lambda r: (r["study"], r["mortar"], r["fraction"], r["rate"], r["seed"])  # noqa: E731
-        done = {key(r) for r in read_rows(csv_path)}
-        rates = [float(r) * 1e-3 for r in a.rates.split(",")]
-        todo = [t for t in plan(set(a.only.split(",")), rates) if key(t[3]) not in done]
-        print(f"{len(todo)} runs to do ({len(done)} already in {csv_path})", flush=True)
-        run_all(a.mesocrack, out, a.jobs, todo, csv_path)
-    analyse(read_rows(csv_path), out)
+    study_main(ap, FIELDS, ("study", "mortar"),
+               lambda r: (r["study"], r["mortar"], r["fraction"], r["rate"], r["seed"]),
+               lambda a: plan(set(a.only.split(",")), [float(r) * 1e-3 for r in a.rates.split(",")]),
+               lambda t: t[3], run_all, analyse)
 
 
 if __name__ == "__main__":

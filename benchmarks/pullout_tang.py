@@ -7,8 +7,9 @@ move the bonded length's ends, the sheet's end, the unglued free zone, the prism
            own: 50 mm/s; the run's time limit stretches with 1/speed): capacity and slip at capacity against the
            slowest, with the CPU seconds of each run (the accuracy-versus-time method of
            benchmarks/uniaxial_accuracy.py)
-  bonded   bonded lengths 25-300 mm, free zone 100 mm: capacity against the energy solution P∞ = b_f √(2 G_f E_p t_p)
-           and Chen & Teng's (2001) model with its effective bond length L_e = √(E_p t_p / √f'_c) [mm, MPa]
+  bonded   bonded lengths 25-300 mm, free zone 100 mm: capacity against the energy solution
+           P∞ = b_f √(2 G_f E_p t_p) and Chen & Teng's (2001) model with its effective bond length
+           L_e = √(E_p t_p / √f'_c) [mm, MPa]
   free     free zones 0, 25, 50 and 100 mm, bonded 50 mm: the early wedge failure at zero free zone (Figs. 8.14-8.16)
 Output (--out): results.csv (one row per run), pullout.md (the tables), bonded.png and, for the reference, its
 report pictures (load-slip, strain profiles, cracks at 31/60/90/100 % of the capacity).
@@ -16,16 +17,13 @@ report pictures (load-slip, strain profiles, cracks at 31/60/90/100 % of the cap
   benchmarks/pullout_tang.py --only rate --jobs 2
   benchmarks/pullout_tang.py --only bonded,free --jobs 2
 """
-import concurrent.futures as cf
-import csv
 import math
-import shutil
 import subprocess
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from uniaxial_accuracy import ROOT, study_arguments, timed_run  # noqa: E402
+from uniaxial_accuracy import ROOT, append_rows, study_arguments, study_main, timed_run  # noqa: E402
 
 SCENE = ROOT / "scenes" / "pull_tang_2d.toml"
 WIDTH, PRISM_WIDTH = 0.05, 0.08        # b_f, b_c [m]
@@ -53,8 +51,10 @@ def geometry(free, bonded):
             f"specimen.cuts[0].box_lo=[{mm(end + 0.1e-3)}, \"30.2 mm\"]",
             f"specimen.cuts[0].box_hi=[{mm(end + TAIL + 2e-3)}, \"32 mm\"]",
             f"groups[1].box_hi=[{mm(end + TAIL + 2e-3)}, \"0.3 mm\"]",
-            f"groups[3].box_lo=[{mm(free - 0.3e-3)}, \"29.8 mm\"]", f"groups[3].box_hi=[{mm(free + 0.3e-3)}, \"30.2 mm\"]",
-            f"groups[4].box_lo=[{mm(free - 0.3e-3)}, \"30.2 mm\"]", f"groups[4].box_hi=[{mm(free + 0.3e-3)}, \"30.5 mm\"]"]
+            f"groups[3].box_lo=[{mm(free - 0.3e-3)}, \"29.8 mm\"]",
+            f"groups[3].box_hi=[{mm(free + 0.3e-3)}, \"30.2 mm\"]",
+            f"groups[4].box_lo=[{mm(free - 0.3e-3)}, \"30.2 mm\"]",
+            f"groups[4].box_hi=[{mm(free + 0.3e-3)}, \"30.5 mm\"]"]
 
 
 def speed(v, bonded=0.05, free=0.1):
@@ -108,7 +108,8 @@ def row_of(s, known, cpu):
     e = p.get("energy") or {}
     depth = f.get("depth_p90")
     return {**known, "capacity_kN": p["capacity"] * 1e-3, "capacity_beta_w_kN": p["capacity_beta_w"] * 1e-3,
-            "slip_at_capacity_mm": p["slip_at_capacity"] * 1e3, "final_load_over_capacity": p["final_load_over_capacity"],
+            "slip_at_capacity_mm": p["slip_at_capacity"] * 1e3,
+            "final_load_over_capacity": p["final_load_over_capacity"],
             "mode": f.get("mode"), "adhesive_breaks": f.get("adhesive_breaks"),
             "concrete_breaks": f.get("concrete_breaks"), "depth_p90_mm": depth * 1e3 if depth is not None else None,
             "G_bonds": e.get("G_bonds"), "worst_residual": e.get("worst_residual_over_work"),
@@ -116,8 +117,6 @@ def row_of(s, known, cpu):
 
 
 def run_all(exe, out, jobs, todo, csv_path):
-    new = not csv_path.exists()
-
     def one(item):
         key, ov, known, keep = item
         h5 = out / "runs" / f"{key}.h5"
@@ -132,26 +131,10 @@ def run_all(exe, out, jobs, todo, csv_path):
                     f.unlink()
         return row_of(s, known, cpu)
 
-    with open(csv_path, "a", newline="") as f, cf.ThreadPoolExecutor(jobs) as pool:
-        w = csv.DictWriter(f, fieldnames=FIELDS)
-        if new:
-            w.writeheader()
-        for fut in cf.as_completed([pool.submit(one, t) for t in todo]):
-            r = fut.result()
-            w.writerow(r)
-            f.flush()
-            print(f"{r['study']} free {r['free_mm']} bonded {r['bonded_mm']} mm, {r['speed'] * 1e3:g} mm/s: capacity "
-                  f"{r['capacity_kN']:.2f} kN, {r['mode']}, {r['cpu_s']:.0f} CPU s", flush=True)
-
-
-def read_rows(csv_path):
-    rows = []
-    if csv_path.exists():
-        with open(csv_path) as f:
-            for r in csv.DictReader(f):
-                rows.append({k: (r[k] if k in ("study", "mode") else
-                                 float(r[k]) if r[k] not in ("", "None") else None) for k in FIELDS})
-    return rows
+    append_rows(csv_path, FIELDS, jobs, todo, one,
+                lambda r: (f"{r['study']} free {r['free_mm']} bonded {r['bonded_mm']} mm, "
+                           f"{r['speed'] * 1e3:g} mm/s: capacity {r['capacity_kN']:.2f} kN, {r['mode']}, "
+                           f"{r['cpu_s']:.0f} CPU s"))
 
 
 def fmt(x, spec):
@@ -207,8 +190,8 @@ def analyse(rows, out):
                   "| free zone [mm] | capacity [kN] | failure | concrete breaks: depth p90 [mm] | CPU s |",
                   "|---|---|---|---|---|"]
         for r in free:
-            lines.append(f"| {r['free_mm']:g} | {r['capacity_kN']:.2f} | {r['mode']} | {fmt(r['depth_p90_mm'], '.1f')} | "
-                         f"{r['cpu_s']:.0f} |")
+            lines.append(f"| {r['free_mm']:g} | {r['capacity_kN']:.2f} | {r['mode']} | "
+                         f"{fmt(r['depth_p90_mm'], '.1f')} | {r['cpu_s']:.0f} |")
     (out / "pullout.md").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 
@@ -216,20 +199,9 @@ def analyse(rows, out):
 def main():
     ap = study_arguments(__doc__, "pullout_tang", "rate,bonded,free")
     ap.add_argument("--rates", default=RATES, help="grip speeds of the rate study [mm/s], comma-separated")
-    a = ap.parse_args()
-    out = Path(a.out)
-    (out / "runs").mkdir(parents=True, exist_ok=True)
-    csv_path = out / "results.csv"
-    if not a.analyse:
-        if not shutil.which(a.mesocrack) and not Path(a.mesocrack).exists():
-            sys.exit(f"{a.mesocrack}: not found (build first: make demo, or give --mesocrack)")
-        key = lambda r: (r["study"], r["free_mm"], r["bonded_mm"], r["speed"])  # noqa: E731
-        done = {key(r) for r in read_rows(csv_path)}
-        rates = [float(r) * 1e-3 for r in a.rates.split(",")]
-        todo = [t for t in plan(set(a.only.split(",")), rates) if key(t[2]) not in done]
-        print(f"{len(todo)} runs to do ({len(done)} already in {csv_path})", flush=True)
-        run_all(a.mesocrack, out, a.jobs, todo, csv_path)
-    analyse(read_rows(csv_path), out)
+    study_main(ap, FIELDS, ("study", "mode"), lambda r: (r["study"], r["free_mm"], r["bonded_mm"], r["speed"]),
+               lambda a: plan(set(a.only.split(",")), [float(r) * 1e-3 for r in a.rates.split(",")]),
+               lambda t: t[2], run_all, analyse)
 
 
 if __name__ == "__main__":

@@ -26,6 +26,7 @@ import csv
 import json
 import math
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -179,6 +180,51 @@ def run_appending(exe, out, jobs, csv_path, fields, todo, done):
             done[done_key] = r
             print(f"{key}: E {r['E'] * 1e-9:.2f} GPa, nu {r['nu']:.3f}, UCS {r['ucs'] * 1e-6:.2f} MPa, "
                   f"{r['cpu_s']:.1f} CPU s", flush=True)
+
+
+def append_rows(csv_path, fields, jobs, items, one, line):
+    """Runs one(item) for every item, `jobs` at once, and appends the row (a dict of `fields`) each returns to
+    csv_path as it ends, printing line(row): a study's loop, so that an interrupted study goes on where it
+    stopped (its driver skips the rows already there)."""
+    new = not csv_path.exists()
+    with open(csv_path, "a", newline="") as f, cf.ThreadPoolExecutor(jobs) as pool:
+        w = csv.DictWriter(f, fieldnames=fields)
+        if new:
+            w.writeheader()
+        for fut in cf.as_completed([pool.submit(one, t) for t in items]):
+            r = fut.result()
+            w.writerow(r)
+            f.flush()
+            print(line(r), flush=True)
+
+
+def read_rows(csv_path, fields, texts):
+    """The rows of a study's results.csv: the `texts` columns as strings, the others as floats (None if empty)."""
+    rows = []
+    if csv_path.exists():
+        with open(csv_path) as f:
+            for r in csv.DictReader(f):
+                rows.append({k: (r[k] if k in texts else float(r[k]) if r[k] not in ("", "None") else None)
+                             for k in fields})
+    return rows
+
+
+def study_main(ap, fields, texts, key, plan, known, run_all, analyse):
+    """A study's driver: parse ap; unless --analyse, run the plan(args) items whose key(known(item)) is not yet
+    a row of --out's results.csv (key(row) for the rows), by run_all(exe, out, jobs, items, csv_path); then
+    analyse(rows, out)."""
+    a = ap.parse_args()
+    out = Path(a.out)
+    (out / "runs").mkdir(parents=True, exist_ok=True)
+    csv_path = out / "results.csv"
+    if not a.analyse:
+        if not shutil.which(a.mesocrack) and not Path(a.mesocrack).exists():
+            sys.exit(f"{a.mesocrack}: not found (build first: make demo, or give --mesocrack)")
+        done = {key(r) for r in read_rows(csv_path, fields, texts)}
+        todo = [t for t in plan(a) if key(known(t)) not in done]
+        print(f"{len(todo)} runs to do ({len(done)} already in {csv_path})", flush=True)
+        run_all(a.mesocrack, out, a.jobs, todo, csv_path)
+    analyse(read_rows(csv_path, fields, texts), out)
 
 
 def mean_cv(xs):
