@@ -41,7 +41,7 @@ RATES = "200,100,50,25"                # mm/s
 def geometry(free, bonded):
     """--set lines for a free zone and a bonded length [m]: the bonded length [free, free + bonded], the sheet
     cut beyond it, the sheet's unglued bottom row up to it, the prism TAIL beyond it, the slip probe at its
-    loaded end."""
+    loaded end (the concrete's end 15 mm deep)."""
     end = free + bonded
     mm = lambda x: f'"{x * 1e3:.4f} mm"'  # noqa: E731
     return [f"pullout.bonded_from={mm(free)}", f"pullout.bonded_to={mm(end)}",
@@ -51,8 +51,8 @@ def geometry(free, bonded):
             f"specimen.cuts[0].box_lo=[{mm(end + 0.1e-3)}, \"30.2 mm\"]",
             f"specimen.cuts[0].box_hi=[{mm(end + TAIL + 2e-3)}, \"32 mm\"]",
             f"groups[1].box_hi=[{mm(end + TAIL + 2e-3)}, \"0.3 mm\"]",
-            f"groups[3].box_lo=[{mm(free - 0.3e-3)}, \"29.8 mm\"]",
-            f"groups[3].box_hi=[{mm(free + 0.3e-3)}, \"30.2 mm\"]",
+            f"groups[3].box_lo=[{mm(free - 0.3e-3)}, \"14.9 mm\"]",
+            f"groups[3].box_hi=[{mm(free + 0.3e-3)}, \"15.3 mm\"]",
             f"groups[4].box_lo=[{mm(free - 0.3e-3)}, \"30.2 mm\"]",
             f"groups[4].box_hi=[{mm(free + 0.3e-3)}, \"30.5 mm\"]"]
 
