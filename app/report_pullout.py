@@ -46,7 +46,8 @@ def pullout_keys(run):
         return None
     keys = {k: si(t[k]) for k in ("width", "bonded_from", "bonded_to", "frp_modulus", "frp_thickness") if k in t}
     keys["load_levels"] = [si(v) for v in t.get("load_levels", [])]
-    if None in keys.values() or None in keys["load_levels"] or len(keys) < 6:
+    keys["frp_phase"] = str(t.get("frp_phase", ""))
+    if None in keys.values() or None in keys["load_levels"] or len(keys) < 7:
         return None
     return keys
 
@@ -111,7 +112,8 @@ def plot_pullout_cracks(run, stem, out_dir, keys, load, time, peak):
     near = (xy[:, 0] > x0 - 1e-3) & (xy[:, 0] < x1 + 1e-3) & (xy[:, 1] > top - 13e-3)
     stages = [(f"{f:.0%} of the capacity", time[first_reaching(load, peak, f * load[peak])]) for f in FRACTIONS]
     stages.append(("end of the run", np.inf))
-    frp = spec["phase_names"].index("frp") if "frp" in spec["phase_names"] else -1
+    names = spec["phase_names"]
+    frp = names.index(keys["frp_phase"]) if keys["frp_phase"] in names else -1
     fig, axes = plt.subplots(len(stages), 1, figsize=(11, 2.0 * len(stages) + 0.6), constrained_layout=True)
     factor = 1e3
     for ax, (label, until) in zip(axes, stages):

@@ -107,6 +107,7 @@ def make_run(path, dim, n, frames=3, history=True, xy=None, seed=1, cracks=0):
 
 
 PULL_SCENE = """[pullout]
+frp_phase = "aggregate"
 width = "50 mm"
 bonded_from = "5 mm"
 bonded_to = 0.015
