@@ -36,13 +36,19 @@ struct Particles {
     m.push_back(R::Zero());
     q.push_back(Dim<D>::identity());
     radius.push_back(r);
-    const double mass_ = density * Dim<D>::volume(r);
-    mass.push_back(mass_);
-    inertia.push_back(Dim<D>::inertia_factor * mass_ * r * r);
+    mass.push_back(0.0);
+    inertia.push_back(0.0);
     phase.push_back(ph);
     stiffness.push_back(1.0);
     fix.push_back(0);
+    set_density(size() - 1, density);
     return size() - 1;
+  }
+
+  // Particle i's mass and moment of inertia for its radius and a density [kg/m³] (a new phase or radius).
+  void set_density(int i, double density) {
+    mass[i] = density * Dim<D>::volume(radius[i]);
+    inertia[i] = Dim<D>::inertia_factor * mass[i] * radius[i] * radius[i];
   }
 
   double max_radius() const {

@@ -47,8 +47,7 @@ double unbalanced_ratio(const World<D>& w) {
 template <int D>
 void set_radius(Particles<D>& p, int i, double r, double density) {
   p.radius[i] = r;
-  p.mass[i] = density * Dim<D>::volume(r);
-  p.inertia[i] = Dim<D>::inertia_factor * p.mass[i] * r * r;
+  p.set_density(i, density);
 }
 
 // Throws InputError for a porosity out of range or a box less than 3 largest diameters wide.

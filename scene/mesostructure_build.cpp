@@ -47,8 +47,7 @@ void assign_phases(const Scene& s, const AggregateLayout<D>& layout, Particles<D
     volume_all += Dim<D>::volume(p.radius[i]);
     if (p.phase[i] != m.mortar_phase || layout.aggregate_at(p.x[i]) == 0) continue;
     p.phase[i] = m.aggregate_phase;
-    p.mass[i] = rho * Dim<D>::volume(p.radius[i]);
-    p.inertia[i] = Dim<D>::inertia_factor * p.mass[i] * p.radius[i] * p.radius[i];
+    p.set_density(i, rho);
     volume_agg += Dim<D>::volume(p.radius[i]);
     ++n_agg;
   }

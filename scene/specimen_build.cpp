@@ -222,8 +222,7 @@ void assign_regions(const Scene& s, Particles<D>& p) {
     for (int i = 0; i < p.size(); ++i) {
       if (!in_box<D>(p.x[i], g.lo, g.hi)) continue;
       p.phase[i] = g.phase;
-      p.mass[i] = rho * Dim<D>::volume(p.radius[i]);
-      p.inertia[i] = Dim<D>::inertia_factor * p.mass[i] * p.radius[i] * p.radius[i];
+      p.set_density(i, rho);
     }
   }
 }

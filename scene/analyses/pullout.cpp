@@ -159,7 +159,7 @@ PulloutFailure PulloutAnalysis::failure(const std::vector<LoggedCrack>& cracks, 
     f.mode = "none";
   else if (f.adhesive_breaks > f.concrete_breaks)
     f.mode = "adhesive";
-  else if (f.depth_p90 > (interface_y - bottom_y) / 3)
+  else if (f.depth_p90 > height / 3)
     f.mode = "concrete wedge";
   else
     f.mode = "thin concrete layer";
