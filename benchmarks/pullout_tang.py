@@ -3,10 +3,10 @@
 
 Runs, each single-threaded through the real `mesocrack run` on scenes/pull_tang_2d.toml (--set overrides that
 move the bonded length's ends, the sheet's end, the unglued free zone, the prism's length and the slip probe):
-  rate     the reference (free zone 100 mm, bonded 50 mm) at grip speeds 200, 100, 50 and 25 mm/s (the scene's
-           own: 50 mm/s; the run's time limit stretches with 1/speed): capacity and slip at capacity against the
-           slowest, with the CPU seconds of each run (the accuracy-versus-time method of
-           benchmarks/uniaxial_accuracy.py)
+  rate     the reference (free zone 100 mm, bonded 50 mm) at grip speeds 200, 100, 50, 25 and 12.5 mm/s (the
+           scene's own: 50 mm/s; the run's time limit stretches with 1/speed): capacity and slip at capacity
+           against the slowest, with the CPU seconds of each run (the accuracy-versus-time method of
+           benchmarks/uniaxial_accuracy.py); --damping sets the local damping (the scene's: 0.1), a row's key
   bonded   bonded lengths 25-300 mm, free zone 100 mm: capacity against the energy solution
            P∞ = b_f √(2 G_f E_p t_p) and Chen & Teng's (2001) model with its effective bond length
            L_e = √(E_p t_p / √f'_c) [mm, MPa]
@@ -15,6 +15,7 @@ Output (--out): results.csv (one row per run), pullout.md (the tables), bonded.p
 report pictures (load-slip, strain profiles, cracks at 31/60/90/100 % of the capacity).
 
   benchmarks/pullout_tang.py --only rate --jobs 2
+  benchmarks/pullout_tang.py --only rate --rates 200,100,50,25 --damping 0.7 --jobs 2
   benchmarks/pullout_tang.py --only bonded,free --jobs 2
 """
 import math
@@ -31,11 +32,12 @@ EP_TP = 195.2e9 * 1.2e-3               # E_p t_p [N/m], Table 8.1
 G_F = 525.1                            # the adhesive's mode-II fracture energy [N/m], Table 8.1
 FC = 52.6                              # f'_c [MPa], Table 8.1
 SPEED = 50e-3                          # the scene's grip speed [m/s]
+DAMPING = 0.1                          # the scene's local damping
 DURATION = 20e-3                       # the scene's time limit at SPEED [s]
 TAIL = 8.4e-3                          # the prism beyond the bonded length's far end [m]
 BONDED = [25, 50, 100, 150, 200, 300]  # mm
 FREE = [0, 25, 50, 100]                # mm
-RATES = "200,100,50,25"                # mm/s
+RATES = "200,100,50,25,12.5"           # mm/s
 
 
 def geometry(free, bonded):
@@ -78,26 +80,30 @@ def chen_teng(bonded_mm):
     return 0.427 * beta_w * beta_l * math.sqrt(FC) * WIDTH * 1e3 * le, le
 
 
-def plan(only, rates):
+def plan(only, rates, damping):
     todo = []
     if "rate" in only:
         for v in rates:
-            todo.append((f"rate_{v * 1e3:g}", geometry(0.1, 0.05) + speed(v),
-                         {"study": "rate", "free_mm": 100, "bonded_mm": 50, "speed": v}, v == SPEED))
+            todo.append((f"rate_{v * 1e3:g}_damping_{damping:g}",
+                         geometry(0.1, 0.05) + speed(v) + [f"physics.local_damping={damping:g}"],
+                         {"study": "rate", "free_mm": 100, "bonded_mm": 50, "speed": v, "damping": damping},
+                         v == SPEED and damping == DAMPING))
     if "bonded" in only:
         for b in BONDED:
             if b != 50:
                 todo.append((f"bonded_{b}", geometry(0.1, b * 1e-3) + speed(SPEED, b * 1e-3),
-                             {"study": "bonded", "free_mm": 100, "bonded_mm": b, "speed": SPEED}, False))
+                             {"study": "bonded", "free_mm": 100, "bonded_mm": b, "speed": SPEED,
+                              "damping": DAMPING}, False))
     if "free" in only:
         for z in FREE:
             if z != 100:
                 todo.append((f"free_{z}", geometry(z * 1e-3, 0.05) + speed(SPEED, 0.05, z * 1e-3),
-                             {"study": "free", "free_mm": z, "bonded_mm": 50, "speed": SPEED}, z == 0))
+                             {"study": "free", "free_mm": z, "bonded_mm": 50, "speed": SPEED,
+                              "damping": DAMPING}, z == 0))
     return sorted(todo, key=lambda t: t[2]["speed"])  # the longest first
 
 
-FIELDS = ["study", "free_mm", "bonded_mm", "speed", "capacity_kN", "capacity_beta_w_kN", "slip_at_capacity_mm",
+FIELDS = ["study", "free_mm", "bonded_mm", "speed", "damping", "capacity_kN", "capacity_beta_w_kN", "slip_at_capacity_mm",
           "final_load_over_capacity", "mode", "adhesive_breaks", "concrete_breaks", "depth_p90_mm", "G_bonds",
           "worst_residual", "particles", "steps", "cpu_s"]
 
@@ -151,17 +157,22 @@ def analyse(rows, out):
              f"Energy solution P∞ = b_f √(2 G_f E_p t_p) = **{p_inf * 1e-3:.2f} kN** (G_f {G_F} N/m, E_p t_p "
              f"{EP_TP:.4g} N/m, b_f {WIDTH * 1e3:g} mm); Chen & Teng's effective bond length L_e = **{le:.1f} mm**.\n"]
     ref = [r for r in rows if r["free_mm"] == 100 and r["bonded_mm"] == 50]
-    rate = sorted([r for r in ref if r["study"] == "rate"], key=lambda r: -r["speed"])
-    if rate:
+    for damping in sorted({r["damping"] for r in ref if r["study"] == "rate"}):
+        rate = sorted([r for r in ref if r["study"] == "rate" and r["damping"] == damping], key=lambda r: -r["speed"])
         slow = rate[-1]
-        lines += [f"### Grip speed (reference: free zone 100 mm, bonded 50 mm; against {slow['speed'] * 1e3:g} mm/s)\n",
-                  "| speed [mm/s] | capacity [kN] | err | slip at capacity [mm] | failure | energy residual | steps | "
-                  "CPU s |", "|---|---|---|---|---|---|---|---|"]
+        lines += [f"\n### Grip speed, local damping {damping:g} (reference: free zone 100 mm, bonded 50 mm; against "
+                  f"{slow['speed'] * 1e3:g} mm/s and half the speed)\n",
+                  "| speed [mm/s] | capacity [kN] | against the slowest | against half the speed | slip at capacity "
+                  "[mm] | failure | energy residual | steps | CPU s |", "|---|---|---|---|---|---|---|---|---|"]
         for r in rate:
+            half = [h for h in rate if abs(h["speed"] - r["speed"] / 2) < 1e-9]
             lines.append(f"| {r['speed'] * 1e3:g} | {r['capacity_kN']:.3f} | "
-                         f"{r['capacity_kN'] / slow['capacity_kN'] - 1:+.1%} | {r['slip_at_capacity_mm']:.4f} | "
-                         f"{r['mode']} | {fmt(r['worst_residual'], '.2%')} | {r['steps']:.0f} | {r['cpu_s']:.0f} |")
+                         f"{r['capacity_kN'] / slow['capacity_kN'] - 1:+.1%} | "
+                         f"{fmt(r['capacity_kN'] / half[0]['capacity_kN'] - 1 if half else None, '+.1%')} | "
+                         f"{r['slip_at_capacity_mm']:.4f} | {r['mode']} | {fmt(r['worst_residual'], '.2%')} | "
+                         f"{r['steps']:.0f} | {r['cpu_s']:.0f} |")
     at = lambda study, k: sorted([r for r in rows if r["study"] in (study, "rate") and r["speed"] == SPEED  # noqa
+                                  and r["damping"] == DAMPING
                                   and (r["free_mm"] == 100 if k == "bonded_mm" else r["bonded_mm"] == 50)],
                                  key=lambda r: r[k])
     bonded = at("bonded", "bonded_mm")
@@ -199,8 +210,10 @@ def analyse(rows, out):
 def main():
     ap = study_arguments(__doc__, "pullout_tang", "rate,bonded,free")
     ap.add_argument("--rates", default=RATES, help="grip speeds of the rate study [mm/s], comma-separated")
-    study_main(ap, FIELDS, ("study", "mode"), lambda r: (r["study"], r["free_mm"], r["bonded_mm"], r["speed"]),
-               lambda a: plan(set(a.only.split(",")), [float(r) * 1e-3 for r in a.rates.split(",")]),
+    ap.add_argument("--damping", type=float, default=DAMPING, help="local damping of the rate study's runs")
+    study_main(ap, FIELDS, ("study", "mode"),
+               lambda r: (r["study"], r["free_mm"], r["bonded_mm"], r["speed"], r["damping"]),
+               lambda a: plan(set(a.only.split(",")), [float(r) * 1e-3 for r in a.rates.split(",")], a.damping),
                lambda t: t[2], run_all, analyse)
 
 
