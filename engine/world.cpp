@@ -379,39 +379,6 @@ void World<D>::move_walls() {
 }
 
 template <int D>
-double World<D>::unbalanced_ratio() const {
-  const auto& p = particles;
-  const int n = p.size(), pb = block_count(static_cast<std::size_t>(n));
-  const std::size_t slots = slots_.f.size();
-  const int sb = block_count(slots);
-  std::vector<double> net(pb, 0.0), contact(sb, 0.0);
-  std::vector<std::int64_t> carrying(sb, 0);
-#pragma omp parallel if (slots > kParallelMin)
-  {
-#pragma omp for schedule(static) nowait
-    for (int b = 0; b < pb; ++b)
-      for (int i = b * kBlock; i < std::min(n, (b + 1) * kBlock); ++i) {
-        Vec<D> f = p.f[i];
-        for (int k = 0; k < D; ++k)
-          if (p.fix[i] & (1u << k)) f[k] = 0;  // a support's reaction is not out of balance
-        net[b] += f.norm();
-      }
-#pragma omp for schedule(static)
-    for (int b = 0; b < sb; ++b)
-      for (std::size_t s = std::size_t(b) * kBlock; s < std::min(slots, std::size_t(b + 1) * kBlock); ++s) {
-        const double f = slots_.f[s].norm();
-        if (f > 0) contact[b] += f, ++carrying[b];
-      }
-  }
-  double fn = 0, fc = 0;
-  std::int64_t nc = 0;
-  for (double x : net) fn += x;
-  for (int b = 0; b < sb; ++b) fc += contact[b], nc += carrying[b];
-  if (nc == 0) return fn > 0 ? 1.0 : 0.0;  // nothing holds the net force: wholly out of balance (or nothing at all)
-  return (fn / n) / (fc / static_cast<double>(nc));
-}
-
-template <int D>
 void World<D>::step() {
   if (moved_ > 0.5 * skin) {
     rebuild();

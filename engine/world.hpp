@@ -75,10 +75,6 @@ class World {
   // Critical timestep from the current stiffnesses, Tang (3.22)–(3.24), without the safety factor.
   double critical_timestep();
   void update_energy();  // kinetic and strain energy at the current time into `energy`
-  // PFC's equilibrium ratio after the last step: the mean |net force| on the particles' free translations over
-  // the mean |contact force| (with no contact force: 1 if there is a net force, else 0). Independent of the
-  // thread count.
-  double unbalanced_ratio() const;
   // Stability guard. Every step (in step()): a particle that moves more than half its radius in one step or goes
   // non-finite, and two particles (or a particle and a wall) overlapping by more than half the smaller radius,
   // which the contact law can no longer hold apart. Here, as often as the caller likes and at the end of a run:
