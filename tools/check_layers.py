@@ -22,6 +22,7 @@ FORBIDDEN = {
     "engine": [r"toml", r"hdf5\.h", r"H5\w*\.h", r"CLI/"],
     "contact_models": [r"toml", r"hdf5\.h", r"H5\w*\.h", r"CLI/"],
     "preprocess": [r"toml", r"hdf5\.h", r"H5\w*\.h", r"CLI/"],
+    "rigid_cell": [r"toml", r"hdf5\.h", r"H5\w*\.h", r"CLI/"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
