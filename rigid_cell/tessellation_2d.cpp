@@ -1,0 +1,96 @@
+// The 2D tessellation: CGAL's Delaunay_triangulation_2; a Voronoi face is the segment between the circumcentres of
+// the two triangles on a Delaunay edge.
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <sstream>
+#include <tuple>
+
+#include "engine/errors.hpp"
+#include "rigid_cell/tessellation.hpp"
+
+namespace mc::rigid_cell {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;  // the node's index (mirror images after the nodes)
+using Fb = CGAL::Triangulation_face_base_with_info_2<int, K>;    // the index of the triangle's circumcentre
+using Delaunay = CGAL::Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb, Fb>>;
+
+[[noreturn]] void unbounded(int cell, const Vec<2>& node) {
+  std::ostringstream m;
+  m << "rigid cells: cell " << cell << " (node at (" << node.transpose()
+    << ") m) is unbounded: its node is farther from the surface than the mirroring reach";
+  throw InputError(m.str());
+}
+
+}  // namespace
+
+template <>
+Tessellation<2> tessellate(const std::vector<Vec<2>>& nodes, const SpecimenShape<2>& shape, double reach) {
+  check_nodes(nodes, shape);
+  const int n = static_cast<int>(nodes.size());
+  std::vector<Vec<2>> points = nodes;
+  for (const auto& x : nodes) shape.mirrors(x, reach, points);
+
+  std::vector<std::pair<K::Point_2, int>> input;
+  input.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) input.push_back({{points[i].x(), points[i].y()}, int(i)});
+  Delaunay dt;
+  dt.insert(input.begin(), input.end());
+  if (dt.dimension() < 2) unbounded(0, nodes.at(0));  // too few nodes and images to enclose a cell
+
+  std::vector<Vec<2>> centre;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    const K::Point_2 c = dt.circumcenter(f);
+    f->info() = static_cast<int>(centre.size());
+    centre.push_back({c.x(), c.y()});
+  }
+
+  Tessellation<2> t;
+  t.cells.resize(n);
+  for (int i = 0; i < n; ++i) t.cells[i].node = nodes[i];
+  std::vector<Facet<2>> surface;
+  for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
+    const auto f = e->first;
+    const int i = e->second;
+    int a = f->vertex(f->cw(i))->info(), b = f->vertex(f->ccw(i))->info();
+    if (a >= n && b >= n) continue;  // between two images
+    if (a > b) std::swap(a, b);
+    const auto g = f->neighbor(i);
+    if (dt.is_infinite(f) || dt.is_infinite(g)) unbounded(a, nodes[a]);
+    Facet<2> facet;
+    facet.a = a;
+    facet.b = b < n ? b : -1;
+    facet.vertices = {centre[f->info()], centre[g->info()]};
+    const Vec<2> d = points[b] - points[a];
+    facet.length = d.norm();
+    facet.normal = d / facet.length;
+    facet.area = (facet.vertices[1] - facet.vertices[0]).norm();
+    facet.centroid = 0.5 * (facet.vertices[0] + facet.vertices[1]);
+    (facet.b >= 0 ? t.facets : surface).push_back(std::move(facet));
+  }
+  // A real node's cell is bounded only when every triangle around it is finite.
+  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
+    if (v->info() >= n) continue;
+    auto f = dt.incident_faces(v), done = f;
+    do {
+      if (dt.is_infinite(f)) unbounded(v->info(), nodes[v->info()]);
+    } while (++f != done);
+  }
+  auto by_cells = [](const Facet<2>& x, const Facet<2>& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); };
+  std::sort(t.facets.begin(), t.facets.end(), by_cells);
+  std::sort(surface.begin(), surface.end(), [](const Facet<2>& x, const Facet<2>& y) {
+    return std::tie(x.a, x.length) < std::tie(y.a, y.length);
+  });
+  t.contacts = t.facets.size();
+  t.facets.insert(t.facets.end(), surface.begin(), surface.end());
+  add_cell_masses(t);
+  return t;
+}
+
+}  // namespace mc::rigid_cell
