@@ -1,0 +1,95 @@
+#include "rigid_cell/facet_law.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "engine/errors.hpp"
+
+namespace mc::rigid_cell {
+
+namespace {
+
+// The tensile-shear boundary of (3.16) in stresses, units of f_t: 0.02 s_N² − 0.5 s_T² − 4.52 s_N + 4.5 = 0, which
+// holds pure tension at s_N = f_t and pure shear at s_T = 3 f_t. Solved along s_N = f sin ω, s_T = √α f cos ω its
+// discriminant is 20.0704 sin²ω + 9α cos²ω; the thesis prints 20, which would put pure tension at 1.2 f_t.
+constexpr double kA = 0.02, kB = 4.52, kC = 4.5, kShear = 0.5;
+constexpr double kCompression = 16;  // the compressive boundary: a circle of radius 16 f_t, (3.16)
+
+}  // namespace
+
+Elastic macroscopic(int dimension, double E0, double alpha) {
+  if (dimension == 2) return {2 * E0 * (1 + alpha) / (3 + alpha), (1 - alpha) / (3 + alpha)};
+  return {E0 * (2 + 3 * alpha) / (4 + alpha), (1 - alpha) / (4 + alpha)};
+}
+
+FacetParams mesoscopic(int dimension, double E, double nu) {
+  const double top = dimension == 2 ? 1.0 / 3.0 : 0.25;
+  if (!(nu > -1 && nu < top)) {
+    std::ostringstream m;
+    m << "a rigid-cell model in " << dimension << "D cannot have Poisson's ratio " << nu << ": allowed (-1, "
+      << (dimension == 2 ? "1/3" : "1/4") << ") (Kveton (3.8))";
+    throw InputError(m.str());
+  }
+  FacetParams p;
+  if (dimension == 2) {  // inverse of macroscopic() in 2D
+    p.alpha = (1 - 3 * nu) / (1 + nu);
+    p.E0 = E * (3 + p.alpha) / (2 * (1 + p.alpha));
+  } else {  // (3.8)
+    p.E0 = E / (1 - 2 * nu);
+    p.alpha = (1 - 4 * nu) / (1 + nu);
+  }
+  return p;
+}
+
+double omega_0(double alpha) {
+  // s_T² = 256 − s_N² into the hyperbola: (kA + kShear) s_N² − kB s_N + kC − kShear·256 = 0, its negative root.
+  const double a = kA + kShear, b = -kB, c = kC - kShear * kCompression * kCompression;
+  const double sN = (-b - std::sqrt(b * b - 4 * a * c)) / (2 * a);
+  const double sT = std::sqrt(kCompression * kCompression - sN * sN);
+  return std::atan(std::sqrt(alpha) * sN / sT);
+}
+
+double elastic_limit(double omega, const FacetParams& p) {
+  const double s = std::sin(omega), c = std::cos(omega);
+  if (omega < omega_0(p.alpha)) return kCompression * p.ft / std::sqrt(s * s + p.alpha * c * c);
+  // The smaller positive root of (kA s² − kShear α c²) f² − kB s f + kC = 0.
+  const double a = kA * s * s - kShear * p.alpha * c * c, b = -kB * s;
+  const double disc = std::sqrt(b * b - 4 * a * kC);
+  return p.ft * (2 * kC) / (-b + disc);  // the same root, written without the cancellation near ω = π/2
+}
+
+Slopes crack_band_slopes(const FacetParams& p, double L) {
+  const double ft2L = p.ft * p.ft * L;
+  if (!(2 * p.E0 * p.Gt > ft2L) || !(32 * p.alpha * p.E0 * p.Gt > 9 * ft2L)) {
+    std::ostringstream m;
+    m << "a facet " << L << " m long with f_t " << p.ft << " Pa, G_t " << p.Gt << " N/m and E0 " << p.E0
+      << " Pa snaps back: the crack band needs 2 E0 G_t > f_t^2 L (Kveton (3.20)); use smaller cells or a larger G_t";
+    throw InputError(m.str());
+  }
+  return {2 * p.E0 * ft2L / (2 * p.E0 * p.Gt - ft2L), 18 * p.alpha * p.E0 * ft2L / (32 * p.alpha * p.E0 * p.Gt - 9 * ft2L)};
+}
+
+double damage(const Eigen::Vector3d& e, const FacetParams& p, double L, const FacetState& s) {
+  if (!(p.ft > 0)) return 0;
+  const double eT = std::hypot(e[1], e[2]);
+  const double e_eq = std::sqrt(e[0] * e[0] + p.alpha * eT * eT);  // (3.12)
+  if (e_eq == 0) return s.D_max;
+  const double omega = std::atan2(e[0], std::sqrt(p.alpha) * eT);  // (3.15), in [−π/2, π/2] since eT ≥ 0
+  const double f_eq = elastic_limit(omega, p);
+  const double w0 = omega_0(p.alpha);
+  double K;  // (3.18)-(3.19): hardening below ω₀, softening above
+  if (omega < w0) {
+    const double x = (omega + M_PI / 2) / (w0 + M_PI / 2);
+    K = 0.26 * p.E0 * (1 - x * x);
+  } else {
+    const Slopes k = crack_band_slopes(p, L);
+    const double n_t = std::log(k.Kt / (k.Kt - k.Ks)) / std::log(1 - 2 * w0 / M_PI);
+    K = -k.Kt * (1 - std::pow((omega - M_PI / 2) / (w0 - M_PI / 2), n_t));
+  }
+  const double beyond = std::max(0.0, e_eq - f_eq / p.E0);
+  const double s_eq = std::min((1 - s.D_max) * p.E0 * e_eq, f_eq * std::exp(K / f_eq * beyond));  // (3.17)
+  return std::max(s.D_max, 1 - s_eq / (p.E0 * e_eq));  // (3.14)
+}
+
+}  // namespace mc::rigid_cell

@@ -1,0 +1,54 @@
+// The facet's constitutive law of the rigid-cell model (Květoň §3.2.2 and §3.2.4, after Cusatis & Cedolin 2007):
+// elastic s = E₀ diag(1, α, α) e (3.6) with isotropic damage s = (1 − D) E₀ diag(1, α, α) e (3.11), the damage
+// found in the equivalent space (3.12)-(3.14) from the straining direction ω (3.15), the elastic limit f_eq(ω)
+// (3.16), the exponential softening or hardening of slope K(ω) (3.17)-(3.19) scaled by the crack band (3.20) so
+// that a facet dissipates G_t per unit area in pure tension whatever its length L.
+#pragma once
+#include <Eigen/Core>
+
+namespace mc::rigid_cell {
+
+struct FacetParams {
+  double E0 = 0;     // normal modulus E₀ [Pa]
+  double alpha = 0;  // tangential-to-normal stiffness ratio α [-]
+  double ft = 0;     // tensile strength f_t [Pa]; 0: elastic
+  double Gt = 0;     // fracture energy in tension G_t [N/m]
+};
+
+// The macroscopic elastic constants of a tessellation with these E₀ and α, and the other way round: Květoň (3.8)
+// in 3D; in 2D (plane stress, unit thickness) by the same uniform-strain average, E = 2E₀(1 + α)/(3 + α),
+// ν = (1 − α)/(3 + α).
+struct Elastic {
+  double E, nu;
+};
+Elastic macroscopic(int dimension, double E0, double alpha);
+// E₀ and α from E and ν; throws InputError when ν leaves (−1, 1/4) in 3D or (−1, 1/3) in 2D.
+FacetParams mesoscopic(int dimension, double E, double nu);
+
+// What a facet carries between converged steps: the largest damage reached, D_max (irreversibility, (3.17)).
+struct FacetState {
+  double D_max = 0;
+};
+
+// The straining direction ω at which softening turns into hardening: where the tensile-shear hyperbola of (3.16)
+// meets the compressive circle, at s_N = −11.67 f_t, s_T = 10.95 f_t: tan ω₀ = √α s_N/s_T.
+double omega_0(double alpha);
+
+// The elastic limit f_eq(ω) in equivalent stress, (3.16).
+double elastic_limit(double omega, const FacetParams& p);
+
+// The initial slopes of softening in tension and shear, (3.20), for a facet of length L. Throws InputError when L
+// is so long that the law snaps back (2 E₀ G_t ≤ f_t² L).
+struct Slopes {
+  double Kt, Ks;
+};
+Slopes crack_band_slopes(const FacetParams& p, double L);
+
+// The straining direction (3.15): tan ω = e_N/(√α e_T), so that e_N = e_eq sin ω and √α e_T = e_eq cos ω (Cusatis &
+// Cedolin 2007; the thesis prints α for √α, which would not parametrise (3.12)).
+//
+// The damage for local strain e = (e_N, e_M[, e_L]) of a facet of length L, given the damage reached before:
+// (3.12)-(3.19). Never below D_max.
+double damage(const Eigen::Vector3d& e, const FacetParams& p, double L, const FacetState& s);
+
+}  // namespace mc::rigid_cell
