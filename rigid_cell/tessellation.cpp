@@ -1,6 +1,8 @@
 #include "rigid_cell/tessellation.hpp"
 
+#include <algorithm>
 #include <sstream>
+#include <tuple>
 
 #include "engine/errors.hpp"
 #include "rigid_cell/node_placement.hpp"
@@ -26,7 +28,23 @@ void check_nodes(const std::vector<Vec<D>>& nodes, const SpecimenShape<D>& shape
 }
 
 template <int D>
-void add_cell_masses(Tessellation<D>& t) {
+void throw_unbounded(int cell, const Vec<D>& node) {
+  std::ostringstream m;
+  m << "rigid cells: cell " << cell << " (node at (" << node.transpose()
+    << ") m) is unbounded: its node is farther from the surface than the mirroring reach";
+  throw InputError(m.str());
+}
+
+template <int D>
+void finish(Tessellation<D>& t, std::vector<Facet<D>> surface) {
+  std::sort(t.facets.begin(), t.facets.end(), [](const Facet<D>& x, const Facet<D>& y) {
+    return std::tie(x.a, x.b) < std::tie(y.a, y.b);
+  });
+  std::sort(surface.begin(), surface.end(), [](const Facet<D>& x, const Facet<D>& y) {
+    return std::tie(x.a, x.length) < std::tie(y.a, y.length);
+  });
+  t.contacts = t.facets.size();
+  t.facets.insert(t.facets.end(), surface.begin(), surface.end());
   for (const auto& f : t.facets) {
     for (int c : {f.a, f.b}) {
       if (c < 0) continue;
@@ -37,8 +55,10 @@ void add_cell_masses(Tessellation<D>& t) {
   }
 }
 
-template void add_cell_masses(Tessellation<2>&);
-template void add_cell_masses(Tessellation<3>&);
+template void throw_unbounded(int, const Vec<2>&);
+template void throw_unbounded(int, const Vec<3>&);
+template void finish(Tessellation<2>&, std::vector<Facet<2>>);
+template void finish(Tessellation<3>&, std::vector<Facet<3>>);
 template void check_nodes(const std::vector<Vec<2>>&, const SpecimenShape<2>&);
 template void check_nodes(const std::vector<Vec<3>>&, const SpecimenShape<3>&);
 

@@ -6,10 +6,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
-#include <sstream>
-#include <tuple>
 
-#include "engine/errors.hpp"
 #include "rigid_cell/tessellation.hpp"
 
 namespace mc::rigid_cell {
@@ -20,13 +17,6 @@ using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;  // the node's index (mirror images after the nodes)
 using Fb = CGAL::Triangulation_face_base_with_info_2<int, K>;    // the index of the triangle's circumcentre
 using Delaunay = CGAL::Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb, Fb>>;
-
-[[noreturn]] void unbounded(int cell, const Vec<2>& node) {
-  std::ostringstream m;
-  m << "rigid cells: cell " << cell << " (node at (" << node.transpose()
-    << ") m) is unbounded: its node is farther from the surface than the mirroring reach";
-  throw InputError(m.str());
-}
 
 }  // namespace
 
@@ -42,7 +32,7 @@ Tessellation<2> tessellate(const std::vector<Vec<2>>& nodes, const SpecimenShape
   for (std::size_t i = 0; i < points.size(); ++i) input.push_back({{points[i].x(), points[i].y()}, int(i)});
   Delaunay dt;
   dt.insert(input.begin(), input.end());
-  if (dt.dimension() < 2) unbounded(0, nodes.at(0));  // too few nodes and images to enclose a cell
+  if (dt.dimension() < 2) throw_unbounded(0, nodes.at(0));  // too few nodes and images to enclose a cell
 
   std::vector<Vec<2>> centre;
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
@@ -62,7 +52,7 @@ Tessellation<2> tessellate(const std::vector<Vec<2>>& nodes, const SpecimenShape
     if (a >= n && b >= n) continue;  // between two images
     if (a > b) std::swap(a, b);
     const auto g = f->neighbor(i);
-    if (dt.is_infinite(f) || dt.is_infinite(g)) unbounded(a, nodes[a]);
+    if (dt.is_infinite(f) || dt.is_infinite(g)) throw_unbounded(a, nodes[a]);
     Facet<2> facet;
     facet.a = a;
     facet.b = b < n ? b : -1;
@@ -79,17 +69,10 @@ Tessellation<2> tessellate(const std::vector<Vec<2>>& nodes, const SpecimenShape
     if (v->info() >= n) continue;
     auto f = dt.incident_faces(v), done = f;
     do {
-      if (dt.is_infinite(f)) unbounded(v->info(), nodes[v->info()]);
+      if (dt.is_infinite(f)) throw_unbounded(v->info(), nodes[v->info()]);
     } while (++f != done);
   }
-  auto by_cells = [](const Facet<2>& x, const Facet<2>& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); };
-  std::sort(t.facets.begin(), t.facets.end(), by_cells);
-  std::sort(surface.begin(), surface.end(), [](const Facet<2>& x, const Facet<2>& y) {
-    return std::tie(x.a, x.length) < std::tie(y.a, y.length);
-  });
-  t.contacts = t.facets.size();
-  t.facets.insert(t.facets.end(), surface.begin(), surface.end());
-  add_cell_masses(t);
+  finish(t, std::move(surface));
   return t;
 }
 

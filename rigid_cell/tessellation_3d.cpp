@@ -7,9 +7,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <algorithm>
-#include <sstream>
 
-#include "engine/errors.hpp"
 #include "rigid_cell/tessellation.hpp"
 
 namespace mc::rigid_cell {
@@ -23,13 +21,6 @@ using Delaunay = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_stru
 
 // A tetrahedron below this fraction of its longest edge cubed is flat (an exact one is 0.118).
 constexpr double kFlat = 1e-9;
-
-[[noreturn]] void unbounded(int cell, const Vec<3>& node) {
-  std::ostringstream m;
-  m << "rigid cells: cell " << cell << " (node at (" << node.transpose()
-    << ") m) is unbounded: its node is farther from the surface than the mirroring reach";
-  throw InputError(m.str());
-}
 
 // Area and centroid of a plane polygon with normal n, by a fan from its first vertex.
 void area_and_centroid(Facet<3>& f) {
@@ -59,7 +50,7 @@ Tessellation<3> tessellate(const std::vector<Vec<3>>& nodes, const SpecimenShape
   for (std::size_t i = 0; i < points.size(); ++i)
     input.push_back({{points[i].x(), points[i].y(), points[i].z()}, int(i)});
   Delaunay dt(input.begin(), input.end());
-  if (dt.dimension() < 3) unbounded(0, nodes.at(0));  // too few nodes and images to enclose a cell
+  if (dt.dimension() < 3) throw_unbounded(0, nodes.at(0));  // too few nodes and images to enclose a cell
 
   // A node and a neighbour mirrored across one plane, with their images, are four coplanar points on one
   // circle: the exact predicates split them into a flat tetrahedron, whose circumcentre is undefined. Its true
@@ -92,7 +83,7 @@ Tessellation<3> tessellate(const std::vector<Vec<3>>& nodes, const SpecimenShape
     facet.b = b < n ? b : -1;
     auto c = dt.incident_cells(*e), done = c;
     do {
-      if (dt.is_infinite(c)) unbounded(a, nodes[a]);
+      if (dt.is_infinite(c)) throw_unbounded(a, nodes[a]);
       if (!flat[c->info()]) facet.vertices.push_back(centre[c->info()]);
     } while (++c != done);
     if (facet.vertices.size() < 3) continue;  // a face of zero area
@@ -102,14 +93,7 @@ Tessellation<3> tessellate(const std::vector<Vec<3>>& nodes, const SpecimenShape
     area_and_centroid(facet);
     (facet.b >= 0 ? t.facets : surface).push_back(std::move(facet));
   }
-  auto by_cells = [](const Facet<3>& x, const Facet<3>& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); };
-  std::sort(t.facets.begin(), t.facets.end(), by_cells);
-  std::sort(surface.begin(), surface.end(), [](const Facet<3>& x, const Facet<3>& y) {
-    return std::tie(x.a, x.length) < std::tie(y.a, y.length);
-  });
-  t.contacts = t.facets.size();
-  t.facets.insert(t.facets.end(), surface.begin(), surface.end());
-  add_cell_masses(t);
+  finish(t, std::move(surface));
   return t;
 }
 
