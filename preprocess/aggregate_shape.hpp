@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "engine/dim.hpp"
-#include "preprocess/random_stream.hpp"
+#include "engine/random_stream.hpp"
 
 namespace mc {
 

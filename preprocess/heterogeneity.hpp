@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "preprocess/random_stream.hpp"
+#include "engine/random_stream.hpp"
 
 namespace mc {
 

@@ -8,7 +8,7 @@
 #include <nanoflann.hpp>
 #pragma GCC diagnostic pop
 
-#include "engine/random.hpp"
+#include "engine/random_stream.hpp"
 
 namespace mc::rigid_cell {
 
@@ -55,12 +55,11 @@ std::vector<Vec<D>> place_nodes(const SpecimenShape<D>& shape, double l_min, std
   std::vector<Vec<D>> nodes;
   NodeCloud<D> cloud{nodes};
   DynamicTree<D> tree(D, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  const Vec<D> lo = shape.lo(), span = shape.hi() - shape.lo();
-  std::uint64_t state = seed;
-  auto uniform = [&state] { return (static_cast<double>(splitmix64(state) >> 11) + 0.5) * 0x1.0p-53; };
+  const Vec<D> lo = shape.lo(), hi = shape.hi();
+  RandomStream random(seed);
   for (int rejected = 0; rejected < max_rejections;) {
     Vec<D> x;
-    for (int k = 0; k < D; ++k) x[k] = lo[k] + span[k] * uniform();
+    for (int k = 0; k < D; ++k) x[k] = random.uniform(lo[k], hi[k]);
     AnyWithin near{l_min * l_min};
     bool keep = shape.inside(x) && shape.depth(x) >= 0.5 * l_min;
     if (keep && !nodes.empty()) {

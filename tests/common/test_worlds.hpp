@@ -11,7 +11,7 @@
 #include "contact_models/hertz_mindlin.hpp"
 #include "contact_models/linear.hpp"
 #include "engine/world.hpp"
-#include "preprocess/random_stream.hpp"  // RandomStream: deterministic numbers for the test packings
+#include "engine/random_stream.hpp"  // RandomStream: deterministic numbers for the test packings
 
 namespace mc::test {
 

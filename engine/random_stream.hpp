@@ -1,5 +1,5 @@
-// A small seeded random stream for the preprocessor, on the engine's splitmix64 (engine/random.hpp): the same
-// numbers on every platform. Tang (4.3) uses a Lehmer generator; any good stream will do.
+// A seeded random stream on splitmix64 (engine/random.hpp): the same numbers on every platform. The preprocessor
+// (Tang (4.3) uses a Lehmer generator; any good stream will do) and the rigid cells' node placement draw from it.
 #pragma once
 #include <cstdint>
 
