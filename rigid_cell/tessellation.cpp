@@ -1,5 +1,7 @@
 #include "rigid_cell/tessellation.hpp"
 
+#include "rigid_cell/tessellation_build.hpp"
+
 #include <algorithm>
 #include <sstream>
 #include <tuple>
@@ -28,6 +30,14 @@ void check_nodes(const std::vector<Vec<D>>& nodes, const SpecimenShape<D>& shape
 }
 
 template <int D>
+std::vector<Vec<D>> nodes_and_images(const std::vector<Vec<D>>& nodes, const SpecimenShape<D>& shape, double reach) {
+  check_nodes(nodes, shape);
+  std::vector<Vec<D>> points = nodes;
+  for (const auto& x : nodes) shape.mirrors(x, reach, points);
+  return points;
+}
+
+template <int D>
 void throw_unbounded(int cell, const Vec<D>& node) {
   std::ostringstream m;
   m << "rigid cells: cell " << cell << " (node at (" << node.transpose()
@@ -36,7 +46,7 @@ void throw_unbounded(int cell, const Vec<D>& node) {
 }
 
 template <int D>
-void finish(Tessellation<D>& t, std::vector<Facet<D>> surface) {
+void finish(Tessellation<D>& t, const std::vector<Vec<D>>& nodes, std::vector<Facet<D>> surface) {
   std::sort(t.facets.begin(), t.facets.end(), [](const Facet<D>& x, const Facet<D>& y) {
     return std::tie(x.a, x.b) < std::tie(y.a, y.b);
   });
@@ -45,6 +55,8 @@ void finish(Tessellation<D>& t, std::vector<Facet<D>> surface) {
   });
   t.contacts = t.facets.size();
   t.facets.insert(t.facets.end(), surface.begin(), surface.end());
+  t.cells.resize(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) t.cells[i].node = nodes[i];
   for (const auto& f : t.facets) {
     for (int c : {f.a, f.b}) {
       if (c < 0) continue;
@@ -57,8 +69,10 @@ void finish(Tessellation<D>& t, std::vector<Facet<D>> surface) {
 
 template void throw_unbounded(int, const Vec<2>&);
 template void throw_unbounded(int, const Vec<3>&);
-template void finish(Tessellation<2>&, std::vector<Facet<2>>);
-template void finish(Tessellation<3>&, std::vector<Facet<3>>);
+template void finish(Tessellation<2>&, const std::vector<Vec<2>>&, std::vector<Facet<2>>);
+template void finish(Tessellation<3>&, const std::vector<Vec<3>>&, std::vector<Facet<3>>);
+template std::vector<Vec<2>> nodes_and_images(const std::vector<Vec<2>>&, const SpecimenShape<2>&, double);
+template std::vector<Vec<3>> nodes_and_images(const std::vector<Vec<3>>&, const SpecimenShape<3>&, double);
 template void check_nodes(const std::vector<Vec<2>>&, const SpecimenShape<2>&);
 template void check_nodes(const std::vector<Vec<3>>&, const SpecimenShape<3>&);
 

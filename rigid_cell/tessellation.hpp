@@ -44,16 +44,6 @@ struct Tessellation {
 template <int D>
 void check_nodes(const std::vector<Vec<D>>& nodes, const SpecimenShape<D>& shape);
 
-// Throws InputError: the cell's node lies farther from the surface than the mirroring reach.
-template <int D>
-[[noreturn]] void throw_unbounded(int cell, const Vec<D>& node);
-
-// Where both builders end: the contacts (in t.facets) sorted by their cells and the surface faces after them, so
-// that the order does not depend on the triangulation's; then each cell's volume and moments from the pyramids
-// over its faces, in that order.
-template <int D>
-void finish(Tessellation<D>& t, std::vector<Facet<D>> surface);
-
 // Throws InputError as check_nodes, and naming the cell when one is left unbounded (a node too far from its mirror
 // images: reach too short).
 // `reach`: nodes nearer the surface than this are mirrored; twice the largest cell's radius is always enough.

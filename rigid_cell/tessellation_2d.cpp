@@ -7,7 +7,7 @@
 
 #include <algorithm>
 
-#include "rigid_cell/tessellation.hpp"
+#include "rigid_cell/tessellation_build.hpp"
 
 namespace mc::rigid_cell {
 
@@ -22,10 +22,8 @@ using Delaunay = CGAL::Delaunay_triangulation_2<K, CGAL::Triangulation_data_stru
 
 template <>
 Tessellation<2> tessellate(const std::vector<Vec<2>>& nodes, const SpecimenShape<2>& shape, double reach) {
-  check_nodes(nodes, shape);
   const int n = static_cast<int>(nodes.size());
-  std::vector<Vec<2>> points = nodes;
-  for (const auto& x : nodes) shape.mirrors(x, reach, points);
+  const std::vector<Vec<2>> points = nodes_and_images(nodes, shape, reach);
 
   std::vector<std::pair<K::Point_2, int>> input;
   input.reserve(points.size());
@@ -42,8 +40,6 @@ Tessellation<2> tessellate(const std::vector<Vec<2>>& nodes, const SpecimenShape
   }
 
   Tessellation<2> t;
-  t.cells.resize(n);
-  for (int i = 0; i < n; ++i) t.cells[i].node = nodes[i];
   std::vector<Facet<2>> surface;
   for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
     const auto f = e->first;
@@ -52,6 +48,7 @@ Tessellation<2> tessellate(const std::vector<Vec<2>>& nodes, const SpecimenShape
     if (a >= n && b >= n) continue;  // between two images
     if (a > b) std::swap(a, b);
     const auto g = f->neighbor(i);
+    // A node's cell is unbounded exactly when one of its edges borders an infinite triangle.
     if (dt.is_infinite(f) || dt.is_infinite(g)) throw_unbounded(a, nodes[a]);
     Facet<2> facet;
     facet.a = a;
@@ -64,15 +61,7 @@ Tessellation<2> tessellate(const std::vector<Vec<2>>& nodes, const SpecimenShape
     facet.centroid = 0.5 * (facet.vertices[0] + facet.vertices[1]);
     (facet.b >= 0 ? t.facets : surface).push_back(std::move(facet));
   }
-  // A real node's cell is bounded only when every triangle around it is finite.
-  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
-    if (v->info() >= n) continue;
-    auto f = dt.incident_faces(v), done = f;
-    do {
-      if (dt.is_infinite(f)) throw_unbounded(v->info(), nodes[v->info()]);
-    } while (++f != done);
-  }
-  finish(t, std::move(surface));
+  finish(t, nodes, std::move(surface));
   return t;
 }
 

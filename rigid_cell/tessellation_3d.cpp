@@ -8,7 +8,7 @@
 
 #include <algorithm>
 
-#include "rigid_cell/tessellation.hpp"
+#include "rigid_cell/tessellation_build.hpp"
 
 namespace mc::rigid_cell {
 
@@ -40,10 +40,8 @@ void area_and_centroid(Facet<3>& f) {
 
 template <>
 Tessellation<3> tessellate(const std::vector<Vec<3>>& nodes, const SpecimenShape<3>& shape, double reach) {
-  check_nodes(nodes, shape);
   const int n = static_cast<int>(nodes.size());
-  std::vector<Vec<3>> points = nodes;
-  for (const auto& x : nodes) shape.mirrors(x, reach, points);
+  const std::vector<Vec<3>> points = nodes_and_images(nodes, shape, reach);
 
   std::vector<std::pair<K::Point_3, int>> input;
   input.reserve(points.size());
@@ -59,7 +57,10 @@ Tessellation<3> tessellate(const std::vector<Vec<3>>& nodes, const SpecimenShape
   std::vector<bool> flat;
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
     Vec<3> p[4];
-    for (int k = 0; k < 4; ++k) p[k] = {c->vertex(k)->point().x(), c->vertex(k)->point().y(), c->vertex(k)->point().z()};
+    for (int k = 0; k < 4; ++k) {
+      const K::Point_3& q = c->vertex(k)->point();
+      p[k] = {q.x(), q.y(), q.z()};
+    }
     double edge = 0;
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j) edge = std::max(edge, (p[i] - p[j]).norm());
@@ -71,8 +72,6 @@ Tessellation<3> tessellate(const std::vector<Vec<3>>& nodes, const SpecimenShape
   }
 
   Tessellation<3> t;
-  t.cells.resize(n);
-  for (int i = 0; i < n; ++i) t.cells[i].node = nodes[i];
   std::vector<Facet<3>> surface;
   for (auto e = dt.finite_edges_begin(); e != dt.finite_edges_end(); ++e) {
     int a = e->first->vertex(e->second)->info(), b = e->first->vertex(e->third)->info();
@@ -93,7 +92,7 @@ Tessellation<3> tessellate(const std::vector<Vec<3>>& nodes, const SpecimenShape
     area_and_centroid(facet);
     (facet.b >= 0 ? t.facets : surface).push_back(std::move(facet));
   }
-  finish(t, std::move(surface));
+  finish(t, nodes, std::move(surface));
   return t;
 }
 

@@ -1,0 +1,25 @@
+// What the 2D and 3D builders of the tessellation (tessellation_2d.cpp, tessellation_3d.cpp) share around their
+// CGAL parts.
+#pragma once
+#include <vector>
+
+#include "rigid_cell/tessellation.hpp"
+
+namespace mc::rigid_cell {
+
+// Where a builder begins: the nodes checked (check_nodes), then the points to triangulate, the nodes followed by
+// their mirror images across the surface within `reach`.
+template <int D>
+std::vector<Vec<D>> nodes_and_images(const std::vector<Vec<D>>& nodes, const SpecimenShape<D>& shape, double reach);
+
+// Throws InputError: the cell's node lies farther from the surface than the mirroring reach.
+template <int D>
+[[noreturn]] void throw_unbounded(int cell, const Vec<D>& node);
+
+// Where a builder ends, with the contacts (in t.facets) and the surface faces: the contacts sorted by their cells
+// and the surface faces after them, so that the order does not depend on the triangulation's; then the cells at
+// the nodes, each one's volume and moments from the pyramids over its faces, in that order.
+template <int D>
+void finish(Tessellation<D>& t, const std::vector<Vec<D>>& nodes, std::vector<Facet<D>> surface);
+
+}  // namespace mc::rigid_cell
