@@ -26,7 +26,6 @@ template <int D>
 void StaticSolver<D>::check_support(const std::vector<int>& prescribed) const {
   const int n = model_.cells();
   std::vector<std::vector<int>> neighbours(n);
-  // The contacts' cells come from the assembly's strain operator: a contact joins cells a and b.
   for (std::size_t c = 0; c < model_.contacts(); ++c) {
     const auto [a, b] = model_.cells_of(c);
     neighbours[a].push_back(b);
@@ -58,9 +57,9 @@ void StaticSolver<D>::check_support(const std::vector<int>& prescribed) const {
 }
 
 template <int D>
-void StaticSolver<D>::factorise(const std::vector<double>& damage, SparseMatrix& K) {
-  K = model_.stiffness(damage);
-  const SparseMatrix Kff = select_ * K * select_.transpose();
+void StaticSolver<D>::factorise(const std::vector<double>& damage) {
+  stiffness_ = model_.stiffness(damage);
+  const SparseMatrix Kff = select_ * stiffness_ * select_.transpose();
   if (!analysed_) {
     cholesky_.analyzePattern(Kff);
     analysed_ = true;
@@ -79,13 +78,12 @@ StaticResult StaticSolver<D>::solve(Eigen::VectorXd& u, const Eigen::VectorXd& f
   Eigen::VectorXd prescribed = u;
   for (int d = 0; d < model_.dofs(); ++d)
     if (!is_prescribed_[d]) prescribed[d] = 0;
-  SparseMatrix K = model_.stiffness(damage);
   for (r.iterations = 1; r.iterations <= options.max_iterations; ++r.iterations) {
     if (!analysed_ || damage != factored_) {
-      factorise(damage, K);
+      factorise(damage);
       ++r.factorisations;
     }
-    const Eigen::VectorXd rhs = select_ * (f_ext - K * prescribed);
+    const Eigen::VectorXd rhs = select_ * (f_ext - stiffness_ * prescribed);
     u = prescribed + select_.transpose() * cholesky_.solve(rhs);
     double change = 0;
     for (std::size_t c = 0; c < model_.contacts(); ++c) {

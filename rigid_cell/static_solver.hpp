@@ -46,11 +46,12 @@ class StaticSolver {
   std::vector<bool> is_prescribed_;
   SparseMatrix select_;  // free × all: picks the free degrees of freedom
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> cholesky_;
-  std::vector<double> factored_;  // the damage the factorisation holds
+  SparseMatrix stiffness_;         // the secant stiffness of the damage below, factorised on the free part
+  std::vector<double> factored_;  // that damage
   bool analysed_ = false;
 
   void check_support(const std::vector<int>& prescribed) const;
-  void factorise(const std::vector<double>& damage, SparseMatrix& K);
+  void factorise(const std::vector<double>& damage);
 };
 
 extern template class StaticSolver<2>;
