@@ -1,5 +1,7 @@
 #include "rigid_cell/cell_assembly.hpp"
 
+#include <string>
+
 #include "engine/errors.hpp"
 
 namespace mc::rigid_cell {
@@ -47,6 +49,14 @@ CellAssembly<D>::CellAssembly(const Tessellation<D>& t, std::vector<FacetParams>
   contacts_.reserve(t.contacts);
   for (std::size_t k = 0; k < t.contacts; ++k) {
     const Facet<D>& f = t.facets[k];
+    if (params_[k].ft > 0) {  // a facet whose softening would snap back is refused now, not when it cracks
+      try {
+        crack_band_slopes(params_[k], f.length);
+      } catch (const InputError& e) {
+        throw InputError("rigid cells: facet " + std::to_string(k) + " between cells " + std::to_string(f.a) +
+                         " and " + std::to_string(f.b) + ": " + e.what());
+      }
+    }
     Contact c{f.a, f.b, f.area, f.length, local_axes<D>(f.normal), Jump::Zero()};
     Eigen::Matrix<double, D, 2 * kDofs> P;
     P << -point_motion<D>(t.cells[f.a].node, f.centroid), point_motion<D>(t.cells[f.b].node, f.centroid);

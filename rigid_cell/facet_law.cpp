@@ -64,10 +64,12 @@ Slopes crack_band_slopes(const FacetParams& p, double L) {
   if (!(2 * p.E0 * p.Gt > ft2L) || !(32 * p.alpha * p.E0 * p.Gt > 9 * ft2L)) {
     std::ostringstream m;
     m << "a facet " << L << " m long with f_t " << p.ft << " Pa, G_t " << p.Gt << " N/m and E0 " << p.E0
-      << " Pa snaps back: the crack band needs 2 E0 G_t > f_t^2 L (Kveton (3.20)); use smaller cells or a larger G_t";
+      << " Pa snaps back: the crack band needs 2 E0 G_t > f_t^2 L and 32 alpha E0 G_t > 9 f_t^2 L (Kveton (3.20)); "
+      << "use smaller cells or a larger G_t";
     throw InputError(m.str());
   }
-  return {2 * p.E0 * ft2L / (2 * p.E0 * p.Gt - ft2L), 18 * p.alpha * p.E0 * ft2L / (32 * p.alpha * p.E0 * p.Gt - 9 * ft2L)};
+  return {2 * p.E0 * ft2L / (2 * p.E0 * p.Gt - ft2L),
+          18 * p.alpha * p.E0 * ft2L / (32 * p.alpha * p.E0 * p.Gt - 9 * ft2L)};
 }
 
 double damage(const Eigen::Vector3d& e, const FacetParams& p, double L, const FacetState& s) {

@@ -38,7 +38,7 @@ double omega_0(double alpha);
 double elastic_limit(double omega, const FacetParams& p);
 
 // The initial slopes of softening in tension and shear, (3.20), for a facet of length L. Throws InputError when L
-// is so long that the law snaps back (2 E₀ G_t ≤ f_t² L).
+// is so long that the law snaps back (2 E₀ G_t ≤ f_t² L, or 32 α E₀ G_t ≤ 9 f_t² L in shear).
 struct Slopes {
   double Kt, Ks;
 };
