@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <string>
 
 #include "engine/errors.hpp"
 
@@ -102,27 +101,26 @@ double SpecimenShape<D>::volume() const {
 }
 
 template <int D>
-Vec<D> SpecimenShape<D>::lo() const {
-  Vec<D> v = Vec<D>::Zero();
-  if (polygon_.empty()) {
-    v.template head<2>() = centre_.array() - radius_;
-  } else {
-    for (int k = 0; k < 2; ++k)
-      v[k] = std::min_element(polygon_.begin(), polygon_.end(), [k](auto& a, auto& b) { return a[k] < b[k]; })->coeff(k);
+Eigen::AlignedBox2d SpecimenShape<D>::outline_bounds() const {
+  Eigen::AlignedBox2d box(centre_.array() - radius_, centre_.array() + radius_);
+  if (!polygon_.empty()) {
+    box.setEmpty();
+    for (const auto& v : polygon_) box.extend(v);
   }
+  return box;
+}
+
+template <int D>
+Vec<D> SpecimenShape<D>::lo() const {
+  Vec<D> v = Vec<D>::Zero();  // z from 0
+  v.template head<2>() = outline_bounds().min();
   return v;
 }
 
 template <int D>
 Vec<D> SpecimenShape<D>::hi() const {
-  Vec<D> v = Vec<D>::Zero();
-  if (polygon_.empty()) {
-    v.template head<2>() = centre_.array() + radius_;
-  } else {
-    for (int k = 0; k < 2; ++k)
-      v[k] = std::max_element(polygon_.begin(), polygon_.end(), [k](auto& a, auto& b) { return a[k] < b[k]; })->coeff(k);
-  }
-  if constexpr (D == 3) v[2] = thickness_;
+  Vec<D> v = Vec<D>::Constant(thickness_);
+  v.template head<2>() = outline_bounds().max();
   return v;
 }
 

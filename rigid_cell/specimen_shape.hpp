@@ -4,6 +4,7 @@
 // explicit engine's discs.
 #pragma once
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <vector>
 
 #include "engine/dim.hpp"
@@ -35,6 +36,7 @@ class SpecimenShape {
   Eigen::Vector2d centre_ = Eigen::Vector2d::Zero();
   double radius_ = 0, thickness_ = 1;
 
+  Eigen::AlignedBox2d outline_bounds() const;
   bool inside_outline(const Eigen::Vector2d& p) const;
   double outline_depth(const Eigen::Vector2d& p) const;
   void outline_mirrors(const Eigen::Vector2d& p, double reach, std::vector<Eigen::Vector2d>& out) const;
