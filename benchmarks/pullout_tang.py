@@ -104,8 +104,8 @@ def plan(only, rates, damping):
 
 
 FIELDS = ["study", "free_mm", "bonded_mm", "speed", "damping", "capacity_kN", "capacity_beta_w_kN",
-          "slip_at_capacity_mm", "final_load_over_capacity", "mode", "adhesive_breaks", "concrete_breaks", "depth_p90_mm", "G_bonds",
-          "worst_residual", "particles", "steps", "cpu_s"]
+          "slip_at_capacity_mm", "final_load_over_capacity", "mode", "adhesive_breaks", "concrete_breaks",
+          "depth_p90_mm", "G_bonds", "worst_residual", "particles", "steps", "cpu_s"]
 
 
 def row_of(s, known, cpu):

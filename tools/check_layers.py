@@ -17,13 +17,10 @@ BELOW = {
     "studies": ["studies", "scene", "preprocess", "io", "rigid_cell", "contact_models", "engine"],
     "app": ["app", "studies", "scene", "preprocess", "io", "rigid_cell", "contact_models", "engine"],
 }
-# Library headers a floor must not see: the force laws and the kernel know nothing of scene files or HDF5.
-FORBIDDEN = {
-    "engine": [r"toml", r"hdf5\.h", r"H5\w*\.h", r"CLI/"],
-    "contact_models": [r"toml", r"hdf5\.h", r"H5\w*\.h", r"CLI/"],
-    "preprocess": [r"toml", r"hdf5\.h", r"H5\w*\.h", r"CLI/"],
-    "rigid_cell": [r"toml", r"hdf5\.h", r"H5\w*\.h", r"CLI/"],
-}
+# Library headers a floor must not see: the force laws, the kernel, the preprocessor and the rigid cells know
+# nothing of scene files, HDF5 or the command line.
+NO_FILES_OR_KEYS = [r"toml", r"hdf5\.h", r"H5\w*\.h", r"CLI/"]
+FORBIDDEN = {floor: NO_FILES_OR_KEYS for floor in ("engine", "contact_models", "preprocess", "rigid_cell")}
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]')
 
 

@@ -2,7 +2,8 @@
 # Installs the Debian packages mesocrack needs, and nothing when all are present (idempotent).
 set -euo pipefail
 pkgs=(build-essential cmake libeigen3-dev libnanoflann-dev libhdf5-dev hdf5-tools doctest-dev
-      libtoml11-dev libcli11-dev libomp-dev libcgal-dev libsuitesparse-dev python3 python3-numpy python3-h5py python3-matplotlib)
+      libtoml11-dev libcli11-dev libomp-dev libcgal-dev libsuitesparse-dev
+      python3 python3-numpy python3-h5py python3-matplotlib)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
