@@ -88,7 +88,7 @@ TEST_CASE("nodes on a cubic grid tessellate into cubes of side h with inertia V 
     CHECK(std::abs(c.mass.inertia()(0, 1)) < 1e-9 * h * h * h * h * h);
   }
   CHECK(t.volume() == doctest::Approx(shape.volume()).epsilon(1e-12));
-  // Face neighbours only carry area: 3 (4 × 3 + 5 × 2 ... ) counted below from the grid.
+  // Only face neighbours share area (edge and corner neighbours meet in zero-area faces): h² per grid face.
   double contact_area = 0;
   for (std::size_t f = 0; f < t.contacts; ++f) contact_area += t.facets[f].area;
   const double grid_faces = 4 * 4 * 3 + 5 * 3 * 3 + 5 * 4 * 2;  // interior faces normal to x, y, z
@@ -126,6 +126,8 @@ TEST_CASE("random sequential nodes keep l_min and their cells tile the specimen 
     const auto shape = SpecimenShape<2>::polygon({{0, 0}, {0.05, 0}, {0.05, 0.025}, {0.025, 0.025}, {0.025, 0.05},
                                                   {0, 0.05}}, 0);
     const auto t = tessellate(place_nodes(shape, l, 11, 2000), shape, 3 * l);
+    // At a re-entrant corner an image's Voronoi region reaches past the corner into the shape (the bisector of
+    // a node and its image runs on beyond the edge): measured 6e-4 of the volume lost at l/size = 0.04.
     CHECK(t.volume() == doctest::Approx(shape.volume()).epsilon(1e-3));
   }
 }
