@@ -1,5 +1,6 @@
 // The smooth start of a prescribed motion: a velocity rises as (1 − cos πt/T)/2 over T, with no jerk at t = 0
-// (walls under velocity or opening control, driven particle groups).
+// (walls under velocity or opening control, driven particle groups); or, for the rigid-cell plates, as Květoň's
+// (9.1), whose acceleration vanishes at both ends of the rise.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -17,6 +18,15 @@ inline double ramped_time(double t, double ramp_time) {
   if (ramp_time <= 0) return t;
   if (t >= ramp_time) return t - 0.5 * ramp_time;
   return 0.5 * t - ramp_time / (2 * M_PI) * std::sin(M_PI * t / ramp_time);
+}
+
+// Květoň (9.1): the displacement per unit of the full velocity at t when the velocity rises as
+// t/T − sin(2πt/T)/(2π) over T: t²/(2T) + T/(4π²)(cos(2πt/T) − 1), then t − T/2. (The thesis prints the formula
+// garbled; this is the one whose velocity and acceleration are continuous at 0 and T, as its text asks.)
+inline double smooth_rise_displacement(double t, double ramp_time) {
+  if (ramp_time <= 0) return t;
+  if (t >= ramp_time) return t - 0.5 * ramp_time;
+  return t * t / (2 * ramp_time) + ramp_time / (4 * M_PI * M_PI) * (std::cos(2 * M_PI * t / ramp_time) - 1);
 }
 
 }  // namespace mc

@@ -1,20 +1,26 @@
 // The rigid-cell model's static solver (Květoň §3.2.3-3.2.4): prescribed displacements and forces, damage by
-// secant-stiffness iteration, each linear solve by CHOLMOD's supernodal Cholesky (SuiteSparse, through Eigen) on
-// the free degrees of freedom. The symbolic analysis is done once (the facets never change); the numeric
-// factorisation is reused while no facet's damage changed.
+// secant-stiffness iteration, each linear solve by CHOLMOD's Cholesky (SuiteSparse, through Eigen) on
+// the free degrees of freedom. It works on the reduced degrees of freedom q of the plate constraints (u = T q,
+// stiffness Tᵀ K T, forces Tᵀ f); without plates q = u. The symbolic analysis is done once (the facets never
+// change); the numeric factorisation is reused while no facet's damage changed.
 #pragma once
 #include <Eigen/CholmodSupport>
 #include <memory>
 #include <vector>
 
 #include "rigid_cell/cell_assembly.hpp"
+#include "rigid_cell/plate_constraints.hpp"
 
 namespace mc::rigid_cell {
 
 struct StaticOptions {
-  double damage_tolerance = 1e-6;    // largest change of a facet's damage between iterations
-  double force_tolerance = 1e-6;     // out-of-balance force over the largest of the internal and external forces
+  double damage_tolerance = 1e-6;  // largest change of a facet's damage between iterations
+  double force_tolerance = 1e-6;   // out-of-balance force over the largest of the internal and external forces
   int max_iterations = 500;
+  // Damage never decreases from one iteration to the next: the iteration then always converges (a bounded
+  // monotone sequence), to a state past a snap-back of the load path that displacement control cannot follow,
+  // with the damage the jump left behind (as the crack running dynamically would).
+  bool monotone = false;
 };
 
 struct StaticResult {
@@ -26,27 +32,36 @@ struct StaticResult {
 template <int D>
 class StaticSolver {
  public:
-  // `prescribed`: the degrees of freedom whose displacement is given (index cell × kDofs + component). Throws
-  // InputError naming a cell that no chain of contact facets joins to a prescribed degree of freedom.
-  StaticSolver(const CellAssembly<D>& model, std::vector<int> prescribed);
+  // `prescribed`: the reduced degrees of freedom whose displacement is given. Throws InputError naming a cell that
+  // no chain of contact facets and plates joins to a prescribed degree of freedom.
+  StaticSolver(const CellAssembly<D>& model, const PlateConstraints<D>& plates, const std::vector<int>& prescribed);
+  // Without plates: `prescribed` indexes cell × kDofs + component.
+  StaticSolver(const CellAssembly<D>& model, const std::vector<int>& prescribed);
 
-  // One load step: u holds the prescribed displacements on entry and the solution on return; f_ext the forces on
-  // the free degrees of freedom. `damage` is the facets' damage (the last step's on entry); the facets' states
-  // take the converged damage. Throws InstabilityError when the iteration does not converge or the stiffness is
-  // singular.
+  // One load step: u (reduced) holds the prescribed displacements on entry and the solution on return; f_ext the
+  // forces on the free reduced degrees of freedom. `damage` is the facets' damage (the last step's on entry); the
+  // facets' states take the converged damage. Throws InstabilityError when the iteration does not converge or the
+  // stiffness is singular.
   StaticResult solve(Eigen::VectorXd& u, const Eigen::VectorXd& f_ext, std::vector<double>& damage,
                      std::vector<FacetState>& states, const StaticOptions& options = {});
 
-  // The forces the supports exert on the cells (at the prescribed degrees of freedom; zero elsewhere).
+  // Every cell's displacements and rotations for the reduced u.
+  Eigen::VectorXd cell_displacements(const Eigen::VectorXd& u) const { return map_ * u; }
+  // The forces the supports exert (at the prescribed reduced degrees of freedom; zero elsewhere): on a plate, its
+  // resultant force and moment about its reference point.
   Eigen::VectorXd reactions(const Eigen::VectorXd& u, const Eigen::VectorXd& f_ext,
                             const std::vector<double>& damage) const;
 
  private:
   const CellAssembly<D>& model_;
+  SparseMatrix map_;  // u_cells = map_ · u
   std::vector<bool> is_prescribed_;
   SparseMatrix select_;  // free × all: picks the free degrees of freedom
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> cholesky_;
-  SparseMatrix stiffness_;         // the secant stiffness of the damage below, factorised on the free part
+  // Simplicial LLᵀ: Debian's CHOLMOD runs its supernodal factorisation on a fixed 4 OpenMP threads, which cost
+  // more in wake-ups than they saved on a 786-DOF disc (6.7 s wall, 7.4 s system time for 80 steps; simplicial:
+  // 6.8 s wall, 0.2 s system, and one thread, deterministic).
+  Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> cholesky_;
+  SparseMatrix stiffness_;        // the reduced secant stiffness of the damage below, factorised on the free part
   std::vector<double> factored_;  // that damage
   bool analysed_ = false;
 

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "scene/analysis.hpp"
+#include "scene/rigid_cell_histories.hpp"
 
 namespace mc {
 
@@ -245,9 +246,13 @@ std::vector<Series> make_series(const Scene& s, World<D>* w, const SpecimenInfo*
 }
 
 std::vector<std::string> history_names(const Scene& s) {
+  std::vector<std::string> names;
+  if (s.rigid_cell) {
+    for (const auto& x : rigid_cell_series(s)) names.push_back(x.name);
+    return names;
+  }
   const std::vector<Series> series =
       s.dimension == 2 ? make_series<2>(s, nullptr, nullptr, nullptr) : make_series<3>(s, nullptr, nullptr, nullptr);
-  std::vector<std::string> names;
   for (const auto& x : series) names.push_back(x.name);
   return names;
 }

@@ -1,10 +1,23 @@
 #include "scene/make_system.hpp"
 
+#include "engine/errors.hpp"
 #include "scene/explicit_system.hpp"
+#ifdef MESOCRACK_RIGID_CELL
+#include "scene/rigid_cell/rigid_cell_build.hpp"
+#endif
 
 namespace mc {
 
 std::unique_ptr<System> make_system(const Scene& scene) {
+  if (scene.rigid_cell) {
+#ifdef MESOCRACK_RIGID_CELL
+    return make_rigid_cell_system(scene);
+#else
+    throw InputError(scene.file +
+                     ": [rigid_cell]: this mesocrack was built without the rigid-cell family; "
+                     "configure with -DMESOCRACK_RIGID_CELL=ON");
+#endif
+  }
   if (scene.dimension == 2) return std::make_unique<ExplicitSystem<2>>(scene);
   return std::make_unique<ExplicitSystem<3>>(scene);
 }

@@ -149,6 +149,38 @@ struct SummarySpec {
   enum class Reduce { Max, Min, Final, Initial, TimeOfMax, DurationPositive, FinalOverInitial, MeanFinal10 } reduce;
 };
 
+// The rigid-cell family (Květoň 2019; rigid_cell/): a scene with a [rigid_cell] table fills a shape with Voronoi
+// cells of nodes l_min apart, joins them by the facet law of [[contacts]] (model = "facet_damage") and loads them
+// through rigid plates ([[groups]] by box) in static load steps of timestep.fixed.
+struct CellSpecimenSpec {
+  enum class Shape { Box, Disc, Polygon } shape = Shape::Box;
+  std::vector<double> size;                     // Box, from the origin [m]
+  std::vector<double> centre;                   // Disc: the axis in the x-y plane [m]
+  double radius = 0;                            // Disc [m]
+  std::vector<std::array<double, 2>> vertices;  // Polygon, counter-clockwise [m]
+  double thickness = 0;                         // 3D disc and polygon: along z from 0 [m]
+  double l_min = 0;                             // least node distance [m]
+  int max_rejections = 2000;                    // placement saturation (rigid_cell/node_placement.hpp)
+};
+
+// The facet law between two phases (rigid_cell/facet_law.hpp): E₀ and α given, or from the macroscopic E and ν
+// by (3.8) (E0 = 0 then). tensile_strength 0: elastic.
+struct FacetLawSpec {
+  int phase_a = 0, phase_b = 0;
+  double E0 = 0, alpha = 0, E = 0, nu = 0;
+  double tensile_strength = 0, fracture_energy = 0;
+  std::string where;  // the table, for messages: "file: contacts[0]"
+};
+
+struct RigidCellSpec {
+  CellSpecimenSpec specimen;
+  std::vector<FacetLawSpec> facets;
+  double damage_tolerance = 1e-6, force_tolerance = 1e-6;  // rigid_cell/static_solver.hpp
+  int max_iterations = 500;
+  bool crack_log = false;  // each facet's first damage and its crack (D ≥ 0.99) written to /cracks
+  bool energy = false;     // boundary work, stored and dissipated energy as histories
+};
+
 struct Scene {
   std::string file;  // for messages
   std::string text;  // the scene as run (stored in the output)
@@ -180,6 +212,7 @@ struct Scene {
   double duration = 0;     // stop at this simulated time (0: no limit)
   std::vector<StopSpec> stops;
   std::vector<SummarySpec> summaries;
+  std::optional<RigidCellSpec> rigid_cell;                // present: the scene runs on the rigid-cell family
   std::vector<std::shared_ptr<const Analysis>> analyses;  // [uniaxial] … (scene/analysis.hpp), in registry order
   std::string xy_plots;                                   // "x:y;x2:y2" drawn by report
 

@@ -188,18 +188,22 @@ Scene read_scene(const TomlDoc& doc, const std::string& file) {
   s.seed = static_cast<std::uint64_t>(root.integer("seed", Range::closed(0, 9.0e18), 1));
   s.title = root.string("title", "");
   read_phases(root, s);
-  read_contacts(root, s);
-  read_specimen(root, s);
-  read_mesostructure(root, s);
-  read_walls(root, s);
-  read_groups(root, s);
-  read_physics(root, s);
-  read_bonds(root, s);
-  read_observers(root, s);
-  check_opening_walls(root, s);
+  if (root.has("rigid_cell")) {
+    read_rigid_cell(root, s);
+  } else {
+    read_contacts(root, s);
+    read_specimen(root, s);
+    read_mesostructure(root, s);
+    read_walls(root, s);
+    read_groups(root, s);
+    read_physics(root, s);
+    read_bonds(root, s);
+    read_observers(root, s);
+    check_opening_walls(root, s);
+  }
   read_run(root, s);
   read_output(root, s);
-  read_analyses(root, s);
+  if (!s.rigid_cell) read_analyses(root, s);
   const std::vector<std::string> histories = history_names(s);
   check_names(root, s, histories);
   check_analyses(root, s, histories);

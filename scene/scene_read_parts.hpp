@@ -29,6 +29,8 @@ void read_walls(const Table& root, Scene& s);          // scene/boundary_read.cp
 void read_groups(const Table& root, Scene& s);         // scene/boundary_read.cpp
 void read_physics(const Table& root, Scene& s);        // scene/boundary_read.cpp
 void read_observers(const Table& root, Scene& s);      // scene/observers_read.cpp
+// A scene with a [rigid_cell] table: its facet laws, cell specimen, mesostructure, plates and load step.
+void read_rigid_cell(const Table& root, Scene& s);  // scene/rigid_cell_read.cpp
 // Each wall under opening control names an opening probe (after read_observers).
 void check_opening_walls(const Table& root, const Scene& s);  // scene/observers_read.cpp
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "engine/particles.hpp"
+#include "preprocess/aggregate_placement.hpp"
 #include "scene/build_world.hpp"
 
 namespace mc {
@@ -33,6 +34,17 @@ Rot<D> rot_of(const std::vector<double>& v) {
 // `info`. Sphere lists and generated packings are renumbered along a Morton curve (cache locality).
 template <int D>
 void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags, SpecimenInfo& info);
+
+// Tang §4.2–4.3.1: the coarse aggregate laid over the box [lo, hi] (or the scene's [mesostructure] lo, hi);
+// throws InputError naming the table when the grading cannot be placed.
+template <int D>
+AggregateLayout<D> lay_aggregates(const Scene& s, const Vec<D>& lo, const Vec<D>& hi);
+// The layout's fractions, targets and aggregate count, as generation facts.
+template <int D>
+void add_aggregate_facts(const AggregateLayout<D>& layout, std::vector<std::pair<std::string, double>>& facts);
+// Outlines for pictures: 2D polygons; 3D sections at y = y_section, as (x, z).
+template <int D>
+std::vector<std::vector<std::array<double, 2>>> aggregate_outlines(const AggregateLayout<D>& layout, double y_section);
 
 // Tang §4.2–4.3.1: aggregates laid over the specimen; mortar particles whose centres fall in one become
 // aggregate. The fractions achieved go to info.facts, the outlines to info.outlines.

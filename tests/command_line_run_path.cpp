@@ -162,10 +162,7 @@ static std::vector<std::string> coarse_packing(const fs::path& scene) {
 }
 
 TEST_CASE("every_scene_in_scenes_folder_runs") {
-  std::vector<fs::path> scenes;
-  for (const auto& e : fs::directory_iterator(kScenes))
-    if (e.path().extension() == ".toml") scenes.push_back(e.path());
-  std::sort(scenes.begin(), scenes.end());
+  const std::vector<fs::path> scenes = runnable_scenes();
   REQUIRE(!scenes.empty());
   const auto t0 = Clock::now();
   for (const auto& s : scenes) {
@@ -246,10 +243,7 @@ TEST_CASE("report_writes_pngs") {
 // A finished run resumed with a later end continues from its final checkpoint exactly as one long run would; a
 // finished run resumed with the same end writes nothing new (no repeated final row or frame).
 TEST_CASE("resume_extends_a_finished_run_like_one_long_run") {
-  std::vector<fs::path> scenes;
-  for (const auto& e : fs::directory_iterator(kScenes))
-    if (e.path().extension() == ".toml") scenes.push_back(e.path());
-  std::sort(scenes.begin(), scenes.end());
+  const std::vector<fs::path> scenes = runnable_scenes();
   REQUIRE(!scenes.empty());
   // Rows every 50 steps and frames every 100, so the step where the short run ends has both, like the long run.
   const std::vector<std::string> common{"--threads", "2",

@@ -74,6 +74,16 @@ std::vector<std::string> files_in(const fs::path& dir) {
   return names;
 }
 
+// The scenes of scenes/ this build can run, sorted: a rigid-cell scene ([rigid_cell]) only when the family is built.
+std::vector<fs::path> runnable_scenes() {
+  std::vector<fs::path> scenes;
+  for (const auto& e : fs::directory_iterator(kScenes))
+    if (e.path().extension() == ".toml" && (MESOCRACK_RIGID_CELL_BUILT || !contains(slurp(e.path()), "\n[rigid_cell]")))
+      scenes.push_back(e.path());
+  std::sort(scenes.begin(), scenes.end());
+  return scenes;
+}
+
 // ---------------------------------------------------------------- the command as a child process
 
 struct Result {

@@ -425,6 +425,26 @@ inline std::string message_fault(const std::string& message, const std::string& 
   return line || named ? "" : "names no line, key, override or table";
 }
 
+// What an accepted rigid-cell part must be: facet laws between existing phases with positive moduli, a
+// positive node distance, finite shape numbers.
+template <class PhaseOk>
+std::string rigid_cell_fault(const RigidCellSpec& r, PhaseOk phase_ok) {
+  if (r.facets.empty()) return "no facet laws";
+  for (const auto& f : r.facets) {
+    if (!phase_ok(f.phase_a) || !phase_ok(f.phase_b)) return "facet law phase index out of range";
+    const bool given = f.E0 > 0 && f.alpha > 0, macroscopic = f.E > 0 && f.nu > -1 && f.nu < 0.5;
+    if (!(given || macroscopic)) return "facet law without positive moduli";
+    if (!(f.tensile_strength >= 0) || (f.tensile_strength > 0 && !(f.fracture_energy > 0)))
+      return "facet law with a strength but no fracture energy";
+  }
+  const auto& c = r.specimen;
+  if (!(std::isfinite(c.l_min) && c.l_min > 0)) return "l_min " + std::to_string(c.l_min);
+  for (double x : c.size)
+    if (!(std::isfinite(x) && x > 0)) return "box size not positive";
+  if (c.shape == CellSpecimenSpec::Shape::Disc && !(std::isfinite(c.radius) && c.radius > 0)) return "disc radius";
+  return "";
+}
+
 // What an accepted scene must be for the engine: "" when it is, else the first invariant it breaks.
 inline std::string scene_fault(const Scene& s) {
   const auto finite = [](const std::vector<double>& v) {
@@ -432,10 +452,15 @@ inline std::string scene_fault(const Scene& s) {
   };
   const auto d = static_cast<std::size_t>(s.dimension);
   if (s.dimension != 2 && s.dimension != 3) return "dimension " + std::to_string(s.dimension);
-  if (s.phases.empty() || s.contacts.empty()) return "no phases or no contacts";
+  const auto phase_ok = [&](int i) { return i >= 0 && static_cast<std::size_t>(i) < s.phases.size(); };
+  if (s.rigid_cell) {
+    if (std::string f = rigid_cell_fault(*s.rigid_cell, phase_ok); !f.empty()) return f;
+  } else if (s.contacts.empty()) {
+    return "no contacts";
+  }
+  if (s.phases.empty()) return "no phases";
   for (const auto& p : s.phases)
     if (!(std::isfinite(p.density) && p.density > 0)) return "phase density " + std::to_string(p.density);
-  const auto phase_ok = [&](int i) { return i >= 0 && static_cast<std::size_t>(i) < s.phases.size(); };
   for (const auto& c : s.contacts)
     if (!phase_ok(c.phase_a) || !phase_ok(c.phase_b)) return "contact phase index out of range";
   for (const auto& p : s.specimen.particles) {
@@ -445,8 +470,8 @@ inline std::string scene_fault(const Scene& s) {
     if (!phase_ok(p.phase)) return "particle phase out of range";
   }
   const auto& sp = s.specimen;
-  const bool box = sp.kind == SpecimenSpec::Kind::RandomBox || sp.kind == SpecimenSpec::Kind::Lattice ||
-                   sp.kind == SpecimenSpec::Kind::Packing;
+  const bool box = !s.rigid_cell && (sp.kind == SpecimenSpec::Kind::RandomBox ||
+                                     sp.kind == SpecimenSpec::Kind::Lattice || sp.kind == SpecimenSpec::Kind::Packing);
   if (box) {
     if (sp.box_lo.size() != d || sp.box_hi.size() != d || !finite(sp.box_lo) || !finite(sp.box_hi))
       return "specimen box of the wrong size or not finite";

@@ -1,0 +1,303 @@
+#include "rigid_cell/rigid_cell_system.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "engine/errors.hpp"
+#include "engine/ramp.hpp"
+#include "rigid_cell/node_placement.hpp"
+
+namespace mc::rigid_cell {
+
+namespace {
+
+// Cells reach at most about l_min from their node once the placement is saturated; three times that is a safe
+// band for the mirror images (tessellation.hpp).
+constexpr double kReachPerLmin = 3.0;
+
+template <int D>
+std::string box_text(const Vec<D>& lo, const Vec<D>& hi) {
+  std::ostringstream m;
+  m << "[" << lo.transpose() << "] .. [" << hi.transpose() << "] m";
+  return m.str();
+}
+
+}  // namespace
+
+template <int D>
+RigidCellSystem<D>::RigidCellSystem(RigidCellSetup<D> setup) : setup_(std::move(setup)) {
+  build_cells();
+  build_plates();
+  solver_ = std::make_unique<StaticSolver<D>>(*model_, *plates_, prescribed_);
+  u_ = u_before_ = reactions_ = f_ext_ = Eigen::VectorXd::Zero(plates_->reduced());
+  damage_.assign(model_->contacts(), 0.0);
+  states_.assign(model_->contacts(), FacetState{});
+}
+
+template <int D>
+void RigidCellSystem<D>::build_cells() {
+  const auto nodes = place_nodes(*setup_.shape, setup_.l_min, setup_.seed, setup_.max_rejections);
+  tessellation_ = tessellate(nodes, *setup_.shape, kReachPerLmin * setup_.l_min);
+  for (const auto& c : tessellation_.cells) phase_.push_back(setup_.phase_at ? setup_.phase_at(c.node) : 0);
+  std::vector<FacetParams> params;
+  for (std::size_t c = 0; c < tessellation_.contacts; ++c)
+    params.push_back(setup_.facet(phase_[tessellation_.facets[c].a], phase_[tessellation_.facets[c].b]));
+  model_ = std::make_unique<CellAssembly<D>>(tessellation_, std::move(params));
+}
+
+// Each plate takes the cells whose nodes lie in its box and turns about their volume centroid.
+template <int D>
+void RigidCellSystem<D>::build_plates() {
+  std::vector<Vec<D>> nodes;
+  for (const auto& c : tessellation_.cells) nodes.push_back(c.node);
+  std::vector<std::vector<int>> members(setup_.plates.size());
+  std::vector<Vec<D>> references;
+  std::vector<int> plate_of(cells(), -1);
+  for (std::size_t p = 0; p < setup_.plates.size(); ++p) {
+    const PlateSpec<D>& s = setup_.plates[p];
+    Vec<D> moment = Vec<D>::Zero();
+    double volume = 0;
+    for (int c = 0; c < cells(); ++c) {
+      if ((nodes[c].array() < s.lo.array()).any() || (nodes[c].array() > s.hi.array()).any()) continue;
+      if (plate_of[c] >= 0)
+        throw InputError("plates '" + setup_.plates[plate_of[c]].name + "' and '" + s.name + "' both hold cell " +
+                         std::to_string(c) + ": a cell moves with one plate at most; make their boxes disjoint");
+      plate_of[c] = static_cast<int>(p);
+      members[p].push_back(c);
+      const auto& m = tessellation_.cells[c].mass;
+      moment += m.volume * (nodes[c] + m.centroid());
+      volume += m.volume;
+    }
+    if (members[p].empty())
+      throw InputError("plate '" + s.name + "': no cell's node lies in its box " + box_text<D>(s.lo, s.hi) +
+                       " (nodes are at least l_min = " + std::to_string(setup_.l_min) +
+                       " m apart and l_min/2 inside the surface: widen the box)");
+    references.push_back(moment / volume);
+  }
+  plates_ = std::make_unique<PlateConstraints<D>>(nodes, std::move(members), references);
+  for (int p = 0; p < plates_->plates(); ++p)
+    for (int k = 0; k < kDofs; ++k)
+      if (setup_.plates[p].held[k]) prescribed_.push_back(plates_->plate_dof(p, k));
+}
+
+template <int D>
+int RigidCellSystem<D>::plate_index(const std::string& name) const {
+  for (std::size_t p = 0; p < setup_.plates.size(); ++p)
+    if (setup_.plates[p].name == name) return static_cast<int>(p);
+  return -1;
+}
+
+// The held degrees of freedom at loading time t: velocity × the smooth rise (9.1).
+template <int D>
+void RigidCellSystem<D>::prescribe(double t) {
+  for (int p = 0; p < plates_->plates(); ++p) {
+    const PlateSpec<D>& s = setup_.plates[p];
+    const double travel = smooth_rise_displacement(t, s.ramp_time);
+    for (int k = 0; k < kDofs; ++k)
+      if (s.held[k]) u_[plates_->plate_dof(p, k)] = s.velocity[k] * travel;
+  }
+}
+
+template <int D>
+void RigidCellSystem<D>::step() {
+  const std::vector<double> damage_before = damage_;
+  const Eigen::VectorXd reactions_before = reactions_;
+  u_before_ = u_;
+  ++step_;
+  last_ = {};
+  cuts_ = 0;
+  try {
+    advance(time_, time_ + setup_.load_step, 0);
+  } catch (const InstabilityError& e) {
+    std::ostringstream m;
+    m << "step " << step_ << " (t = " << time_ + setup_.load_step << " s; the load step cut " << kMaxCuts
+      << " times, and solved as a snap-through): " << e.what();
+    throw InstabilityError(m.str());
+  }
+  time_ += setup_.load_step;
+  reactions_ = solver_->reactions(u_, f_ext_, damage_);
+  // The plates' work, trapezoidal over the step (exact for the secant-linear response within it).
+  for (int d : prescribed_) work_ += 0.5 * (reactions_before[d] + reactions_[d]) * (u_[d] - u_before_[d]);
+  log_cracks(damage_before);
+}
+
+// The static solve from loading time `from` to `to`; when its secant iteration does not converge, the state goes
+// back to `from` and the interval is done in two halves; the smallest halves as a snap-through.
+template <int D>
+void RigidCellSystem<D>::advance(double from, double to, int cuts) {
+  const Eigen::VectorXd u = u_;
+  const std::vector<double> damage = damage_;
+  const std::vector<FacetState> states = states_;
+  prescribe(to);
+  StaticOptions options = setup_.options;
+  options.monotone = cuts > kMaxCuts;
+  // A crack running through a snap-through may extend by a few facets per iteration: it gets more of them.
+  if (options.monotone) options.max_iterations *= kSnapThroughIterations;
+  try {
+    const StaticResult r = solver_->solve(u_, f_ext_, damage_, states_, options);
+    last_.iterations += r.iterations, last_.factorisations += r.factorisations, last_.residual = r.residual;
+    snap_throughs_ += options.monotone;
+  } catch (const InstabilityError&) {
+    if (options.monotone) throw;
+    u_ = u, damage_ = damage, states_ = states;
+    cuts_ = std::max(cuts_, cuts + 1);
+    if (cuts == kMaxCuts) return advance(from, to, cuts + 1);
+    advance(from, 0.5 * (from + to), cuts + 1);
+    advance(0.5 * (from + to), to, cuts + 1);
+  }
+}
+
+// A facet's first damage is a yield, its damage reaching kCracked a break; tensile when it opens, shear when it
+// slides under compression.
+template <int D>
+void RigidCellSystem<D>::log_cracks(const std::vector<double>& before) {
+  if (!setup_.crack_log) return;
+  const Eigen::VectorXd u_cells = solver_->cell_displacements(u_);
+  for (std::size_t c = 0; c < damage_.size(); ++c) {
+    const bool yielded = before[c] == 0 && damage_[c] > 0, broke = before[c] < kCracked && damage_[c] >= kCracked;
+    if (!yielded && !broke) continue;
+    const Facet<D>& f = tessellation_.facets[c];
+    const CrackMode mode = model_->strain(c, u_cells)[0] > 0 ? CrackMode::Tensile : CrackMode::Shear;
+    for (CrackKind kind : {CrackKind::Yield, CrackKind::Break}) {
+      if ((kind == CrackKind::Yield && !yielded) || (kind == CrackKind::Break && !broke)) continue;
+      cracks_.push_back({step_, time_, f.a, f.b, f.centroid, f.normal, mode, kind, 0, phase_[f.a], phase_[f.b]});
+    }
+  }
+}
+
+template <int D>
+void RigidCellSystem<D>::check_stability() const {
+  for (Eigen::Index d = 0; d < u_.size(); ++d)
+    if (!std::isfinite(u_[d]) || !std::isfinite(reactions_[d])) {
+      std::ostringstream m;
+      m << "unstable at step " << step_ << " (t = " << time_ << " s): reduced degree of freedom " << d
+        << " is not finite; likely cause: a facet law returned no finite damage";
+      throw InstabilityError(m.str());
+    }
+}
+
+template <int D>
+std::size_t RigidCellSystem<D>::facets_damaged() const {
+  return static_cast<std::size_t>(std::count_if(damage_.begin(), damage_.end(), [](double d) { return d > 0; }));
+}
+
+template <int D>
+std::size_t RigidCellSystem<D>::facets_cracked() const {
+  return static_cast<std::size_t>(
+      std::count_if(damage_.begin(), damage_.end(), [](double d) { return d >= kCracked; }));
+}
+
+template <int D>
+double RigidCellSystem<D>::max_damage() const {
+  return damage_.empty() ? 0.0 : *std::max_element(damage_.begin(), damage_.end());
+}
+
+// ½ Σ fᵢ·uᵢ over the cells' internal forces: the elastic energy the (secant) facets hold.
+template <int D>
+double RigidCellSystem<D>::strain_energy() const {
+  const Eigen::VectorXd u_cells = solver_->cell_displacements(u_);
+  return 0.5 * model_->internal_forces(u_cells, damage_).dot(u_cells);
+}
+
+template <int D>
+SpecimenData RigidCellSystem<D>::specimen() const {
+  SpecimenData d{D, {}, {}, {}, setup_.phase_names, {}, setup_.facts, setup_.outlines};
+  for (int c = 0; c < cells(); ++c) {
+    const auto& cell = tessellation_.cells[c];
+    d.x.insert(d.x.end(), cell.node.data(), cell.node.data() + D);
+    // The radius of the disc or sphere of the cell's volume (2D: its area, unit thickness).
+    const double v = cell.mass.volume;
+    d.radius.push_back(D == 2 ? std::sqrt(v / M_PI) : std::cbrt(3 * v / (4 * M_PI)));
+    d.phase.push_back(phase_[c]);
+    d.id.push_back(c);
+  }
+  const double shape_volume = setup_.shape->volume();
+  d.facts.insert(d.facts.begin(),
+                 {{"cells", static_cast<double>(cells())},
+                  {"contact_facets", static_cast<double>(tessellation_.contacts)},
+                  {"surface_facets", static_cast<double>(tessellation_.facets.size() - tessellation_.contacts)},
+                  {"l_min", setup_.l_min},
+                  {"volume_tiled_over_shape", tessellation_.volume() / shape_volume}});
+  return d;
+}
+
+template <int D>
+void RigidCellSystem<D>::frame(std::vector<double>& x, std::vector<double>& v, std::vector<double>& force) const {
+  const Eigen::VectorXd u = solver_->cell_displacements(u_), before = solver_->cell_displacements(u_before_);
+  const Eigen::VectorXd f = model_->internal_forces(u, damage_);
+  x.clear(), v.clear(), force.clear();
+  for (int c = 0; c < cells(); ++c)
+    for (int k = 0; k < D; ++k) {
+      const int i = c * kDofs + k;
+      x.push_back(tessellation_.cells[c].node[k] + u[i]);
+      v.push_back((u[i] - before[i]) / setup_.load_step);
+      force.push_back(f[i]);
+    }
+}
+
+template <int D>
+std::vector<std::string> RigidCellSystem<D>::crack_models() const {
+  if (!setup_.crack_log) return {};
+  return {"facet_damage"};
+}
+
+template <int D>
+CrackRows RigidCellSystem<D>::cracks(std::size_t first) const {
+  CrackRows r;
+  for (std::size_t k = first; k < cracks_.size(); ++k) {
+    const Crack<D>& c = cracks_[k];
+    r.step.push_back(c.step);
+    r.mode.push_back(static_cast<std::int64_t>(c.mode));
+    r.kind.push_back(static_cast<std::int64_t>(c.kind));
+    r.phase_a.push_back(c.phase_a);
+    r.phase_b.push_back(c.phase_b);
+    r.model.push_back(c.set);
+    r.id_a.push_back(c.a);
+    r.id_b.push_back(c.b);
+    r.time.push_back(c.time);
+    r.position.insert(r.position.end(), c.position.data(), c.position.data() + D);
+    r.normal.insert(r.normal.end(), c.normal.data(), c.normal.data() + D);
+  }
+  return r;
+}
+
+template <int D>
+void RigidCellSystem<D>::save(Archive& a) const {
+  a.put_scalar("step", static_cast<double>(step_));
+  a.put_scalar("time", time_);
+  a.put_scalar("boundary_work", work_);
+  a.put_scalar("snap_throughs", static_cast<double>(snap_throughs_));
+  auto vec = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  a.reals["u"] = vec(u_);
+  a.reals["u_before"] = vec(u_before_);
+  a.reals["reactions"] = vec(reactions_);
+  a.reals["damage"] = damage_;
+  a.put("D_max", states_);
+  a.put("cracks", cracks_);
+}
+
+template <int D>
+void RigidCellSystem<D>::restore(const Archive& a) {
+  if (a.reals.at("u").size() != static_cast<std::size_t>(u_.size()) || a.reals.at("damage").size() != damage_.size())
+    throw InputError(
+        "its checkpoint holds a different rigid-cell specimen than the scene builds; resume with the scene that "
+        "wrote it");
+  step_ = static_cast<std::int64_t>(a.scalar("step"));
+  time_ = a.scalar("time");
+  work_ = a.scalar("boundary_work");
+  snap_throughs_ = static_cast<std::int64_t>(a.scalar("snap_throughs"));
+  auto vec = [&](const std::string& key, Eigen::VectorXd& v) {
+    const auto& d = a.reals.at(key);
+    v = Eigen::Map<const Eigen::VectorXd>(d.data(), static_cast<Eigen::Index>(d.size()));
+  };
+  vec("u", u_), vec("u_before", u_before_), vec("reactions", reactions_);
+  damage_ = a.reals.at("damage");
+  a.get("D_max", states_);
+  a.get("cracks", cracks_);
+}
+
+template class RigidCellSystem<2>;
+template class RigidCellSystem<3>;
+
+}  // namespace mc::rigid_cell

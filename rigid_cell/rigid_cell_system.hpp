@@ -1,0 +1,136 @@
+// The rigid-cell model as a System (engine/system.hpp), loaded quasi-statically: a specimen shape filled with
+// Voronoi cells (node placement, tessellation), one facet law per contact from the phases of its two cells,
+// rigid plates that hold or drive groups of cells, and one static solve per load step (Květoň §3.2.3). A step
+// advances the loading time by `load_step`; the plates' held degrees of freedom follow their velocity through the
+// smooth rise (9.1). What the scene records is given to it as series (set_histories) reading the accessors below.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/crack.hpp"
+#include "engine/system.hpp"
+#include "rigid_cell/cell_assembly.hpp"
+#include "rigid_cell/plate_constraints.hpp"
+#include "rigid_cell/static_solver.hpp"
+
+namespace mc::rigid_cell {
+
+// A rigid plate: the cells whose nodes lie in a box, moving as one body about their volume centroid. Held
+// degrees of freedom (translations, then rotations) follow velocity × the smooth rise (9.1); the others are free.
+template <int D>
+struct PlateSpec {
+  std::string name;
+  Vec<D> lo, hi;
+  std::array<bool, D + Dim<D>::rot> held{};
+  Eigen::Matrix<double, D + Dim<D>::rot, 1> velocity = Eigen::Matrix<double, D + Dim<D>::rot, 1>::Zero();
+  double ramp_time = 0;  // T of (9.1) [s]
+};
+
+template <int D>
+struct RigidCellSetup {
+  std::shared_ptr<const SpecimenShape<D>> shape;
+  double l_min = 0;  // [m]
+  std::uint64_t seed = 1;
+  int max_rejections = 2000;
+  std::vector<std::string> phase_names;
+  std::vector<double> density;                        // per phase [kg/m³]
+  std::function<int(const Vec<D>&)> phase_at;         // the phase of the cell with this node (the mesostructure)
+  std::function<FacetParams(int, int)> facet;         // the law between two phases (InputError if none is declared)
+  std::vector<std::pair<std::string, double>> facts;  // what building the mesostructure measured
+  std::vector<std::vector<std::array<double, 2>>> outlines;
+  std::vector<PlateSpec<D>> plates;
+  double load_step = 0;  // [s] of loading time per static solve
+  StaticOptions options;
+  bool crack_log = false;
+};
+
+template <int D>
+class RigidCellSystem final : public System {
+ public:
+  static constexpr int kDofs = D + Dim<D>::rot;
+  // A facet is counted cracked (and logged as a break) once its damage reaches this: it then carries under 1 % of
+  // the stress its strain would give intact, (3.11).
+  static constexpr double kCracked = 0.99;
+  // A load step whose secant iteration does not converge is cut in halves, down to 1/2^kMaxCuts of itself; a
+  // smallest part that still does not converge is solved with damage monotone within its iteration (a snap-through,
+  // static_solver.hpp).
+  static constexpr int kMaxCuts = 6;
+  static constexpr int kSnapThroughIterations = 10;  // × max_iterations for a snap-through
+
+  // Places the nodes, tessellates, assigns phases and laws, ties the plates. Throws InputError naming the cell,
+  // facet or plate that makes the setup impossible.
+  explicit RigidCellSystem(RigidCellSetup<D> setup);
+  RigidCellSystem(const RigidCellSystem&) = delete;  // the history samplers point into it
+  RigidCellSystem& operator=(const RigidCellSystem&) = delete;
+
+  void set_histories(std::vector<Series> series) { series_ = std::move(series); }
+
+  int dimension() const override { return D; }
+  void start() override {}
+  void step() override;
+  std::int64_t step_count() const override { return step_; }
+  double time() const override { return time_; }
+  double timestep() const override { return setup_.load_step; }
+  void check_stability() const override;
+  const std::vector<Series>& histories() const override { return series_; }
+  SpecimenData specimen() const override;
+  void frame(std::vector<double>& x, std::vector<double>& v, std::vector<double>& force) const override;
+  std::vector<std::string> crack_models() const override;
+  std::size_t crack_count() const override { return cracks_.size(); }
+  CrackRows cracks(std::size_t first) const override;
+  void save(Archive& a) const override;
+  void restore(const Archive& a) override;
+
+  // What histories read.
+  int cells() const { return static_cast<int>(tessellation_.cells.size()); }
+  std::size_t contacts() const { return model_->contacts(); }
+  int plate_index(const std::string& name) const;
+  double plate_reaction(int plate, int k) const { return reactions_[plates_->plate_dof(plate, k)]; }
+  double plate_displacement(int plate, int k) const { return u_[plates_->plate_dof(plate, k)]; }
+  std::size_t facets_damaged() const;
+  std::size_t facets_cracked() const;
+  double max_damage() const;
+  int last_iterations() const { return last_.iterations; }  // of the last step, its cuts included
+  double last_residual() const { return last_.residual; }
+  int last_cuts() const { return cuts_; }                        // how many times the last step was halved
+  std::int64_t snap_throughs() const { return snap_throughs_; }  // parts of steps solved so far as snap-throughs
+  // Work of the plates on the specimen, the elastic energy its facets store, and their difference: what the
+  // damage dissipated (a static solve has no kinetic energy).
+  double boundary_work() const { return work_; }
+  double strain_energy() const;
+
+ private:
+  RigidCellSetup<D> setup_;
+  Tessellation<D> tessellation_;
+  std::vector<int> phase_;  // per cell
+  std::unique_ptr<CellAssembly<D>> model_;
+  std::unique_ptr<PlateConstraints<D>> plates_;
+  std::vector<int> prescribed_;  // reduced degrees of freedom
+  std::unique_ptr<StaticSolver<D>> solver_;
+  std::vector<Series> series_;
+
+  std::int64_t step_ = 0;
+  double time_ = 0, work_ = 0;
+  Eigen::VectorXd u_, u_before_, reactions_, f_ext_;  // reduced
+  std::vector<double> damage_;
+  std::vector<FacetState> states_;
+  std::vector<Crack<D>> cracks_;
+  StaticResult last_;
+  int cuts_ = 0;
+  std::int64_t snap_throughs_ = 0;
+
+  void build_cells();
+  void build_plates();
+  void prescribe(double t);
+  void advance(double from, double to, int cuts);
+  void log_cracks(const std::vector<double>& before);
+};
+
+extern template class RigidCellSystem<2>;
+extern template class RigidCellSystem<3>;
+
+}  // namespace mc::rigid_cell

@@ -1,0 +1,38 @@
+#include "scene/rigid_cell_histories.hpp"
+
+namespace mc {
+
+std::vector<CellSeries> rigid_cell_series(const Scene& s) {
+  using W = CellSeries::What;
+  std::vector<CellSeries> out = {{W::Time, "time", "s"},
+                                 {W::Step, "step", "-"},
+                                 {W::Iterations, "iterations", "-"},
+                                 {W::Residual, "residual", "-"},
+                                 {W::Cuts, "step_cuts", "-"},
+                                 {W::SnapThroughs, "snap_throughs", "-"},
+                                 {W::FacetsDamaged, "facets.damaged", "-"},
+                                 {W::FacetsCracked, "facets.cracked", "-"},
+                                 {W::MaxDamage, "damage.max", "-"}};
+  const int d = s.dimension, dofs = d == 2 ? 3 : 6;
+  const char* names[2][6] = {{"x", "y", "z", "", "", ""}, {"x", "y", "z", "x", "y", "z"}};
+  for (std::size_t g = 0; g < s.groups.size(); ++g) {
+    const std::string pre = "group." + s.groups[g].name + ".";
+    for (int k = 0; k < dofs; ++k) {
+      const bool rotation = k >= d;
+      const std::string axis = rotation ? (d == 2 ? "z" : names[1][k]) : names[0][k];
+      const int p = static_cast<int>(g);
+      out.push_back(
+          {W::PlateReaction, pre + (rotation ? "moment_" : "reaction_") + axis, rotation ? "N m" : "N", p, k});
+      out.push_back(
+          {W::PlateDisplacement, pre + (rotation ? "rotation_" : "disp_") + axis, rotation ? "rad" : "m", p, k});
+    }
+  }
+  if (s.rigid_cell && s.rigid_cell->energy) {
+    out.push_back({W::BoundaryWork, "energy.boundary_work", "J"});
+    out.push_back({W::StrainEnergy, "energy.strain", "J"});
+    out.push_back({W::Dissipated, "energy.dissipated", "J"});
+  }
+  return out;
+}
+
+}  // namespace mc

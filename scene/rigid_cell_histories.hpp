@@ -1,0 +1,35 @@
+// The histories of a rigid-cell run, described as plain data: their names follow from the scene alone (so stop
+// conditions and summaries are checked before anything runs, even in a build without the rigid-cell family), and
+// scene/rigid_cell_build.cpp gives each its sampler.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "scene/scene.hpp"
+
+namespace mc {
+
+struct CellSeries {
+  enum class What {
+    Time,
+    Step,
+    Iterations,     // secant iterations of the last load step
+    Residual,       // its out-of-balance ratio
+    Cuts,           // how many times it was halved to converge
+    SnapThroughs,   // parts of steps solved so far as snap-throughs (static_solver.hpp, monotone)
+    FacetsDamaged,  // facets with D > 0
+    FacetsCracked,  // facets with D ≥ 0.99
+    MaxDamage,
+    PlateReaction,      // the support's force (translations) or moment (rotations) on a plate
+    PlateDisplacement,  // a plate's displacement or rotation
+    BoundaryWork,
+    StrainEnergy,
+    Dissipated,
+  } what;
+  std::string name, unit;
+  int plate = -1, dof = -1;
+};
+
+std::vector<CellSeries> rigid_cell_series(const Scene& s);
+
+}  // namespace mc

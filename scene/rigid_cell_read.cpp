@@ -1,0 +1,140 @@
+// The keys of a rigid-cell scene (a scene with a [rigid_cell] table): the solver's options, the facet laws of
+// [[contacts]], the cell specimen, the plates ([[groups]] by box) and the load step (timestep.fixed).
+#include <algorithm>
+
+#include "scene/scene_read_parts.hpp"
+
+namespace mc::scene_read {
+
+namespace {
+
+void read_facet_laws(const Table& root, Scene& s) {
+  std::vector<std::string> names;
+  for (const auto& p : s.phases) names.push_back(p.name);
+  const auto tables = root.tables("contacts");
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    const Table& t = tables[i];
+    t.choice("model", {"facet_damage"});
+    FacetLawSpec f;
+    f.where = s.file + ": contacts[" + std::to_string(i) + "]";
+    f.phase_a = phase_index(t, "phase_a", s.phases);
+    f.phase_b = t.has("phase_b") ? phase_index(t, "phase_b", s.phases) : f.phase_a;
+    // Květoň (3.6)-(3.8): the facet's E₀ and α, or the macroscopic E and ν they follow from.
+    if (t.has("E0") == t.has("modulus"))
+      t.fail(t.has("E0") ? "modulus" : "E0",
+             "give the facets' normal modulus E0 with alpha, or the macroscopic modulus with poisson_ratio "
+             "(Květoň (3.8)), one pair");
+    if (t.has("E0")) {
+      f.E0 = t.number("E0", Unit::Pressure, Range::positive());
+      f.alpha = t.number("alpha", Unit::None, Range::positive());
+    } else {
+      f.E = t.number("modulus", Unit::Pressure, Range::positive());
+      f.nu = t.number("poisson_ratio", Unit::None, Range{-1.0, 0.5, true, true});
+    }
+    f.tensile_strength = t.number("tensile_strength", Unit::Pressure, Range::non_negative(), 0.0);
+    if (f.tensile_strength > 0) f.fracture_energy = t.number("fracture_energy", Unit::EnergyPerArea, Range::positive());
+    for (const auto& o : s.rigid_cell->facets)
+      if ((o.phase_a == f.phase_a && o.phase_b == f.phase_b) || (o.phase_a == f.phase_b && o.phase_b == f.phase_a))
+        t.fail("phase_b", "a facet law for this pair of phases is already given");
+    s.rigid_cell->facets.push_back(f);
+    t.finish();
+  }
+  if (tables.empty())
+    throw InputError(s.file +
+                     ": missing [[contacts]]: the facet law between phases (model = \"facet_damage\", "
+                     "phase_a, phase_b, E0 and alpha or modulus and poisson_ratio, tensile_strength, "
+                     "fracture_energy)");
+}
+
+// The shape's outline: a box from the origin, a disc (3D: a cylinder along z) or a counter-clockwise polygon
+// (3D: a prism along z).
+void read_cell_specimen(const Table& root, Scene& s) {
+  const Table t = root.table("specimen");
+  t.choice("kind", {"voronoi_cells"});
+  CellSpecimenSpec& c = s.rigid_cell->specimen;
+  const int d = s.dimension;
+  const std::string shape = t.choice("shape", {"box", "disc", "polygon"});
+  if (shape == "box") {
+    c.shape = CellSpecimenSpec::Shape::Box;
+    c.size = t.numbers("size", Unit::Length, Range::positive(), d);
+  } else if (shape == "disc") {
+    c.shape = CellSpecimenSpec::Shape::Disc;
+    c.centre = vec(t, "centre", Unit::Length, 2);
+    c.radius = t.number("radius", Unit::Length, Range::positive());
+  } else {
+    c.shape = CellSpecimenSpec::Shape::Polygon;
+    const auto x = t.numbers("vertices_x", Unit::Length, Range::any(), 0);
+    const auto y = t.numbers("vertices_y", Unit::Length, Range::any(), x.size());
+    if (x.size() < 3) t.fail("vertices_x", "a polygon needs at least 3 vertices");
+    double twice_area = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const std::size_t j = (i + 1) % x.size();
+      twice_area += x[i] * y[j] - x[j] * y[i];
+      c.vertices.push_back({x[i], y[i]});
+    }
+    if (!(twice_area > 0)) t.fail("vertices_y", "the vertices must go round the polygon counter-clockwise");
+  }
+  if (d == 3 && shape != "box") c.thickness = t.number("thickness", Unit::Length, Range::positive());
+  c.l_min = t.number("l_min", Unit::Length, Range::positive());
+  c.max_rejections = static_cast<int>(t.integer("max_rejections", Range::closed(10, 1e8), 2000));
+  t.finish();
+}
+
+// Plates are [[groups]] by box; their held degrees of freedom follow velocity / angular_velocity through (9.1).
+void check_plates(const Table& root, const Scene& s) {
+  const auto tables = root.tables("groups");
+  for (std::size_t g = 0; g < s.groups.size(); ++g) {
+    const GroupSpec& p = s.groups[g];
+    const Table& t = tables[g];
+    for (const char* key : {"tags", "ids", "force", "moment"})
+      if (t.has(key))
+        t.fail(key,
+               "a rigid-cell plate takes the cells whose nodes lie in its box (box_lo, box_hi) and holds or "
+               "drives them (fix, velocity, angular_velocity, ramp_time); it has no '" +
+                   std::string(key) + "'");
+    if (p.box_lo.empty()) t.fail("box_lo", "a rigid-cell plate takes the cells whose nodes lie in its box");
+    const char* axis = "xyz";
+    for (int k = 0; k < s.dimension && !p.velocity.empty(); ++k)
+      if (p.velocity[k] != 0 && !(p.fix & (1u << k)))
+        t.fail("fix", "the plate is driven along " + std::string(1, axis[k]) + ", so " + axis[k] +
+                          " must be held: add it to 'fix'");
+    const int r = s.dimension == 2 ? 1 : 3;
+    for (int k = 0; k < r && !p.angular_velocity.empty(); ++k)
+      if (p.angular_velocity[k] != 0 && !(p.fix & (1u << (s.dimension + k))))
+        t.fail("fix", "the plate turns at its angular velocity about a held axis only: add its rotation to 'fix'");
+    for (std::size_t o = 0; o < g; ++o)
+      if (s.groups[o].name == p.name) t.fail("name", "plate names must be unique");
+  }
+}
+
+void read_load_step(const Table& root, Scene& s) {
+  const Table t = root.table("timestep");
+  s.timestep.fixed = t.number("fixed", Unit::Time, Range::positive());
+  t.finish();
+}
+
+}  // namespace
+
+void read_rigid_cell(const Table& root, Scene& s) {
+  for (const char* key : {"walls", "bonds", "physics", "regions", "probes", "wall_strains"})
+    if (root.has(key))
+      root.fail(key,
+                "a rigid-cell scene ([rigid_cell]) is held and loaded by plates ([[groups]] by box); it has "
+                "no walls, bonds, physics, measurement regions or probes");
+  const Table t = root.table("rigid_cell");
+  RigidCellSpec& r = s.rigid_cell.emplace();
+  r.damage_tolerance = t.number("damage_tolerance", Unit::None, Range{0.0, 1.0, true, false}, r.damage_tolerance);
+  r.force_tolerance = t.number("force_tolerance", Unit::None, Range{0.0, 1.0, true, false}, r.force_tolerance);
+  r.max_iterations = static_cast<int>(t.integer("max_iterations", Range::closed(1, 1e6), r.max_iterations));
+  r.crack_log = t.boolean("crack_log", false);
+  r.energy = t.boolean("energy", false);
+  t.finish();
+  read_facet_laws(root, s);
+  read_cell_specimen(root, s);
+  read_mesostructure(root, s);
+  read_groups(root, s);
+  check_plates(root, s);
+  read_load_step(root, s);
+}
+
+}  // namespace mc::scene_read

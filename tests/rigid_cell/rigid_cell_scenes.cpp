@@ -1,0 +1,103 @@
+// Rigid-cell scenes through the real `mesocrack` command: the family runs as a System under the same runner as the
+// explicit engine (histories, summary, crack log, --resume), and its bad input is refused with exit 2 or 4.
+#include "tests/common/cli_harness.hpp"
+
+namespace {
+
+double final_value(const mc::H5File& f, const std::string& series) {
+  return f.read_doubles("/history/" + series).back();
+}
+
+}  // namespace
+
+TEST_CASE("rigid_cell_box_between_plates_answers_with_the_facet_modulus_when_alpha_is_one") {
+  const TempDir d;
+  const Result r = mesocrack({"run", (kScenes / "rigid_cell_tension_2d.toml").string(), "-o", "box.h5"}, d.dir);
+  REQUIRE_MESSAGE(r.code == 0, r.describe());
+  const mc::H5File f((d / "box.h5").string(), mc::H5File::Mode::ReadOnly);
+  const double force = final_value(f, "group.top.reaction_y"), travel = final_value(f, "group.top.disp_y");
+  const double width = 0.04, height = 0.2, E0 = 30e9;
+  const double E = force / width / (travel / height);  // 2D: unit thickness
+  // With α = 1 a uniform strain is in equilibrium on any tessellation, so E = E₀ (Květoň (3.8), 2D: 2E₀(1 + α)/
+  // (3 + α)). The rigid plates hold the cells whose nodes lie 1–2 mm inside each end, and those cells reach about
+  // l_min/2 further in: the gauge length is 2-3 % shorter than the box, and the measured modulus as much higher.
+  CHECK(E / E0 > 1.0);
+  CHECK(E / E0 < 1.035);
+  // Elastic: the plates' work is the energy the facets store, to round-off.
+  CHECK(final_value(f, "energy.boundary_work") == doctest::Approx(final_value(f, "energy.strain")).epsilon(1e-9));
+  CHECK(final_value(f, "energy.boundary_work") == doctest::Approx(0.5 * force * travel).epsilon(1e-9));
+}
+
+TEST_CASE("rigid_cell_brazilian_disc_resumed_halfway_gives_the_same_bits") {
+  const TempDir d;
+  const std::string scene = (kScenes / "brazilian_2d.toml").string();
+  // 160 load steps: the facets under the plates and at the centre have begun to damage (from step ~110).
+  const Result whole = mesocrack({"run", scene, "-o", "whole.h5", "--set", "run.steps=160"}, d.dir);
+  REQUIRE_MESSAGE(whole.code == 0, whole.describe());
+  const Result first = mesocrack(
+      {"run", scene, "-o", "parts.h5", "--set", "run.steps=120", "--set", "output.checkpoint_every=120"}, d.dir);
+  REQUIRE_MESSAGE(first.code == 0, first.describe());
+  const Result rest = mesocrack(
+      {"run", scene, "--resume", "parts.h5", "--set", "run.steps=160", "--set", "output.checkpoint_every=120"}, d.dir);
+  REQUIRE_MESSAGE(rest.code == 0, rest.describe());
+  const mc::H5File f((d / "whole.h5").string(), mc::H5File::Mode::ReadOnly);
+  REQUIRE(final_value(f, "facets.damaged") > 0);
+  REQUIRE(f.exists("/cracks"));
+  check_same_run(d / "whole.h5", d / "parts.h5");
+}
+
+TEST_CASE("rigid_cell_bad_input_names_the_plate_cell_or_step") {
+  const TempDir d;
+  const std::string base = slurp(kScenes / "brazilian_2d.toml");
+  REQUIRE(!base.empty());
+  check_edits_refused(
+      d.dir, base,
+      {{"box_lo = [\"31 mm\", 0]\nbox_hi = [\"39 mm\", \"4 mm\"]",
+        "box_lo = [\"31 mm\", 0]\nbox_hi = [\"39 mm\", \"1 mm\"]",
+        {"plate 'bottom'", "no cell's node lies in its box", "widen the box"}},
+       {"fix = \"all\"\n\n[[groups]]\nname = \"top\"\nbox_lo = [\"31 mm\", \"66 mm\"]\nbox_hi = [\"39 mm\", "
+        "\"70 mm\"]\nfix = \"all\"\nvelocity = [0, \"-1 mm/s\"]",
+        "\n[[groups]]\nname = \"top\"\nbox_lo = [\"31 mm\", \"66 mm\"]\nbox_hi = [\"39 mm\", \"70 mm\"]",
+        {"cell 0", "not held", "unsupported"}},
+       {"box_lo = [\"31 mm\", \"66 mm\"]", "box_lo = [\"31 mm\", \"2 mm\"]", {"plates 'bottom' and 'top'", "cell"}},
+       {"shape = \"disc\"",
+        "shape = \"polygon\"\nvertices_x = [0, 0, \"70 mm\"]\nvertices_y = [0, \"70 mm\", 0]",
+        {"vertices_y", "counter-clockwise"}},
+       {"[timestep]",
+        "[[walls]]\nshape = \"plane\"\npoint = [0, 0]\nnormal = [0, 1]\nkn = 1e9\n\n[timestep]",
+        {"'walls'", "rigid-cell scene"}},
+       {"E0 = \"40 GPa\"\nalpha = 0.237",
+        "modulus = \"30 GPa\"\npoisson_ratio = 0.4",
+        {"modulus and poisson_ratio", "0.4"}},
+       {"fracture_energy = \"40.66 N/m\"", "fracture_energy = \"0.1 N/m\"", {"facet", "snap"}}});
+}
+
+TEST_CASE("rigid_cell_secant_iteration_that_cannot_converge_stops_with_exit_4_naming_the_step") {
+  const TempDir d;
+  // An out-of-balance tolerance of 1e-300 that round-off never meets: the first step cannot converge, however often
+  // it is cut.
+  const Result r = mesocrack({"run", (kScenes / "brazilian_2d.toml").string(), "-o", "out.h5", "--set",
+                              "rigid_cell.force_tolerance=1e-300", "--set", "rigid_cell.max_iterations=2"},
+                             d.dir);
+  CHECK_MESSAGE(r.code == 4, r.describe());
+  CHECK_MESSAGE(contains(r.err, "step 1 "), r.err);
+  CHECK_MESSAGE(contains(r.err, "did not converge"), r.err);
+  CHECK_MESSAGE(contains(r.err, "out-of-balance ratio"), r.err);
+  // The run up to the failing step is kept, finite, with its status.
+  const mc::H5File f((d / "out.h5").string(), mc::H5File::Mode::ReadOnly);
+  CHECK(f.attr_string("/", "status") == "unstable");
+  for (const double v : f.read_doubles("/history/group.bottom.reaction_y")) CHECK(std::isfinite(v));
+}
+
+TEST_CASE("rigid_cell_specimen_free_to_slide_stops_with_exit_4_at_a_singular_stiffness") {
+  const TempDir d;
+  // Both plates held along y only: the disc may slide along x, its stiffness is singular.
+  const std::string base = slurp(kScenes / "brazilian_2d.toml");
+  write_file(d / "scene.toml", edit(edit(base, "box_hi = [\"39 mm\", \"4 mm\"]\nfix = \"all\"",
+                                         "box_hi = [\"39 mm\", \"4 mm\"]\nfix = \"y\""),
+                                    "\"70 mm\"]\nfix = \"all\"", "\"70 mm\"]\nfix = \"y\""));
+  const Result r = mesocrack({"run", "scene.toml", "-o", "out.h5"}, d.dir);
+  CHECK_MESSAGE(r.code == 4, r.describe());
+  CHECK_MESSAGE(contains(r.err, "step 1 "), r.err);
+  CHECK_MESSAGE(contains(r.err, "singular"), r.err);
+}
