@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "engine/archive.hpp"
+#include "engine/crack.hpp"
 
 namespace mc {
 
@@ -36,6 +37,22 @@ struct CrackRows {
   std::vector<std::int64_t> step, mode, kind, phase_a, phase_b, model, id_a, id_b;
   std::vector<double> time, position, normal;  // position, normal: D per row
   std::size_t size() const { return step.size(); }
+
+  // One crack as a row, its bodies named by the specimen's ids.
+  template <int D>
+  void add(const Crack<D>& c, std::int64_t body_a, std::int64_t body_b) {
+    step.push_back(c.step);
+    mode.push_back(static_cast<std::int64_t>(c.mode));
+    kind.push_back(static_cast<std::int64_t>(c.kind));
+    phase_a.push_back(c.phase_a);
+    phase_b.push_back(c.phase_b);
+    model.push_back(c.set);
+    id_a.push_back(body_a);
+    id_b.push_back(body_b);
+    time.push_back(c.time);
+    position.insert(position.end(), c.position.data(), c.position.data() + D);
+    normal.insert(normal.end(), c.normal.data(), c.normal.data() + D);
+  }
 };
 
 class System {

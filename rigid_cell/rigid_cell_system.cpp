@@ -247,17 +247,7 @@ CrackRows RigidCellSystem<D>::cracks(std::size_t first) const {
   CrackRows r;
   for (std::size_t k = first; k < cracks_.size(); ++k) {
     const Crack<D>& c = cracks_[k];
-    r.step.push_back(c.step);
-    r.mode.push_back(static_cast<std::int64_t>(c.mode));
-    r.kind.push_back(static_cast<std::int64_t>(c.kind));
-    r.phase_a.push_back(c.phase_a);
-    r.phase_b.push_back(c.phase_b);
-    r.model.push_back(c.set);
-    r.id_a.push_back(c.a);
-    r.id_b.push_back(c.b);
-    r.time.push_back(c.time);
-    r.position.insert(r.position.end(), c.position.data(), c.position.data() + D);
-    r.normal.insert(r.normal.end(), c.normal.data(), c.normal.data() + D);
+    r.add(c, c.a, c.b);
   }
   return r;
 }
