@@ -81,13 +81,6 @@ void RigidCellSystem<D>::build_plates() {
       if (setup_.plates[p].held[k]) prescribed_.push_back(plates_->plate_dof(p, k));
 }
 
-template <int D>
-int RigidCellSystem<D>::plate_index(const std::string& name) const {
-  for (std::size_t p = 0; p < setup_.plates.size(); ++p)
-    if (setup_.plates[p].name == name) return static_cast<int>(p);
-  return -1;
-}
-
 // The held degrees of freedom at loading time t: velocity × the smooth rise (9.1).
 template <int D>
 void RigidCellSystem<D>::prescribe(double t) {

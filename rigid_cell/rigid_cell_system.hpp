@@ -37,7 +37,6 @@ struct RigidCellSetup {
   std::uint64_t seed = 1;
   int max_rejections = 2000;
   std::vector<std::string> phase_names;
-  std::vector<double> density;                        // per phase [kg/m³]
   std::function<int(const Vec<D>&)> phase_at;         // the phase of the cell with this node (the mesostructure)
   std::function<FacetParams(int, int)> facet;         // the law between two phases (InputError if none is declared)
   std::vector<std::pair<std::string, double>> facts;  // what building the mesostructure measured
@@ -88,7 +87,6 @@ class RigidCellSystem final : public System {
   // What histories read.
   int cells() const { return static_cast<int>(tessellation_.cells.size()); }
   std::size_t contacts() const { return model_->contacts(); }
-  int plate_index(const std::string& name) const;
   double plate_reaction(int plate, int k) const { return reactions_[plates_->plate_dof(plate, k)]; }
   double plate_displacement(int plate, int k) const { return u_[plates_->plate_dof(plate, k)]; }
   std::size_t facets_damaged() const;

@@ -66,7 +66,7 @@ RigidCellSetup<D> setup_of(const Scene& s) {
   setup.l_min = r.specimen.l_min;
   setup.seed = s.seed;
   setup.max_rejections = r.specimen.max_rejections;
-  for (const auto& p : s.phases) setup.phase_names.push_back(p.name), setup.density.push_back(p.density);
+  for (const auto& p : s.phases) setup.phase_names.push_back(p.name);
   // Without a mesostructure every cell is of the first phase; with one, a cell whose node lies in an aggregate
   // is aggregate, the others mortar (Tang §4.3.1, as the explicit engine's particles).
   if (s.mesostructure.fraction > 0) {
