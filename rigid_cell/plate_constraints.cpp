@@ -1,45 +1,29 @@
 #include "rigid_cell/plate_constraints.hpp"
 
-#include <string>
-
-#include "engine/errors.hpp"
-
 namespace mc::rigid_cell {
 
 template <int D>
-PlateConstraints<D>::PlateConstraints(int cells) : owner_(cells) {
-  for (int c = 0; c < cells; ++c) owner_[c] = c;
-  first_plate_dof_ = cells * kDofs;
+PlateConstraints<D>::PlateConstraints(int cells) : first_plate_dof_(cells * kDofs) {
   map_.resize(cells * kDofs, cells * kDofs);
   map_.setIdentity();
 }
 
 template <int D>
-PlateConstraints<D>::PlateConstraints(const std::vector<Vec<D>>& nodes, std::vector<std::vector<int>> members,
+PlateConstraints<D>::PlateConstraints(const std::vector<Vec<D>>& nodes, const std::vector<int>& plate_of,
                                       const std::vector<Vec<D>>& references)
-    : plates_(std::move(members)), owner_(nodes.size(), -1) {
+    : plates_(static_cast<int>(references.size())) {
   const int n = static_cast<int>(nodes.size());
-  std::vector<int> plate_of(n, -1);
-  for (int p = 0; p < plates(); ++p) {
-    if (plates_[p].empty()) throw InputError("rigid plate " + std::to_string(p) + " holds no cell");
-    for (int c : plates_[p]) {
-      if (plate_of[c] >= 0)
-        throw InputError("rigid cells: cell " + std::to_string(c) + " belongs to two plates (" +
-                         std::to_string(plate_of[c]) + " and " + std::to_string(p) +
-                         "): a cell moves with one rigid body at most");
-      plate_of[c] = p;
-    }
-  }
+  std::vector<int> owner(n);  // the reduced block each cell moves with: its own, or its plate's
   int free = 0;
   for (int c = 0; c < n; ++c)
-    if (plate_of[c] < 0) owner_[c] = free++;
+    if (plate_of[c] < 0) owner[c] = free++;
   first_plate_dof_ = free * kDofs;
   for (int c = 0; c < n; ++c)
-    if (plate_of[c] >= 0) owner_[c] = free + plate_of[c];
+    if (plate_of[c] >= 0) owner[c] = free + plate_of[c];
 
   std::vector<Eigen::Triplet<double>> t;
   for (int c = 0; c < n; ++c) {
-    const int row = c * kDofs, col = owner_[c] * kDofs;
+    const int row = c * kDofs, col = owner[c] * kDofs;
     for (int k = 0; k < kDofs; ++k) t.emplace_back(row + k, col + k, 1.0);
     if (plate_of[c] < 0) continue;
     // u = U + Θ × r: the translation rows take −[r]× Θ (2D: Θ about z, ẑ × r = (−r_y, r_x)).
@@ -53,7 +37,7 @@ PlateConstraints<D>::PlateConstraints(const std::vector<Vec<D>>& nodes, std::vec
       t.emplace_back(row + 2, col + 3, r[1]), t.emplace_back(row + 2, col + 4, -r[0]);
     }
   }
-  map_.resize(n * kDofs, (free + plates()) * kDofs);
+  map_.resize(n * kDofs, (free + plates_) * kDofs);
   map_.setFromTriplets(t.begin(), t.end());
 }
 

@@ -15,26 +15,21 @@ class PlateConstraints {
  public:
   static constexpr int kDofs = D + Dim<D>::rot;  // per cell and per plate: translations, then rotations
 
-  // `members`: the cells of each plate (a cell in one plate at most); `references`: each plate's reference point,
-  // about which it turns. Throws InputError naming a cell given to two plates or a plate without cells.
-  PlateConstraints(const std::vector<Vec<D>>& nodes, std::vector<std::vector<int>> members,
+  // `plate_of`: each cell's plate, or −1 for a free cell; `references`: each plate's reference point, about which
+  // it turns (one per plate; a plate without cells leaves its free degrees of freedom without stiffness).
+  PlateConstraints(const std::vector<Vec<D>>& nodes, const std::vector<int>& plate_of,
                    const std::vector<Vec<D>>& references);
   // No plates: q = u.
   explicit PlateConstraints(int cells);
 
   const Eigen::SparseMatrix<double>& map() const { return map_; }  // cells·kDofs × reduced()
   int reduced() const { return static_cast<int>(map_.cols()); }
+  int plates() const { return plates_; }
   // The reduced index of component k of a plate.
   int plate_dof(int plate, int k) const { return first_plate_dof_ + plate * kDofs + k; }
-  // The reduced index of component k of a cell: its own, or its plate's.
-  int cell_dof(int cell, int k) const { return owner_[cell] * kDofs + k; }
-  int plates() const { return static_cast<int>(plates_.size()); }
-  const std::vector<int>& plate_cells(int p) const { return plates_[p]; }
 
  private:
-  std::vector<std::vector<int>> plates_;
-  std::vector<int> owner_;  // per cell: the reduced block it moves with (its own, or its plate's)
-  int first_plate_dof_ = 0;
+  int plates_ = 0, first_plate_dof_ = 0;
   Eigen::SparseMatrix<double> map_;
 };
 

@@ -51,31 +51,29 @@ template <int D>
 void RigidCellSystem<D>::build_plates() {
   std::vector<Vec<D>> nodes;
   for (const auto& c : tessellation_.cells) nodes.push_back(c.node);
-  std::vector<std::vector<int>> members(setup_.plates.size());
   std::vector<Vec<D>> references;
   std::vector<int> plate_of(cells(), -1);
   for (std::size_t p = 0; p < setup_.plates.size(); ++p) {
     const PlateSpec<D>& s = setup_.plates[p];
     Vec<D> moment = Vec<D>::Zero();
-    double volume = 0;
+    double volume = 0;  // of the plate's cells: none, no plate
     for (int c = 0; c < cells(); ++c) {
       if ((nodes[c].array() < s.lo.array()).any() || (nodes[c].array() > s.hi.array()).any()) continue;
       if (plate_of[c] >= 0)
         throw InputError("plates '" + setup_.plates[plate_of[c]].name + "' and '" + s.name + "' both hold cell " +
                          std::to_string(c) + ": a cell moves with one plate at most; make their boxes disjoint");
       plate_of[c] = static_cast<int>(p);
-      members[p].push_back(c);
       const auto& m = tessellation_.cells[c].mass;
       moment += m.volume * (nodes[c] + m.centroid());
       volume += m.volume;
     }
-    if (members[p].empty())
+    if (volume == 0)
       throw InputError("plate '" + s.name + "': no cell's node lies in its box " + box_text<D>(s.lo, s.hi) +
                        " (nodes are at least l_min = " + std::to_string(setup_.l_min) +
                        " m apart and l_min/2 inside the surface: widen the box)");
     references.push_back(moment / volume);
   }
-  plates_ = std::make_unique<PlateConstraints<D>>(nodes, std::move(members), references);
+  plates_ = std::make_unique<PlateConstraints<D>>(nodes, plate_of, references);
   for (int p = 0; p < plates_->plates(); ++p)
     for (int k = 0; k < kDofs; ++k)
       if (setup_.plates[p].held[k]) prescribed_.push_back(plates_->plate_dof(p, k));

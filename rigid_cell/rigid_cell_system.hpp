@@ -50,7 +50,7 @@ struct RigidCellSetup {
 template <int D>
 class RigidCellSystem final : public System {
  public:
-  static constexpr int kDofs = D + Dim<D>::rot;
+  static constexpr int kDofs = CellAssembly<D>::kDofs;
   // A facet is counted cracked (and logged as a break) once its damage reaches this: it then carries under 1 % of
   // the stress its strain would give intact, (3.11).
   static constexpr double kCracked = 0.99;
@@ -86,7 +86,6 @@ class RigidCellSystem final : public System {
 
   // What histories read.
   int cells() const { return static_cast<int>(tessellation_.cells.size()); }
-  std::size_t contacts() const { return model_->contacts(); }
   double plate_reaction(int plate, int k) const { return reactions_[plates_->plate_dof(plate, k)]; }
   double plate_displacement(int plate, int k) const { return u_[plates_->plate_dof(plate, k)]; }
   std::size_t facets_damaged() const;

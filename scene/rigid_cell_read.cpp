@@ -9,8 +9,6 @@ namespace mc::scene_read {
 namespace {
 
 void read_facet_laws(const Table& root, Scene& s) {
-  std::vector<std::string> names;
-  for (const auto& p : s.phases) names.push_back(p.name);
   const auto tables = root.tables("contacts");
   for (std::size_t i = 0; i < tables.size(); ++i) {
     const Table& t = tables[i];
