@@ -163,12 +163,15 @@ void read_walls(const Table& root, Scene& s) {
 void read_driven(const Table& t, GroupSpec& g, int d) {
   g.ramp_time = t.number("ramp_time", Unit::Time, Range::non_negative());
   if (g.velocity.empty()) t.fail("ramp_time", "a ramp needs the 'velocity' it rises to");
+  check_driven_axes(t, g, d);
+}
+
+void check_driven_axes(const Table& t, const GroupSpec& g, int d) {
   const char* axis = "xyz";
-  for (int k = 0; k < d; ++k)
+  for (int k = 0; k < d && !g.velocity.empty(); ++k)
     if (g.velocity[k] != 0 && !(g.fix & (1u << k)))
       t.fail("fix", "the group is driven along " + std::string(1, axis[k]) + " (velocity " +
-                        std::to_string(g.velocity[k]) + " m/s through a ramp), so " + axis[k] +
-                        " must be fixed: add it to 'fix'");
+                        std::to_string(g.velocity[k]) + " m/s), so " + axis[k] + " must be fixed: add it to 'fix'");
 }
 
 void read_groups(const Table& root, Scene& s) {

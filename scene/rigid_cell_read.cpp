@@ -91,11 +91,7 @@ void check_plates(const Table& root, const Scene& s) {
                "drives them (fix, velocity, angular_velocity, ramp_time); it has no '" +
                    std::string(key) + "'");
     if (p.box_lo.empty()) t.fail("box_lo", "a rigid-cell plate takes the cells whose nodes lie in its box");
-    const char* axis = "xyz";
-    for (int k = 0; k < s.dimension && !p.velocity.empty(); ++k)
-      if (p.velocity[k] != 0 && !(p.fix & (1u << k)))
-        t.fail("fix", "the plate is driven along " + std::string(1, axis[k]) + ", so " + axis[k] +
-                          " must be held: add it to 'fix'");
+    check_driven_axes(t, p, s.dimension);  // a plate moves along its velocity on held axes only
     const int r = s.dimension == 2 ? 1 : 3;
     for (int k = 0; k < r && !p.angular_velocity.empty(); ++k)
       if (p.angular_velocity[k] != 0 && !(p.fix & (1u << (s.dimension + k))))

@@ -27,8 +27,10 @@ void read_specimen(const Table& root, Scene& s);       // scene/specimen_read.cp
 void read_mesostructure(const Table& root, Scene& s);  // scene/specimen_read.cpp
 void read_walls(const Table& root, Scene& s);          // scene/boundary_read.cpp
 void read_groups(const Table& root, Scene& s);         // scene/boundary_read.cpp
-void read_physics(const Table& root, Scene& s);        // scene/boundary_read.cpp
-void read_observers(const Table& root, Scene& s);      // scene/observers_read.cpp
+// A group driven at a velocity holds each axis it moves along (scene/boundary_read.cpp).
+void check_driven_axes(const Table& t, const GroupSpec& g, int d);
+void read_physics(const Table& root, Scene& s);    // scene/boundary_read.cpp
+void read_observers(const Table& root, Scene& s);  // scene/observers_read.cpp
 // A scene with a [rigid_cell] table: its facet laws, cell specimen, mesostructure, plates and load step.
 void read_rigid_cell(const Table& root, Scene& s);  // scene/rigid_cell_read.cpp
 // Each wall under opening control names an opening probe (after read_observers).
