@@ -53,8 +53,8 @@ CellAssembly<D>::CellAssembly(const Tessellation<D>& t, std::vector<FacetParams>
       try {
         crack_band_slopes(params_[k], f.length);
       } catch (const InputError& e) {
-        throw InputError("rigid cells: facet " + std::to_string(k) + " between cells " + std::to_string(f.a) +
-                         " and " + std::to_string(f.b) + ": " + e.what());
+        throw InputError("rigid cells: facet " + std::to_string(k) + " between cells " + std::to_string(f.a) + " and " +
+                         std::to_string(f.b) + ": " + e.what());
       }
     }
     Contact c{f.a, f.b, f.area, f.length, local_axes<D>(f.normal), Jump::Zero()};
@@ -92,22 +92,10 @@ Vec<D> CellAssembly<D>::force(std::size_t c, const Eigen::VectorXd& u, double da
 }
 
 template <int D>
-SparseMatrix CellAssembly<D>::stiffness(const std::vector<double>& damage) const {
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(contacts_.size() * 4 * kDofs * kDofs);
-  for (std::size_t c = 0; c < contacts_.size(); ++c) {
-    const Contact& k = contacts_[c];
-    // (3.10): K = A L Bᵀ Rᵀ E R B with B = [−A_a | A_b]/L.
-    const Eigen::Matrix<double, 2 * kDofs, 2 * kDofs> Ke =
-        k.area / k.length * k.G.transpose() * moduli(c, damage[c]).asDiagonal() * k.G;
-    const int base[2] = {kDofs * k.a, kDofs * k.b};
-    for (int i = 0; i < 2 * kDofs; ++i)
-      for (int j = 0; j < 2 * kDofs; ++j)
-        triplets.emplace_back(base[i / kDofs] + i % kDofs, base[j / kDofs] + j % kDofs, Ke(i, j));
-  }
-  SparseMatrix K(dofs(), dofs());
-  K.setFromTriplets(triplets.begin(), triplets.end());
-  return K;
+Eigen::Matrix<double, 2 * CellAssembly<D>::kDofs, 2 * CellAssembly<D>::kDofs> CellAssembly<D>::element_stiffness(
+    std::size_t c) const {
+  const Contact& k = contacts_[c];
+  return k.area / k.length * k.G.transpose() * moduli(c, 0).asDiagonal() * k.G;  // K = A L Bᵀ Rᵀ E R B, B = G/L
 }
 
 template <int D>

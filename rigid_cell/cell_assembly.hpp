@@ -3,7 +3,6 @@
 // the facet law, the cell forces and the secant stiffness by virtual work (3.9)-(3.10).
 #pragma once
 #include <Eigen/Core>
-#include <Eigen/SparseCore>
 #include <utility>
 #include <vector>
 
@@ -11,8 +10,6 @@
 #include "rigid_cell/tessellation.hpp"
 
 namespace mc::rigid_cell {
-
-using SparseMatrix = Eigen::SparseMatrix<double>;
 
 template <int D>
 class CellAssembly {
@@ -34,8 +31,9 @@ class CellAssembly {
   Eigen::Vector3d strain(std::size_t c, const Eigen::VectorXd& u) const;
   // The force the facet exerts on cell b (on a: its opposite) for u and the facet's damage: A Rᵀ s.
   Vec<D> force(std::size_t c, const Eigen::VectorXd& u, double damage) const;
-  // The secant stiffness for the damage of each contact, (3.10) with (3.11).
-  SparseMatrix stiffness(const std::vector<double>& damage) const;
+  // The undamaged stiffness of contact c on the two cells' degrees of freedom (a's, then b's), (3.10); a damage D
+  // scales it by 1 − D (3.11).
+  Eigen::Matrix<double, 2 * kDofs, 2 * kDofs> element_stiffness(std::size_t c) const;
   // The cells' internal forces and moments for u and the damage of each contact.
   Eigen::VectorXd internal_forces(const Eigen::VectorXd& u, const std::vector<double>& damage) const;
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rigid_cell/cell_assembly.hpp"
+#include "rigid_cell/free_stiffness.hpp"
 #include "rigid_cell/plate_constraints.hpp"
 
 namespace mc::rigid_cell {
@@ -57,15 +58,15 @@ class StaticSolver {
   SparseMatrix map_;  // u_cells = map_ · u
   std::vector<bool> is_prescribed_;
   SparseMatrix select_;  // free × all: picks the free degrees of freedom
-  // Simplicial LLᵀ: Debian's CHOLMOD runs its supernodal factorisation on a fixed 4 OpenMP threads, which cost
-  // more in wake-ups than they saved on a 786-DOF disc (6.7 s wall, 7.4 s system time for 80 steps; simplicial:
-  // 6.8 s wall, 0.2 s system, and one thread, deterministic).
+  FreeStiffness<D> free_stiffness_;
+  // CHOLMOD chooses simplicial or supernodal from the fill of the factor; both run on this thread alone (one
+  // BLAS thread, no OpenMP level), so the bits do not depend on the thread count. On a 3D disc of 786 DOFs the
+  // supernodal one takes 1.3 s for 120 steps where simplicial took 4.0 s.
   Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> cholesky_;
-  SparseMatrix stiffness_;        // the reduced secant stiffness of the damage below, factorised on the free part
-  std::vector<double> factored_;  // that damage
+  std::vector<double> factored_;  // the damage of the factorised stiffness
   bool analysed_ = false;
 
-  void check_support(const std::vector<int>& prescribed) const;
+  static void check_support(const CellAssembly<D>& model, const SparseMatrix& map, const std::vector<int>& prescribed);
   void factorise(const std::vector<double>& damage);
 };
 

@@ -1,0 +1,36 @@
+// The static solver's secant stiffness on the free degrees of freedom (Květoň (3.10)-(3.11)):
+// K_ff = Σ_c (1 − D_c) Mᵀ K_c M, with K_c contact c's undamaged stiffness on its two cells and M the map from the free
+// reduced degrees of freedom to the cells' (the plates' u = T q with the prescribed degrees of freedom left out).
+// The facets never change, so the pattern of K_ff and each contact's share of each of its entries are found once;
+// a new damage refills the values in one pass over the shares, with no triplets, sorting or sparse products.
+#pragma once
+#include <Eigen/SparseCore>
+#include <cstddef>
+#include <vector>
+
+#include "rigid_cell/cell_assembly.hpp"
+
+namespace mc::rigid_cell {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+template <int D>
+class FreeStiffness {
+ public:
+  // `to_cells` (cells·kDofs × free): u_cells = to_cells · q_free.
+  FreeStiffness(const CellAssembly<D>& model, const SparseMatrix& to_cells);
+
+  // The lower triangle of K_ff for the damage of each contact.
+  const SparseMatrix& operator()(const std::vector<double>& damage);
+
+ private:
+  SparseMatrix K_;
+  std::vector<std::size_t> first_;  // contact c's shares are [first_[c], first_[c + 1])
+  std::vector<int> entry_;          // a share's index into K_'s values
+  std::vector<double> share_;       // its undamaged value
+};
+
+extern template class FreeStiffness<2>;
+extern template class FreeStiffness<3>;
+
+}  // namespace mc::rigid_cell
