@@ -254,6 +254,7 @@ void RigidCellSystem<D>::save(Archive& a) const {
   a.reals["u_before"] = vec(u_before_);
   a.reals["reactions"] = vec(reactions_);
   a.reals["damage"] = damage_;
+  a.reals["factored_damage"] = solver_->factored_damage();
   a.put("D_max", states_);
   a.put("cracks", cracks_);
 }
@@ -274,6 +275,7 @@ void RigidCellSystem<D>::restore(const Archive& a) {
   };
   vec("u", u_), vec("u_before", u_before_), vec("reactions", reactions_);
   damage_ = a.reals.at("damage");
+  if (const auto& f = a.reals.at("factored_damage"); !f.empty()) solver_->factorise_at(f);
   a.get("D_max", states_);
   a.get("cracks", cracks_);
 }

@@ -5,6 +5,7 @@
 // change); the numeric factorisation is reused while no facet's damage changed.
 #pragma once
 #include <Eigen/CholmodSupport>
+#include <Eigen/IterativeLinearSolvers>
 #include <memory>
 #include <vector>
 
@@ -27,6 +28,7 @@ struct StaticOptions {
 struct StaticResult {
   int iterations = 0;      // secant iterations of this step
   int factorisations = 0;  // numeric factorisations among them
+  int cg_iterations = 0;   // conjugate-gradient iterations of the solves done without one
   double residual = 0;     // the out-of-balance ratio reached
 };
 
@@ -53,7 +55,36 @@ class StaticSolver {
   Eigen::VectorXd reactions(const Eigen::VectorXd& u, const Eigen::VectorXd& f_ext,
                             const std::vector<double>& damage) const;
 
+  // The damage whose stiffness is factorised (empty before the first solve), and a factorisation at a given one:
+  // a checkpoint keeps it, since the solves that use it as a preconditioner depend on it in their last bits.
+  const std::vector<double>& factored_damage() const { return factored_; }
+  void factorise_at(const std::vector<double>& damage) { factorise(free_stiffness_(damage), damage); }
+
  private:
+  using Cholesky = Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>;
+  // The factor of an earlier stiffness as a preconditioner (Eigen's preconditioner interface).
+  class FactorPreconditioner {
+   public:
+    void use(const Cholesky* factor) { factor_ = factor; }
+    template <typename M>
+    FactorPreconditioner& analyzePattern(const M&) {
+      return *this;
+    }
+    template <typename M>
+    FactorPreconditioner& factorize(const M&) {
+      return *this;
+    }
+    template <typename M>
+    FactorPreconditioner& compute(const M&) {
+      return *this;
+    }
+    Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return factor_->solve(b); }
+    Eigen::ComputationInfo info() const { return Eigen::Success; }
+
+   private:
+    const Cholesky* factor_ = nullptr;
+  };
+
   const CellAssembly<D>& model_;
   SparseMatrix map_;  // u_cells = map_ · u
   std::vector<bool> is_prescribed_;
@@ -62,12 +93,15 @@ class StaticSolver {
   // CHOLMOD chooses simplicial or supernodal from the fill of the factor; both run on this thread alone (one
   // BLAS thread, no OpenMP level), so the bits do not depend on the thread count. On a 3D disc of 786 DOFs the
   // supernodal one takes 1.3 s for 120 steps where simplicial took 4.0 s.
-  Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> cholesky_;
-  std::vector<double> factored_;  // the damage of the factorised stiffness
+  Cholesky cholesky_;
+  std::vector<double> factored_;  // the damage of the factorised stiffness; empty: no usable factor
   bool analysed_ = false;
+  Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower, FactorPreconditioner> cg_;
 
   static void check_support(const CellAssembly<D>& model, const SparseMatrix& map, const std::vector<int>& prescribed);
-  void factorise(const std::vector<double>& damage);
+  void factorise(const SparseMatrix& Kff, const std::vector<double>& damage);
+  Eigen::VectorXd free_solution(const std::vector<double>& damage, const Eigen::VectorXd& rhs,
+                                const Eigen::VectorXd& guess, StaticResult& r);
 };
 
 extern template class StaticSolver<2>;
