@@ -150,15 +150,21 @@ TEST_CASE("summary_json_matches_histories") {
 // ================================================================ 3. every scene
 
 // A genesis packing is built before the first step and costs minutes at the reference scenes' resolution
-// (8 000 spheres in uniaxial_3d): tests of the run path over every scene make its grains four times coarser,
-// which they, about the run path and not the packing, do not notice. Returns the --set arguments.
-static std::vector<std::string> coarse_packing(const fs::path& scene) {
+// (8 000 spheres in uniaxial_3d), and a 3D rigid-cell specimen of 10^4 cells a few seconds a factorisation: tests of
+// the run path over every scene make grains four times and cells under 5 mm twice as coarse, which they, about the run
+// path and not the specimen, do not notice. Returns the --set arguments.
+static std::vector<std::string> coarse_specimen(const fs::path& scene) {
   const std::string text = slurp(scene);
-  if (!contains(text, "kind = \"packing\"")) return {};
-  const auto at = text.find("radius_min = \"");
-  REQUIRE(at != std::string::npos);
-  const double r_mm = std::stod(text.substr(at + 14));
-  return {"--set", "specimen.radius_min=" + std::to_string(4e-3 * r_mm)};
+  const auto millimetres = [&](const std::string& key) {
+    const auto at = text.find(key + " = \"");
+    REQUIRE(at != std::string::npos);
+    return std::stod(text.substr(at + key.size() + 4));
+  };
+  if (contains(text, "kind = \"packing\""))
+    return {"--set", "specimen.radius_min=" + std::to_string(4e-3 * millimetres("radius_min"))};
+  if (contains(text, "kind = \"voronoi_cells\"") && contains(text, "\ndimension = 3") && millimetres("l_min") < 5)
+    return {"--set", "specimen.l_min=" + std::to_string(2e-3 * millimetres("l_min"))};
+  return {};
 }
 
 TEST_CASE("every_scene_in_scenes_folder_runs") {
@@ -168,11 +174,13 @@ TEST_CASE("every_scene_in_scenes_folder_runs") {
   for (const auto& s : scenes) {
     CAPTURE(s.string());
     const TempDir d;
-    // 200 steps whatever the scene says: a duration is lifted (0: no limit), the step count ends the run;
-    // a scene's own stop condition may end it sooner.
-    std::vector<std::string> args{"run",   s.string(),      "-o",    "out.h5",        "--threads", "2",
-                                  "--set", "run.steps=200", "--set", "run.duration=0"};
-    const auto coarse = coarse_packing(s);
+    // 200 steps whatever the scene says (loop_steps): a duration is lifted (0: no limit), the step count ends the
+    // run; a scene's own stop condition may end it sooner.
+    const int steps = loop_steps(s, 200);
+    std::vector<std::string> args{
+        "run",   s.string(),      "-o", "out.h5", "--threads", "2", "--set", "run.steps=" + std::to_string(steps),
+        "--set", "run.duration=0"};
+    const auto coarse = coarse_specimen(s);
     args.insert(args.end(), coarse.begin(), coarse.end());
     const Result r = mesocrack(args, d.dir);
     CHECK_MESSAGE(r.code == 0, r.describe());
@@ -181,10 +189,10 @@ TEST_CASE("every_scene_in_scenes_folder_runs") {
     CHECK(j["history_rows"].number >= 2);
     CHECK(j["particles"].number >= 1);
     if (j["status"].text == "finished") {
-      CHECK(j["steps"].text == "200");
+      CHECK(j["steps"].text == std::to_string(steps));
     } else {
       CHECK_MESSAGE(j["status"].text == "stopped", j["status"].text);
-      CHECK(j["steps"].number <= 200);
+      CHECK(j["steps"].number <= steps);
     }
     CHECK(fs::exists(d / "out.xdmf"));
     CHECK(fs::exists(d / "out_history.csv"));
@@ -245,18 +253,19 @@ TEST_CASE("report_writes_pngs") {
 TEST_CASE("resume_extends_a_finished_run_like_one_long_run") {
   const std::vector<fs::path> scenes = runnable_scenes();
   REQUIRE(!scenes.empty());
-  // Rows every 50 steps and frames every 100, so the step where the short run ends has both, like the long run.
-  const std::vector<std::string> common{"--threads", "2",
-                                        "--set",     "run.duration=0",
-                                        "--set",     "output.history_every=50",
-                                        "--set",     "output.frame_every=100"};
+  // Rows every 50 steps and frames every 100 (loop_steps), so the step where the short run ends has both, like the
+  // long run.
   for (const auto& s : scenes) {
     CAPTURE(s.string());
-    const auto coarse = coarse_packing(s);
+    const auto coarse = coarse_specimen(s);
+    const std::vector<std::string> common{"--threads", "2",
+                                          "--set",     "run.duration=0",
+                                          "--set",     "output.history_every=" + std::to_string(loop_steps(s, 50)),
+                                          "--set",     "output.frame_every=" + std::to_string(loop_steps(s, 100))};
     auto args = [&](std::vector<std::string> a, int steps) {
       a.insert(a.end(), common.begin(), common.end());
       a.insert(a.end(), coarse.begin(), coarse.end());
-      a.insert(a.end(), {"--set", "run.steps=" + std::to_string(steps)});
+      a.insert(a.end(), {"--set", "run.steps=" + std::to_string(loop_steps(s, steps))});
       return a;
     };
     const TempDir d;
