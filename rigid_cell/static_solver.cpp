@@ -53,6 +53,7 @@ template <int D>
 StaticSolver<D>::StaticSolver(const CellAssembly<D>& model, const PlateConstraints<D>& plates,
                               const std::vector<int>& prescribed)
     : model_(model),
+      // Checked first: an unsupported specimen is refused before its stiffness pattern is built.
       map_((check_support(model, plates.map(), prescribed), plates.map())),
       is_prescribed_(mask(plates.reduced(), prescribed)),
       select_(free_rows(is_prescribed_)),
