@@ -275,7 +275,9 @@ void RigidCellSystem<D>::restore(const Archive& a) {
   };
   vec("u", u_), vec("u_before", u_before_), vec("reactions", reactions_);
   damage_ = a.reals.at("damage");
-  if (const auto& f = a.reals.at("factored_damage"); !f.empty()) solver_->factorise_at(f);
+  // The factor the solves were preconditioned with (absent from checkpoints of older builds: factorised afresh).
+  if (const auto f = a.reals.find("factored_damage"); f != a.reals.end() && !f->second.empty())
+    solver_->factorise_at(f->second);
   a.get("D_max", states_);
   a.get("cracks", cracks_);
 }
