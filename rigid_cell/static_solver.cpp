@@ -59,6 +59,8 @@ StaticSolver<D>::StaticSolver(const CellAssembly<D>& model, const PlateConstrain
       select_(free_rows(is_prescribed_)),
       free_stiffness_(model, map_ * select_.transpose()) {
   cholesky_.setMode(Eigen::CholmodAuto);
+  cg_.setMaxIterations(kMaxCgIterations);
+  cg_.setTolerance(kCgTolerance);
   cholesky_.cholmod().print = 0;  // a singular stiffness is reported by factorise's InstabilityError, not on stdout
   // OpenBLAS (Debian's default BLAS) threads its dense kernels on every core; other BLAS leave the symbol unset.
   if (openblas_set_num_threads) openblas_set_num_threads(1);
@@ -143,11 +145,9 @@ void StaticSolver<D>::factorise(const SparseMatrix& Kff, const std::vector<doubl
 template <int D>
 Eigen::VectorXd StaticSolver<D>::free_solution(const std::vector<double>& damage, const Eigen::VectorXd& rhs,
                                                const Eigen::VectorXd& guess, StaticResult& r) {
+  if (!factored_.empty() && damage == factored_) return cholesky_.solve(rhs);
   const SparseMatrix& Kff = free_stiffness_(damage);
-  const bool factor_of_this_damage = !factored_.empty() && damage == factored_;
-  if (!factored_.empty() && !factor_of_this_damage) {
-    cg_.setMaxIterations(kMaxCgIterations);
-    cg_.setTolerance(kCgTolerance);
+  if (!factored_.empty()) {
     cg_.compute(Kff);
     const Eigen::VectorXd x = cg_.solveWithGuess(rhs, guess);
     if (cg_.info() == Eigen::Success) {
@@ -155,10 +155,8 @@ Eigen::VectorXd StaticSolver<D>::free_solution(const std::vector<double>& damage
       return x;
     }
   }
-  if (!factor_of_this_damage) {
-    factorise(Kff, damage);
-    ++r.factorisations;
-  }
+  factorise(Kff, damage);
+  ++r.factorisations;
   return cholesky_.solve(rhs);
 }
 
