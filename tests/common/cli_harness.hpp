@@ -84,14 +84,6 @@ std::vector<fs::path> runnable_scenes() {
   return scenes;
 }
 
-// The steps a loop over every scene gives `scene` for `steps` of the others: a tenth for a 3D rigid-cell scene,
-// whose damaged steps take tens of milliseconds to seconds each (a static solve of 10^3-10^4 cells); its first
-// steps still build the specimen, solve, write and resume. Their damage is tested by their own tests.
-int loop_steps(const fs::path& scene, int steps) {
-  const std::string text = slurp(scene);
-  return contains(text, "\n[rigid_cell]") && contains(text, "\ndimension = 3") ? steps / 10 : steps;
-}
-
 // ---------------------------------------------------------------- the command as a child process
 
 struct Result {
