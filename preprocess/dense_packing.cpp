@@ -246,8 +246,7 @@ class Genesis {
     const double rc = 0.5 * std::min(size[0], size[1]);
     for (int i = 0; i < w_.particles.size(); ++i) {
       const Vec<D>& x = w_.particles.x[i];
-      if constexpr (D == 3)
-        if (s_.shape == DensePackingSpec<D>::Shape::Cylinder && (x - centre).template head<2>().norm() > rc) continue;
+      if (s_.shape == DensePackingSpec<D>::Shape::Cylinder && (x - centre).template head<2>().norm() > rc) continue;
       out.x.push_back(x);
       out.radius.push_back(w_.particles.radius[i]);
     }

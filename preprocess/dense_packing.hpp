@@ -25,7 +25,7 @@ namespace mc {
 
 template <int D>
 struct DensePackingSpec {
-  enum class Shape { Box, Cylinder } shape = Shape::Box;  // Cylinder (3D): axis along z, inscribed in the box
+  enum class Shape { Box, Cylinder } shape = Shape::Box;  // Cylinder: inscribed in the box, axis along z (2D: a disc)
   Vec<D> lo, hi;                                          // the box [m]
   double radius_min = 0;                                  // [m]
   double radius_ratio = 1.66;                             // R_max / R_min, Tang Table 5.1

@@ -64,7 +64,8 @@ void read_specimen(const Table& root, Scene& s) {
       sp.porosity = t.number("porosity", Unit::None, Range{0.05, 0.9, true, true}, d == 2 ? 0.16 : 0.36);
       sp.stress = t.number("stress", Unit::Pressure, Range::positive(), 1e5);
       sp.modulus = t.number("modulus", Unit::Pressure, Range::positive());
-      sp.cylinder = t.choice("shape", {"box", "cylinder"}, "box") == "cylinder";
+      // The disc inscribed in the box (2D), the cylinder along z inscribed in it (3D): a Brazilian disc.
+      sp.cylinder = t.choice("shape", {"box", d == 2 ? "disc" : "cylinder"}, "box") != "box";
       // Potyondy & Cundall 2004, genesis step 4: PFC uses n_f = 3. A floater fills its cage, whose largest ball
       // touches D + 1 neighbours: more cannot be asked of it without pressing it into them.
       sp.floater_contacts = static_cast<int>(t.integer("floater_contacts", Range::closed(0, d + 1), 0));
