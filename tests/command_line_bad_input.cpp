@@ -24,6 +24,11 @@ TEST_CASE_FIXTURE(BadInput, "bad_scene_keys_give_message_and_exit_2") {
                   {"lattice_tension_2d.toml: ", "'contacts[0].bond_tensile_strength_weibull_shape' (from --set) = 5",
                    "bond_tensile_strength_std", "not both"});
   }
+  SUBCASE("a 2D packing asked for a cylinder, a 3D one's shape") {
+    const std::string disc = (kScenes / "brazilian_meso_explicit_2d.toml").string();
+    check_refused(d.dir, {"run", disc, "--set", "specimen.shape=cylinder"}, 2,
+                  {"brazilian_meso_explicit_2d.toml: ", "'specimen.shape' (from --set) = \"cylinder\"", "box, disc"});
+  }
   SUBCASE("missing table") {
     scene(edit(base, "[run]\nduration = \"0.3 ms\"\n", ""));
     check_refused(d.dir, run, 2, {"scene.toml: ", "missing key 'run' (a table)"});

@@ -89,3 +89,25 @@ void genesis() {
 
 TEST_CASE("dense_packing_genesis_reaches_porosity_and_stress_and_is_reproducible_2d") { genesis<2>(); }
 TEST_CASE("dense_packing_genesis_reaches_porosity_and_stress_and_is_reproducible_3d") { genesis<3>(); }
+
+// A Brazilian disc (2D) or cylinder (3D) is carved from the packing of its box: every centre lies within the
+// inscribed circle, and the share of the box's particles kept is the circle's share of the box's section (π/4 for
+// a square section), within the sampling of a few hundred particles and the looser layer along the walls, which
+// the corners cut away hold more of in a box only 7 (3D) to 20 (2D) diameters wide (±10 %; measured +1.5 %, +7 %).
+template <int D>
+void carved_cylinder() {
+  auto s = spec<D>(5);
+  s.hi = Vec<D>::Constant(12e-3);
+  if constexpr (D == 3) s.radius_min = 0.8e-3;  // some 600 spheres: seconds
+  const Packing<D> box = dense_packing<D>(s);
+  s.shape = DensePackingSpec<D>::Shape::Cylinder;
+  const Packing<D> disc = dense_packing<D>(s);
+  const Eigen::Vector2d centre(6e-3, 6e-3);
+  for (const auto& x : disc.x) CHECK((x.template head<2>() - centre).norm() <= 6e-3);
+  const double kept = double(disc.x.size()) / box.x.size();
+  MESSAGE(D, "D: ", disc.x.size(), " of ", box.x.size(), " particles kept (", kept, ")");
+  CHECK(kept == doctest::Approx(M_PI / 4).epsilon(0.10));
+}
+
+TEST_CASE("dense_packing_carves_the_inscribed_disc_2d") { carved_cylinder<2>(); }
+TEST_CASE("dense_packing_carves_the_inscribed_cylinder_3d") { carved_cylinder<3>(); }
