@@ -15,6 +15,7 @@
 #include "engine/system.hpp"
 #include "rigid_cell/cell_assembly.hpp"
 #include "rigid_cell/plate_constraints.hpp"
+#include "rigid_cell/random_field.hpp"
 #include "rigid_cell/static_solver.hpp"
 
 namespace mc::rigid_cell {
@@ -45,6 +46,8 @@ struct RigidCellSetup {
   double load_step = 0;  // [s] of loading time per static solve
   StaticOptions options;
   bool crack_log = false;
+  // Květoň (3.21): the field h that scales each contact facet's f_t by h and G_t by h² at its centroid; null: none.
+  std::shared_ptr<const RandomField<D>> strength_field;
 };
 
 template <int D>
@@ -121,6 +124,7 @@ class RigidCellSystem final : public System {
   std::int64_t snap_throughs_ = 0;
 
   void build_cells();
+  void apply_strength_field(std::vector<FacetParams>& params);
   void build_plates();
   void prescribe(double t);
   void advance(double from, double to, int cuts);

@@ -1,6 +1,10 @@
 // The keys of a rigid-cell scene (a scene with a [rigid_cell] table): the solver's options, the facet laws of
-// [[contacts]], the cell specimen, the plates ([[groups]] by box) and the load step (timestep.fixed).
+// [[contacts]], the cell specimen, the random field of its strength ([rigid_cell.random_field]), the plates
+// ([[groups]] by box) and the load step (timestep.fixed).
 #include <algorithm>
+#include <cmath>
+#include <optional>
+#include <sstream>
 
 #include "scene/scene_read_parts.hpp"
 
@@ -78,6 +82,57 @@ void read_cell_specimen(const Table& root, Scene& s) {
   t.finish();
 }
 
+// The specimen's bounding box, its extent along each axis: what the random field's grid spans.
+std::vector<double> specimen_extent(const CellSpecimenSpec& c, int d) {
+  using S = CellSpecimenSpec::Shape;
+  if (c.shape == S::Box) return c.size;
+  std::vector<double> e{2 * c.radius, 2 * c.radius};
+  if (c.shape == S::Polygon)
+    for (int k = 0; k < 2; ++k) {
+      const auto [lo, hi] = std::minmax_element(c.vertices.begin(), c.vertices.end(),
+                                                [k](const auto& a, const auto& b) { return a[k] < b[k]; });
+      e[k] = (*hi)[k] - (*lo)[k];
+    }
+  if (d == 3) e.push_back(c.thickness);
+  return e;
+}
+
+// Květoň §3.4 (3.21): the random field of [rigid_cell.random_field], on a grid over the specimen's box (so read
+// after the specimen). Each axis's correlation matrix is decomposed densely, in O(n³): at most this many nodes.
+constexpr double kMaxFieldNodesPerAxis = 1000;
+
+void read_random_field(const Table& t, Scene& s) {
+  RandomFieldSpec f;
+  f.correlation_length = t.number("correlation_length", Unit::Length, Range::positive());
+  f.std = t.number("std", Unit::None, Range{0.0, 0.5, true, false});
+  const double lc = f.correlation_length;
+  f.grid_spacing = t.number("grid_spacing", Unit::Length, Range::positive(), lc / 3);
+  if (f.grid_spacing > lc / 2) {
+    std::ostringstream m;
+    m << "at most correlation_length/2 = " << lc / 2
+      << " m: a coarser grid misses the field's variance between its nodes (EOLE)";
+    t.fail("grid_spacing", m.str());
+  }
+  const std::vector<double> extent = specimen_extent(s.rigid_cell->specimen, s.dimension);
+  for (std::size_t k = 0; k < extent.size(); ++k) {
+    const double nodes = std::ceil(extent[k] / f.grid_spacing) + 1;
+    if (nodes <= kMaxFieldNodesPerAxis) continue;
+    std::ostringstream m;
+    m << "gives " << nodes << " nodes along "
+      << "xyz"[k] << " over the specimen's " << extent[k] << " m; at most " << kMaxFieldNodesPerAxis
+      << " are allowed (each axis's correlation matrix is decomposed densely): a larger grid_spacing (default "
+         "correlation_length/3) or a longer correlation_length";
+    t.fail("grid_spacing", m.str());
+  }
+  f.variance_kept = t.number("variance_kept", Unit::None, Range{0.0, 0.9999, true, false}, f.variance_kept);
+  f.weibull_modulus = t.number("weibull_modulus", Unit::None, Range::closed(1, 100), f.weibull_modulus);
+  f.grafting_probability =
+      t.number("grafting_probability", Unit::None, Range{0.0, 0.1, true, false}, f.grafting_probability);
+  f.seed_offset = static_cast<std::uint64_t>(t.integer("seed_offset", Range::closed(0, 9.0e18), 0));
+  t.finish();
+  s.rigid_cell->random_field = f;
+}
+
 // Plates are [[groups]] by box; their held degrees of freedom follow velocity / angular_velocity through (9.1).
 void check_plates(const Table& root, const Scene& s) {
   const auto tables = root.tables("groups");
@@ -122,9 +177,11 @@ void read_rigid_cell(const Table& root, Scene& s) {
   r.max_iterations = static_cast<int>(t.integer("max_iterations", Range::closed(1, 1e6), r.max_iterations));
   r.crack_log = t.boolean("crack_log", false);
   r.energy = t.boolean("energy", false);
+  const std::optional<Table> field = t.optional_table("random_field");
   t.finish();
   read_facet_laws(root, s);
   read_cell_specimen(root, s);
+  if (field) read_random_field(*field, s);
   read_mesostructure(root, s);
   read_groups(root, s);
   check_plates(root, s);

@@ -172,9 +172,21 @@ struct FacetLawSpec {
   std::string where;  // the table, for messages: "file: contacts[0]"
 };
 
+// Květoň §3.4 (3.21): one random field h(x) of mean 1 scales each contact facet's tensile strength by h and its
+// fracture energy by h², at the facet's centroid (rigid_cell/random_field.hpp).
+struct RandomFieldSpec {
+  double correlation_length = 0;  // l_c of the autocorrelation exp(−|Δx|²/l_c²) [m]
+  double std = 0;                 // standard deviation of h [-]
+  double grid_spacing = 0;        // of the Karhunen–Loève grid over the specimen's box [m] (by default l_c/3)
+  double variance_kept = 0.99;    // fraction of the grid's variance the modes kept carry
+  double weibull_modulus = 24, grafting_probability = 1e-3;  // the left tail (Bažant & Pang 2007)
+  std::uint64_t seed_offset = 0;  // the field's seed is the scene's plus this: several fields on the same cells
+};
+
 struct RigidCellSpec {
   CellSpecimenSpec specimen;
   std::vector<FacetLawSpec> facets;
+  std::optional<RandomFieldSpec> random_field;             // absent: f_t and G_t as the facet laws give them
   double damage_tolerance = 1e-6, force_tolerance = 1e-6;  // rigid_cell/static_solver.hpp
   int max_iterations = 500;
   bool crack_log = false;  // each facet's first damage and its crack (D ≥ 0.99) written to /cracks

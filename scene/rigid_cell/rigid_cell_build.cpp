@@ -45,6 +45,24 @@ std::vector<std::vector<std::optional<FacetParams>>> facet_table(const Scene& s)
   return table;
 }
 
+// Květoň §3.4: the field over the specimen's box, drawn from the scene's seed plus the field's offset.
+template <int D>
+std::shared_ptr<const RandomField<D>> strength_field(const Scene& s, const SpecimenShape<D>& shape) {
+  const RandomFieldSpec& f = *s.rigid_cell->random_field;
+  RandomFieldParams p;
+  p.correlation_length = f.correlation_length;
+  p.deviation = f.std;
+  p.grid_spacing = f.grid_spacing;
+  p.variance_kept = f.variance_kept;
+  p.tail = {f.weibull_modulus, f.grafting_probability};
+  p.seed = s.seed + f.seed_offset;
+  try {
+    return std::make_shared<const RandomField<D>>(shape.lo(), shape.hi(), p);
+  } catch (const InputError& e) {
+    throw InputError(s.file + ": rigid_cell.random_field: " + e.what());
+  }
+}
+
 template <int D>
 PlateSpec<D> plate_of(const GroupSpec& g) {
   constexpr int kDofs = D + Dim<D>::rot;
@@ -86,6 +104,7 @@ RigidCellSetup<D> setup_of(const Scene& s) {
                        "' meet at a facet, and [[contacts]] gives no facet law between them");
     return *table[a][b];
   };
+  if (r.random_field) setup.strength_field = strength_field<D>(s, *setup.shape);
   for (const GroupSpec& g : s.groups) setup.plates.push_back(plate_of<D>(g));
   setup.load_step = s.timestep.fixed;
   setup.options = {r.damage_tolerance, r.force_tolerance, r.max_iterations};

@@ -1,5 +1,6 @@
 // Scene → the rigid-cell family's System (rigid_cell/rigid_cell_system.hpp): the shape, the phases from the
-// mesostructure, the facet law of each phase pair, the plates, the load step and the histories the scene records.
+// mesostructure, the facet law of each phase pair, the random field of their strength, the plates, the load step
+// and the histories the scene records.
 // Compiled only when the family is (MESOCRACK_RIGID_CELL).
 #pragma once
 #include <memory>
