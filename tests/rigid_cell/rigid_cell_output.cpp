@@ -361,3 +361,16 @@ TEST_CASE("rigid_cell_output_last_frame_damage_is_the_systems_and_keeps_every_fa
   }
   CHECK(split > 20);
 }
+
+TEST_CASE("rigid_cell_report_draws_the_crack_pattern_of_the_cells_facets") {
+  const TempDir d;
+  for (const BoxRun& box : run_boxes(d)) {
+    CAPTURE(box.file);
+    const Result r = mesocrack({"report", box.file}, d.dir);
+    REQUIRE_MESSAGE(r.code == 0, r.describe());
+    const std::string png = (d.dir / (fs::path(box.file).stem().string() + "_cells.png")).string();
+    CHECK_MESSAGE(contains(r.out, png), r.out);
+    REQUIRE(fs::exists(png));
+    CHECK(slurp(png).substr(0, 8) == std::string("\x89PNG\r\n\x1a\n", 8));
+  }
+}
