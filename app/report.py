@@ -5,9 +5,10 @@
 
 Writes <stem>_history.png, <stem>_xy.png (if the scene asks for x-y plots),
 <stem>_energy.png (if energy series exist), <stem>_specimen.png (2D) or
-<stem>_slice.png (3D), <stem>_cracks.png (if the run logged cracks) and, for a
-pull test ([pullout]), <stem>_pullout.png and <stem>_pullout_cracks.png next to
-OUT.h5 (or into DIR) and prints their paths. The figures are drawn by
+<stem>_slice.png (3D), <stem>_cracks.png (if the run logged cracks),
+<stem>_cells.png (rigid cells: the crack pattern of their damaged facets) and,
+for a pull test ([pullout]), <stem>_pullout.png and <stem>_pullout_cracks.png
+next to OUT.h5 (or into DIR) and prints their paths. The figures are drawn by
 report_plots.py (time series), report_specimen.py (specimen and cracks) and
 report_pullout.py (pull tests).
 The file is opened read-only and without HDF5 file locking, so a run that is
@@ -25,7 +26,7 @@ import numpy as np
 # found there whichever folder Python was started from.
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_plots import ReportError, plot_energy, plot_history, plot_xy  # noqa: E402
-from report_specimen import plot_cracks, plot_cracks_at_peak, plot_specimen  # noqa: E402
+from report_specimen import plot_cells, plot_cracks, plot_cracks_at_peak, plot_specimen  # noqa: E402
 from report_pullout import plot_pullout  # noqa: E402
 
 FORMAT = "mesocrack-1"
@@ -97,6 +98,7 @@ def read_run(f):
                                "outlines": read_outlines(spec)}
 
     run["cracks"] = read_cracks(f, D, run["specimen"])
+    run["cells"] = read_cells(f, run)
 
     frames = f.get("frames")
     if isinstance(frames, h5py.Group) and "time" in frames and "x" in frames:
@@ -119,6 +121,45 @@ def read_outlines(spec):
     xy = np.asarray(spec["outline_xy"], dtype=float).reshape(-1, 2)
     start = np.asarray(spec["outline_start"], dtype=int)
     return [xy[a:b] for a, b in zip(start[:-1], start[1:]) if b - a >= 3]
+
+
+def load_peak(run):
+    """Where the load the scene plots (the y of its first x-y plot) peaks: {series, unit, value, time}, or None."""
+    h = run["history"]
+    for _, y in run["xy_plots"][:1]:
+        if y in h and "time" in h and len(h[y]["data"]) > 0:
+            k = int(np.argmax(np.abs(h[y]["data"])))
+            return {"series": y, "unit": h[y]["unit"], "value": float(h[y]["data"][k]),
+                    "time": float(h["time"]["data"][k])}
+    return None
+
+
+def read_cells(f, run):
+    """A specimen of rigid cells (None for particles): its corners, its facets and the cells' faces as polygons over
+    them (README, "Output", /specimen/cells), and the contact facets' damage in the last frame and, when the scene
+    plots a load that peaked before it, in the last frame by the peak."""
+    g, frames = f.get("specimen/cells"), f.get("frames")
+    if not isinstance(g, h5py.Group) or not isinstance(frames, h5py.Group) or "damage" not in frames:
+        return None
+    D = run["dimension"]
+    F = min(frames[k].shape[0] for k in ("time", "step", "damage"))
+    if F == 0:
+        return None
+    cells = {"corner": np.asarray(g["corner"], dtype=float).reshape(-1, D),
+             "contacts": int(g.attrs["contacts"]), "frames": []}
+    for k in ("facet_start", "facet_corner", "face_start", "face_corner"):
+        cells[k] = np.asarray(g[k], dtype=np.int64)
+    times = np.asarray(frames["time"][:F], dtype=float)
+    picks = [(F - 1, None)]
+    peak = load_peak(run)
+    if peak is not None:
+        by_peak = int(np.searchsorted(times, peak["time"], side="right")) - 1
+        if 0 <= by_peak < F - 1:
+            picks.insert(0, (by_peak, peak))
+    for k, p in picks:
+        cells["frames"].append({"index": k, "count": F, "time": float(times[k]), "step": int(frames["step"][k]),
+                                "damage": np.asarray(frames["damage"][k], dtype=float), "peak": p})
+    return cells
 
 
 def read_cracks(f, D, spec):
@@ -163,7 +204,7 @@ def main(argv=None):
         except OSError as e:
             raise ReportError(f"cannot create output directory {out_dir}: {e.strerror}")
         stem = os.path.splitext(os.path.basename(args.file))[0]
-        for plot in (plot_history, plot_xy, plot_energy, plot_specimen, plot_cracks, plot_cracks_at_peak,
+        for plot in (plot_history, plot_xy, plot_energy, plot_specimen, plot_cracks, plot_cracks_at_peak, plot_cells,
                      plot_pullout):
             for path in plot(run, stem, out_dir):
                 print(path, flush=True)

@@ -1,11 +1,14 @@
 """Pictures of a mesocrack specimen, for app/report.py: the particles by phase, by contact force and (2D) their
-bonds by phase pair, and the crack log over them; a 3D specimen is shown by its section at mid-depth."""
+bonds by phase pair, and the crack log over them; a 3D specimen is shown by its section at mid-depth. Rigid cells:
+the crack pattern of their damaged facets."""
 import matplotlib
 
 matplotlib.use("Agg")  # headless: no display on compute nodes or CI
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from matplotlib.cm import ScalarMappable  # noqa: E402
 from matplotlib.collections import EllipseCollection, LineCollection, PolyCollection  # noqa: E402
+from matplotlib.colors import ListedColormap, Normalize  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 
@@ -241,3 +244,98 @@ def plot_cracks(run, stem, out_dir, until=None):
     breaks = int((c["kind"] == 0).sum())
     ax.set_title(f"{stem}: {breaks} broken bonds; {when}", fontsize="medium")
     return [save(fig, out_dir, stem, "cracks" if until is None else "cracks_peak", dpi=200 if len(r) > 10000 else 120)]
+
+
+# A facet counts as cracked in the crack picture from this damage on: it then carries at most half the stress its
+# strain would give intact (Květoň (3.11)). The engine logs a break later, at 0.99 (RigidCellSystem::kCracked).
+CRACK_DAMAGE = 0.5
+# Damage from CRACK_DAMAGE (orange) to 1 (black), away from the colour map's white end, which the page would hide.
+DAMAGE_COLOURS = ListedColormap(plt.get_cmap("inferno_r")(np.linspace(0.3, 1.0, 256)))
+
+
+def polygon_edges(start, corner):
+    """Each edge of polygons over points (polygon k: points corner[start[k]:start[k+1]]): first and second point
+    index and the polygon's index, in polygon order."""
+    count = np.diff(start)
+    polygon = np.repeat(np.arange(len(count)), count)
+    following = np.arange(len(corner)) + 1
+    following[start[1:] - 1] = start[:-1]  # each polygon's last point closes it with its first
+    return corner, corner[following], polygon
+
+
+def mid_section(points, start, corner, z):
+    """Where polygons cross the plane at height z: their segments in x-y [M, 2, 2] and which polygon each is. An
+    edge crosses when its ends lie on both sides (a corner on the plane counts as above), so a closed polygon crosses
+    an even number of times, a convex one (a Voronoi facet) twice."""
+    a, b, polygon = polygon_edges(start, corner)
+    za, zb = points[a, 2] - z, points[b, 2] - z
+    cross = (za < 0) != (zb < 0)
+    t = (za[cross] / (za[cross] - zb[cross]))[:, None]
+    p = points[a[cross], :2] + t * (points[b[cross], :2] - points[a[cross], :2])
+    return p.reshape(-1, 2, 2), polygon[cross][::2]
+
+
+def cell_picture(run):
+    """What the crack picture of cells draws in its plane: (the cells' outlines as segments, the facets' segments
+    and each one's facet index, a description of the plane). 2D: the cells' outlines and the facets themselves. 3D:
+    their section by the plane at mid-thickness (z): the shapes are outlines extruded along z, so the section shows
+    the outline as a 2D run does, and a crack through the thickness crosses it as a line."""
+    c = run["cells"]
+    points = c["corner"]
+    if run["dimension"] == 2:
+        a, b, _ = polygon_edges(c["face_start"], c["face_corner"])
+        outlines = np.stack([points[a], points[b]], axis=1)
+        ends = c["facet_corner"][c["facet_start"][:-1, None] + np.arange(2)]
+        return outlines, points[ends], np.arange(len(ends)), "the cells"
+    z = 0.5 * (points[:, 2].min() + points[:, 2].max())
+    outlines, _ = mid_section(points, c["face_start"], c["face_corner"], z)
+    facets, which = mid_section(points, c["facet_start"], c["facet_corner"], z)
+    factor, unit = si_scale([z], "m")
+    return outlines, facets, which, f"the cells' section at mid-thickness, z = {z * factor:.4g} {unit}"
+
+
+def plot_cells(run, stem, out_dir):
+    """Rigid cells: the crack pattern, as the contact facets whose damage reached CRACK_DAMAGE coloured by their
+    damage over the cells' outlines (faint), in the last frame and, beside it, the last frame by the peak of the load
+    the scene plots."""
+    c = run.get("cells")
+    if c is None:
+        return []
+    outlines, facets, which, plane = cell_picture(run)
+    lo, hi = c["corner"][:, :2].min(axis=0), c["corner"][:, :2].max(axis=0)
+    factor, lunit = si_scale(np.abs([lo, hi]).ravel(), "m")
+    panels = len(c["frames"])
+    # Panels of the specimen's shape, some 6 inches tall and wide enough for their titles.
+    width = np.clip(5.5 * (hi[0] - lo[0]) / max(hi[1] - lo[1], 1e-300), 3.0, 7.5)
+    fig, axes = plt.subplots(1, panels, figsize=(1.3 + width * panels, 6.8), squeeze=False, layout="compressed")
+    contact = which < c["contacts"]
+    norm = Normalize(CRACK_DAMAGE, 1.0)
+    for ax, frame in zip(axes.ravel(), c["frames"]):
+        ax.add_collection(LineCollection(outlines * factor, colors="0.8", linewidths=0.4))
+        damage = np.zeros(len(which))
+        damage[contact] = frame["damage"][which[contact]]
+        cracked = damage >= CRACK_DAMAGE
+        order = np.argsort(damage[cracked])  # the most damaged drawn last, on top
+        lines = LineCollection(facets[cracked][order] * factor, cmap=DAMAGE_COLOURS, norm=norm, linewidths=1.6)
+        lines.set_array(damage[cracked][order])
+        ax.add_collection(lines)
+        ax.set_xlim(lo[0] * factor, hi[0] * factor)
+        ax.set_ylim(lo[1] * factor, hi[1] * factor)
+        ax.set_aspect("equal")
+        ax.set_xlabel(f"x [{lunit}]")
+        ax.set_ylabel(f"y [{lunit}]")
+        tf, tu = si_scale([frame["time"]], "s")
+        when = (f"t = {frame['time'] * tf:.4g} {tu}, step {frame['step']} "
+                f"(frame {frame['index'] + 1} of {frame['count']})")
+        if frame["peak"] is not None:
+            p = frame["peak"]
+            pf, pu = si_scale([p["value"]], p["unit"])
+            when = f"by the peak of {p['series']} ({p['value'] * pf:.4g} {pu}):\n" + when
+        counts = f"{int((frame['damage'] >= CRACK_DAMAGE).sum())} of {c['contacts']} facets with D ≥ {CRACK_DAMAGE:g}"
+        if run["dimension"] == 3:
+            counts += f", {int(cracked.sum())} cut by the section"
+        ax.set_title(f"{when}\n{counts}", fontsize="small")
+    fig.colorbar(ScalarMappable(norm=norm, cmap=DAMAGE_COLOURS), ax=axes.ravel().tolist(), shrink=0.8,
+                 label="facet damage D")
+    fig.suptitle(f"{stem}: crack pattern, facets with D ≥ {CRACK_DAMAGE:g}\nover {plane}", fontsize="medium")
+    return [save(fig, out_dir, stem, "cells", dpi=150)]

@@ -1,6 +1,6 @@
 // What the runner (studies/runner.cpp) needs of a solver family: advance in time, tell where it is, sample the
 // histories its scene declares, describe its specimen and frames, report its cracks, save and restore its state.
-// The explicit particle world implements it (scene/explicit_system.hpp); the rigid-cell model will too. It is
+// The explicit particle world implements it (scene/explicit_system.hpp), and so does the rigid-cell model. It is
 // dimension-free, so the runner, the output and the studies are written once for every solver and dimension.
 #pragma once
 #include <array>
@@ -21,6 +21,37 @@ struct Series {
   std::function<double()> sample;  // empty when only the names are wanted
 };
 
+// Polygons over a list of points: polygon k has the points corner[start[k]] .. corner[start[k + 1] − 1], in order
+// around it (a 2D facet: its two ends).
+struct Polygons {
+  std::vector<std::int64_t> start{0}, corner;
+  std::size_t size() const { return start.size() - 1; }
+  void add(const std::vector<std::int64_t>& corners) {
+    corner.insert(corner.end(), corners.begin(), corners.end());
+    start.push_back(static_cast<std::int64_t>(corner.size()));
+  }
+};
+
+// The cells of a specimen of rigid cells, as built (README, "Output file", /specimen/cells): each cell's own copy of
+// its corners, so that a cell drawn from them moves with the cell; the facets (between two cells, then on the
+// specimen's surface) as polygons over their first cell's corners; and each cell's surface as polygons (3D: its
+// facets; 2D: its outline). Empty for a specimen of particles.
+struct CellGeometry {
+  std::vector<double> corner;                  // C·D, cell after cell
+  Polygons facets;                             // over the corners of the facet's cell a
+  std::vector<std::int64_t> facet_a, facet_b;  // per facet, its two cells (b = −1: the specimen's surface)
+  std::size_t contacts = 0;                    // facets [0, contacts) join two cells
+  Polygons faces;                              // each cell's surface, cell after cell
+  std::vector<std::int64_t> face_cell;         // per face, its cell
+  bool empty() const { return corner.empty(); }
+};
+
+// One frame of the cells: their corners (C·D, as CellGeometry::corner) moved with them, and each contact facet's
+// damage.
+struct CellFrame {
+  std::vector<double> corner, damage;
+};
+
 // The specimen as built, as the output file keeps it (README, "Output file").
 struct SpecimenData {
   int dimension;
@@ -30,6 +61,7 @@ struct SpecimenData {
   std::vector<std::int64_t> id;                       // the specimen's own ids (bodies may be renumbered for locality)
   std::vector<std::pair<std::string, double>> facts;  // what generating it measured (porosity, bonds per phase pair …)
   std::vector<std::vector<std::array<double, 2>>> outlines;  // aggregate outlines in the picture plane
+  CellGeometry cells;                                        // a specimen of rigid cells: their polygons
 };
 
 // Rows of the crack log: one per bond break or first yield (README, "Output file", /cracks).
@@ -76,6 +108,9 @@ class System {
   virtual SpecimenData specimen() const = 0;
   // Positions, velocities and forces of every body, N·D values each: one frame of the output.
   virtual void frame(std::vector<double>& x, std::vector<double>& v, std::vector<double>& force) const = 0;
+  // A specimen of cells (SpecimenData::cells): where its cells' corners are and the damage of its contact facets,
+  // for the same frame. Nothing for a specimen of particles.
+  virtual CellFrame cell_frame() const { return {}; }
 
   // The crack log: the models that write to it (empty: the scene keeps no log), how many entries it has, and its
   // entries from `first` on.

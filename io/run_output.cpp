@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
+#include <stdexcept>
+#include <utility>
 
 #include "engine/errors.hpp"
 
@@ -40,6 +42,17 @@ std::string join(const std::vector<std::string>& v) {
   std::string s;
   for (const auto& x : v) s += (s.empty() ? "" : ",") + x;
   return s;
+}
+// Polygons [from, to) in XDMF's Mixed connectivity: each its type (3 polygon; 2 polyline, for a 2D facet's two
+// ends), its corner count, its corners.
+std::vector<std::int64_t> xdmf_mixed(const Polygons& p, std::size_t from, std::size_t to) {
+  std::vector<std::int64_t> m;
+  for (std::size_t k = from; k < to; ++k) {
+    const std::int64_t n = p.start[k + 1] - p.start[k];
+    m.insert(m.end(), {n >= 3 ? 3 : 2, n});
+    m.insert(m.end(), p.corner.begin() + p.start[k], p.corner.begin() + p.start[k + 1]);
+  }
+  return m;
 }
 }  // namespace
 
@@ -80,8 +93,34 @@ void RunOutput::write_initial(const std::string& scene_text, const std::string& 
   file_.create_table("/frames/time", 0);
   file_.create_table("/frames/step", 0, true);
   for (const char* f : {"/frames/x", "/frames/v", "/frames/force"}) file_.create_table(f, n * s.dimension);
+  if (!s.cells.empty()) write_cells(s);
   set_status("running");
   flush();
+}
+
+// /specimen/cells (README.md, "Output"): the polygons as built, and what ParaView reads of them; the frames' tables
+// of the cells' corners and of the contact facets' damage (none without a contact).
+void RunOutput::write_cells(const SpecimenData& s) {
+  const CellGeometry& c = s.cells;
+  const auto d = static_cast<hsize_t>(s.dimension);
+  const std::string g = "/specimen/cells/";
+  file_.write(g + "corner", c.corner, {c.corner.size() / d, d});
+  for (const auto& [name, p] : {std::pair{"facet", &c.facets}, std::pair{"face", &c.faces}}) {
+    file_.write(g + name + "_start", p->start, {p->start.size()});
+    file_.write(g + name + "_corner", p->corner, {p->corner.size()});
+  }
+  file_.write(g + "facet_a", c.facet_a, {c.facet_a.size()});
+  file_.write(g + "facet_b", c.facet_b, {c.facet_b.size()});
+  file_.set_attr("/specimen/cells", "contacts", static_cast<std::int64_t>(c.contacts));
+  std::vector<std::int32_t> face_phase;
+  for (const std::int64_t cell : c.face_cell) face_phase.push_back(s.phase.at(cell));
+  file_.write(g + "face_cell", c.face_cell, {c.face_cell.size()});
+  file_.write(g + "face_phase", face_phase, {face_phase.size()});
+  const auto faces = xdmf_mixed(c.faces, 0, c.faces.size()), contacts = xdmf_mixed(c.facets, 0, c.contacts);
+  file_.write(g + "xdmf_faces", faces, {faces.size()});
+  file_.write(g + "xdmf_contacts", contacts, {contacts.size()});
+  file_.create_table("/frames/cell_corner", c.corner.size());
+  if (c.contacts > 0) file_.create_table("/frames/damage", c.contacts);
 }
 
 namespace {
@@ -144,13 +183,22 @@ std::int64_t RunOutput::history_rows() const {
 }
 
 void RunOutput::append_frame(double time, std::int64_t step, const std::vector<double>& x, const std::vector<double>& v,
-                             const std::vector<double>& force) {
+                             const std::vector<double>& force, const CellFrame& cells) {
   file_.append_rows("/frames/time", &time, 1);
   file_.append_rows("/frames/step", &step, 1);
-  file_.append_rows("/frames/x", x.data(), 1);
-  file_.append_rows("/frames/v", v.data(), 1);
-  file_.append_rows("/frames/force", force.data(), 1);
+  append_frame_row("/frames/x", x);
+  append_frame_row("/frames/v", v);
+  append_frame_row("/frames/force", force);
+  if (file_.exists("/frames/cell_corner")) append_frame_row("/frames/cell_corner", cells.corner);
+  if (file_.exists("/frames/damage")) append_frame_row("/frames/damage", cells.damage);
   if (published_) write_xdmf();
+}
+
+void RunOutput::append_frame_row(const std::string& ds, const std::vector<double>& row) {
+  if (row.size() != file_.shape(ds).at(1))
+    throw std::invalid_argument(file_.path() + ":" + ds + ": a frame of " + std::to_string(row.size()) +
+                                " values, the table's rows hold " + std::to_string(file_.shape(ds).at(1)));
+  file_.append_rows(ds, row.data(), 1);
 }
 
 std::int64_t RunOutput::frame_rows() const { return static_cast<std::int64_t>(file_.rows("/frames/time")); }
@@ -230,8 +278,7 @@ void RunOutput::truncate(std::int64_t history_rows, std::int64_t frame_rows, std
   if (file_.exists("/cracks"))
     for (const auto& n : file_.list("/cracks")) file_.truncate_rows("/cracks/" + n, crack_rows);
   for (const auto& n : names_) file_.truncate_rows("/history/" + n, history_rows);
-  for (const char* f : {"/frames/time", "/frames/step", "/frames/x", "/frames/v", "/frames/force"})
-    file_.truncate_rows(f, frame_rows);
+  for (const auto& n : file_.list("/frames")) file_.truncate_rows("/frames/" + n, frame_rows);
   write_xdmf();
   flush();
 }
@@ -261,6 +308,121 @@ void RunOutput::write_csv() const {
   write_atomically(stem_path(file_.path(), "_history.csv"), out.str());
 }
 
+namespace {
+
+// Row f of the frame table `ds` [frames, rows·width] as an array of `rows` rows of `width` (1: a plain list).
+std::string frame_slab(const std::string& h5, const std::string& ds, hsize_t f, hsize_t frames, hsize_t rows,
+                       hsize_t width) {
+  std::ostringstream s;
+  s << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << rows;
+  if (width > 1) s << " " << width;
+  s << "\"><DataItem Dimensions=\"3 2\" Format=\"XML\">" << f << " 0 1 1 1 " << rows * width << "</DataItem>"
+    << "<DataItem Dimensions=\"" << frames << " " << rows * width
+    << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":" << ds << "</DataItem></DataItem>";
+  return s.str();
+}
+
+// A whole dataset of `size` values (and `width` per row, if more than 1).
+std::string dataset(const std::string& h5, const std::string& ds, hsize_t size, const char* type, int precision,
+                    hsize_t width = 1) {
+  std::ostringstream s;
+  s << "<DataItem Dimensions=\"" << size;
+  if (width > 1) s << " " << width;
+  s << "\" NumberType=\"" << type << "\" Precision=\"" << precision << "\" Format=\"HDF\">" << h5 << ":" << ds
+    << "</DataItem>";
+  return s.str();
+}
+
+// A whole dataset of `size` values as a slab of itself. ParaView's XDMF reader keeps a grid whose topology comes
+// straight from a dataset to reuse in the next frame, and, when that grid's geometry is a frame's slab, says it
+// cannot; a topology given as a slab is read afresh each frame without that message.
+std::string whole_slab(const std::string& h5, const std::string& ds, hsize_t size, const char* type, int precision) {
+  std::ostringstream s;
+  s << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << size << "\"><DataItem Dimensions=\"3 1\" Format=\"XML\">0 1 "
+    << size << "</DataItem>" << dataset(h5, ds, size, type, precision) << "</DataItem>";
+  return s.str();
+}
+
+// The sizes of a specimen of cells' datasets (README.md, "Output"), as the XDMF sidecar states them.
+struct CellSizes {
+  hsize_t corners, faces, faces_mixed, contacts, contacts_mixed;
+};
+
+CellSizes cell_sizes(const H5File& f) {
+  const std::string g = "/specimen/cells/";
+  return {f.rows(g + "corner"), f.rows(g + "face_cell"), f.rows(g + "xdmf_faces"),
+          f.exists("/frames/damage") ? f.shape("/frames/damage").at(1) : 0, f.rows(g + "xdmf_contacts")};
+}
+
+// Frame f of the output file `h5`, which holds `frames`, of a specimen in `d` dimensions.
+struct XdmfFrame {
+  const std::string& h5;
+  int d;
+  hsize_t f, frames;
+  double time;
+  std::string geometry() const { return d == 2 ? "XY" : "XYZ"; }
+  std::string head(const std::string& name) const {
+    std::ostringstream s;
+    s << std::setprecision(17) << "   <Grid Name=\"" << name << f << "\" GridType=\"Uniform\">\n    <Time Value=\""
+      << time << "\"/>\n";
+    return s.str();
+  }
+};
+
+// The bodies (particles, or the cells' nodes) as points.
+std::string points_grid(const XdmfFrame& fr, const std::string& name, hsize_t n) {
+  std::ostringstream x;
+  x << fr.head(name) << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\"/>\n"
+    << "    <Geometry GeometryType=\"" << fr.geometry() << "\">"
+    << frame_slab(fr.h5, "/frames/x", fr.f, fr.frames, n, fr.d) << "</Geometry>\n"
+    << "    <Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\">"
+    << dataset(fr.h5, "/specimen/radius", n, "Float", 8) << "</Attribute>\n"
+    << "    <Attribute Name=\"phase\" AttributeType=\"Scalar\" Center=\"Node\">"
+    << dataset(fr.h5, "/specimen/phase", n, "Int", 4) << "</Attribute>\n";
+  if (fr.d == 3) {  // ParaView vectors have three components; 2D vectors are shown as two scalars
+    x << "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">"
+      << frame_slab(fr.h5, "/frames/v", fr.f, fr.frames, n, 3) << "</Attribute>\n"
+      << "    <Attribute Name=\"force\" AttributeType=\"Vector\" Center=\"Node\">"
+      << frame_slab(fr.h5, "/frames/force", fr.f, fr.frames, n, 3) << "</Attribute>\n";
+  }
+  x << "   </Grid>\n";
+  return x.str();
+}
+
+// The cells' surfaces where the frame's corners are, by cell and phase.
+std::string cells_grid(const XdmfFrame& fr, const CellSizes& c) {
+  const std::string g = "/specimen/cells/";
+  std::ostringstream x;
+  x << fr.head("cells") << "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << c.faces << "\">"
+    << whole_slab(fr.h5, g + "xdmf_faces", c.faces_mixed, "Int", 8) << "</Topology>\n"
+    << "    <Geometry GeometryType=\"" << fr.geometry() << "\">"
+    << frame_slab(fr.h5, "/frames/cell_corner", fr.f, fr.frames, c.corners, fr.d) << "</Geometry>\n"
+    << "    <Attribute Name=\"cell\" AttributeType=\"Scalar\" Center=\"Cell\">"
+    << dataset(fr.h5, g + "face_cell", c.faces, "Int", 8) << "</Attribute>\n"
+    << "    <Attribute Name=\"phase\" AttributeType=\"Scalar\" Center=\"Cell\">"
+    << dataset(fr.h5, g + "face_phase", c.faces, "Int", 4) << "</Attribute>\n"
+    << "   </Grid>\n";
+  return x.str();
+}
+
+// The contact facets where they were built, by their damage in the frame.
+std::string facets_grid(const XdmfFrame& fr, const CellSizes& c) {
+  const std::string g = "/specimen/cells/";
+  std::ostringstream x;
+  x << fr.head("facets") << "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << c.contacts << "\">"
+    << dataset(fr.h5, g + "xdmf_contacts", c.contacts_mixed, "Int", 8) << "</Topology>\n"
+    << "    <Geometry GeometryType=\"" << fr.geometry() << "\">"
+    << dataset(fr.h5, g + "corner", c.corners, "Float", 8, fr.d) << "</Geometry>\n"
+    << "    <Attribute Name=\"damage\" AttributeType=\"Scalar\" Center=\"Cell\">"
+    << frame_slab(fr.h5, "/frames/damage", fr.f, fr.frames, c.contacts, 1) << "</Attribute>\n"
+    << "   </Grid>\n";
+  return x.str();
+}
+
+}  // namespace
+
+// One temporal collection of a grid per frame: the particles as points; or three, the cells' nodes as points, the
+// cells and the contact facets, which ParaView shows as the blocks "nodes", "cells" and "facets".
 void RunOutput::write_xdmf() const {
   const int d = static_cast<int>(file_.attr_int("/", "dimension"));
   const auto n = file_.rows("/specimen/radius");
@@ -268,35 +430,21 @@ void RunOutput::write_xdmf() const {
   const auto times = file_.read_doubles("/frames/time");
   const std::string h5 = std::filesystem::path(file_.path()).filename().string();
   std::ostringstream x;
-  x << std::setprecision(17);
-  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
-    << "  <Grid Name=\"frames\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-  auto slab = [&](const std::string& ds, hsize_t f, int width) {
-    std::ostringstream s;
-    s << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << n << " " << width << "\">"
-      << "<DataItem Dimensions=\"3 2\" Format=\"XML\">" << f << " 0 1 1 1 " << n * width << "</DataItem>"
-      << "<DataItem Dimensions=\"" << frames << " " << n * width
-      << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":" << ds << "</DataItem></DataItem>";
-    return s.str();
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n";
+  const auto collection = [&](const std::string& name, const auto& grid) {
+    x << "  <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (hsize_t f = 0; f < frames; ++f) x << grid(XdmfFrame{h5, d, f, frames, times[f]});
+    x << "  </Grid>\n";
   };
-  for (hsize_t f = 0; f < frames; ++f) {
-    x << "   <Grid Name=\"frame" << f << "\" GridType=\"Uniform\">\n    <Time Value=\"" << times[f] << "\"/>\n"
-      << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\"/>\n"
-      << "    <Geometry GeometryType=\"" << (d == 2 ? "XY" : "XYZ") << "\">" << slab("/frames/x", f, d)
-      << "</Geometry>\n"
-      << "    <Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem Dimensions=\"" << n
-      << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":/specimen/radius</DataItem></Attribute>\n"
-      << "    <Attribute Name=\"phase\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem Dimensions=\"" << n
-      << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5 << ":/specimen/phase</DataItem></Attribute>\n";
-    if (d == 3) {  // ParaView vectors have three components; 2D vectors are shown as two scalars
-      x << "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">" << slab("/frames/v", f, 3)
-        << "</Attribute>\n"
-        << "    <Attribute Name=\"force\" AttributeType=\"Vector\" Center=\"Node\">" << slab("/frames/force", f, 3)
-        << "</Attribute>\n";
-    }
-    x << "   </Grid>\n";
+  if (!file_.exists("/frames/cell_corner")) {
+    collection("frames", [&](const XdmfFrame& fr) { return points_grid(fr, "frame", n); });
+  } else {
+    const CellSizes sizes = cell_sizes(file_);
+    collection("nodes", [&](const XdmfFrame& fr) { return points_grid(fr, "nodes", n); });
+    collection("cells", [&](const XdmfFrame& fr) { return cells_grid(fr, sizes); });
+    if (sizes.contacts > 0) collection("facets", [&](const XdmfFrame& fr) { return facets_grid(fr, sizes); });
   }
-  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  x << " </Domain>\n</Xdmf>\n";
   write_atomically(stem_path(file_.path(), ".xdmf"), x.str());
 }
 

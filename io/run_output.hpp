@@ -1,5 +1,6 @@
-// The output file of a run (layout in README.md, "Output"): scene text, initial specimen, histories, frames,
-// checkpoints, status; an XDMF sidecar so ParaView opens the frames; histories as CSV when the run ends.
+// The output file of a run (layout in README.md, "Output"): scene text, initial specimen (and a specimen of rigid
+// cells' polygons), histories, frames, checkpoints, status; an XDMF sidecar so ParaView opens the frames (particles;
+// or the cells moving and their facets' damage); histories as CSV when the run ends.
 // A new file is written as <path>.partial and renamed to <path> by `publish` once its initial contents are flushed:
 // <path> is complete or absent. Everything written after that is flushed at once (`flush`), so a run killed at any
 // moment leaves a readable file.
@@ -9,7 +10,7 @@
 #include <vector>
 
 #include "engine/archive.hpp"
-#include "engine/system.hpp"  // SpecimenData, CrackRows
+#include "engine/system.hpp"  // SpecimenData, CellFrame, CrackRows
 #include "io/h5_file.hpp"
 
 namespace mc {
@@ -36,8 +37,10 @@ class RunOutput {
   void create_histories(const std::vector<std::string>& names, const std::vector<std::string>& units);
   void append_history(const std::vector<std::vector<double>>& columns);  // one column per series, equal lengths
   std::int64_t history_rows() const;
+  // `cells`: the frame of a specimen of cells (SpecimenData::cells), nothing for particles. std::invalid_argument
+  // when a frame's sizes are not the file's.
   void append_frame(double time, std::int64_t step, const std::vector<double>& x, const std::vector<double>& v,
-                    const std::vector<double>& force);
+                    const std::vector<double>& force, const CellFrame& cells = {});
   std::int64_t frame_rows() const;
 
   // The crack log: one row per bond break or first yield (layout in README.md, "Output").
@@ -61,6 +64,8 @@ class RunOutput {
 
  private:
   void write_initial(const std::string& scene_text, const std::string& scene_file, const SpecimenData& s);
+  void write_cells(const SpecimenData& s);
+  void append_frame_row(const std::string& ds, const std::vector<double>& row);
   void write_xdmf() const;  // <stem>.xdmf, rewritten atomically after each frame once published
   H5File file_;
   std::vector<std::string> names_;

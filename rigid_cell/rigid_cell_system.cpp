@@ -40,6 +40,7 @@ template <int D>
 void RigidCellSystem<D>::build_cells() {
   const auto nodes = place_nodes(*setup_.shape, setup_.l_min, setup_.seed, setup_.max_rejections);
   tessellation_ = tessellate(nodes, *setup_.shape, kReachPerLmin * setup_.l_min);
+  polygons_ = std::make_unique<const CellPolygons<D>>(tessellation_);
   for (const auto& c : tessellation_.cells) phase_.push_back(setup_.phase_at ? setup_.phase_at(c.node) : 0);
   std::vector<FacetParams> params;
   for (std::size_t c = 0; c < tessellation_.contacts; ++c)
@@ -213,7 +214,7 @@ double RigidCellSystem<D>::strain_energy() const {
 
 template <int D>
 SpecimenData RigidCellSystem<D>::specimen() const {
-  SpecimenData d{D, {}, {}, {}, setup_.phase_names, {}, setup_.facts, setup_.outlines};
+  SpecimenData d{D, {}, {}, {}, setup_.phase_names, {}, setup_.facts, setup_.outlines, polygons_->geometry()};
   for (int c = 0; c < cells(); ++c) {
     const auto& cell = tessellation_.cells[c];
     d.x.insert(d.x.end(), cell.node.data(), cell.node.data() + D);
@@ -245,6 +246,11 @@ void RigidCellSystem<D>::frame(std::vector<double>& x, std::vector<double>& v, s
       v.push_back((u[i] - before[i]) / setup_.load_step);
       force.push_back(f[i]);
     }
+}
+
+template <int D>
+CellFrame RigidCellSystem<D>::cell_frame() const {
+  return {polygons_->moved(solver_->cell_displacements(u_)), damage_};
 }
 
 template <int D>

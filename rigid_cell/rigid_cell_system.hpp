@@ -14,6 +14,7 @@
 #include "engine/crack.hpp"
 #include "engine/system.hpp"
 #include "rigid_cell/cell_assembly.hpp"
+#include "rigid_cell/cell_polygons.hpp"
 #include "rigid_cell/plate_constraints.hpp"
 #include "rigid_cell/random_field.hpp"
 #include "rigid_cell/static_solver.hpp"
@@ -81,6 +82,7 @@ class RigidCellSystem final : public System {
   const std::vector<Series>& histories() const override { return series_; }
   SpecimenData specimen() const override;
   void frame(std::vector<double>& x, std::vector<double>& v, std::vector<double>& force) const override;
+  CellFrame cell_frame() const override;
   std::vector<std::string> crack_models() const override;
   std::size_t crack_count() const override { return cracks_.size(); }
   CrackRows cracks(std::size_t first) const override;
@@ -107,6 +109,7 @@ class RigidCellSystem final : public System {
   RigidCellSetup<D> setup_;
   Tessellation<D> tessellation_;
   std::vector<int> phase_;  // per cell
+  std::unique_ptr<const CellPolygons<D>> polygons_;
   std::unique_ptr<CellAssembly<D>> model_;
   std::unique_ptr<PlateConstraints<D>> plates_;
   std::vector<int> prescribed_;  // reduced degrees of freedom

@@ -269,20 +269,27 @@ class Runner {
     flush_history();
     std::vector<double> x, v, f;
     system_->frame(x, v, f);
-    refuse_non_finite("position", x), refuse_non_finite("velocity", v), refuse_non_finite("force", f);
-    out_->append_frame(system_->time(), system_->step_count(), x, v, f);
+    const CellFrame cells = system_->cell_frame();
+    const int d = system_->dimension();
+    refuse_non_finite("position", x, d, "particle", "/specimen");
+    refuse_non_finite("velocity", v, d, "particle", "/specimen");
+    refuse_non_finite("force", f, d, "particle", "/specimen");
+    refuse_non_finite("position", cells.corner, d, "cell corner", "/specimen/cells/corner");
+    refuse_non_finite("damage", cells.damage, 1, "contact facet", "/specimen/cells/facet_a");
+    out_->append_frame(system_->time(), system_->step_count(), x, v, f, cells);
     out_->flush();
   }
 
-  // A frame's values are finite, or the run is unstable (before anything of the frame is written).
-  void refuse_non_finite(const char* what, const std::vector<double>& values) const {
+  // A frame's values are finite, or the run is unstable (before anything of the frame is written). `width` values
+  // describe one `item`, row k of `table`.
+  void refuse_non_finite(const char* what, const std::vector<double>& values, int width, const char* item,
+                         const char* table) const {
     const auto bad = std::find_if(values.begin(), values.end(), [](double x) { return !std::isfinite(x); });
     if (bad == values.end()) return;
-    const auto k = bad - values.begin();
-    const auto d = static_cast<std::ptrdiff_t>(system_->dimension());
+    const auto k = (bad - values.begin()) / width;
     std::ostringstream m;
-    m << "unstable at step " << system_->step_count() << " (t = " << system_->time() << " s): the " << what
-      << " of particle " << k / d << " (row " << k / d << " of /specimen) is " << *bad
+    m << "unstable at step " << system_->step_count() << " (t = " << system_->time() << " s): the " << what << " of "
+      << item << " " << k << " (row " << k << " of " << table << ") is " << *bad
       << "; likely cause: the state blew up between two stability checks (lower output.guard_every to find where)";
     throw InstabilityError(m.str());
   }
@@ -358,7 +365,8 @@ std::vector<std::pair<std::string, double>> generate_specimen(const Scene& scene
   const SpecimenData d = system->specimen();
   RunOutput out(output, scene.text, scene.file, d);  // complete under its name, or absent
   const std::vector<double> zero(d.x.size(), 0.0);
-  out.append_frame(0.0, 0, d.x, zero, zero);  // at rest: a scene loads it with kind = "output"
+  const CellFrame cells_at_rest{d.cells.corner, std::vector<double>(d.cells.contacts, 0.0)};
+  out.append_frame(0.0, 0, d.x, zero, zero, cells_at_rest);  // at rest: a scene loads it with kind = "output"
   out.set_status("finished", "generated specimen");
   out.publish();
   auto facts = d.facts;

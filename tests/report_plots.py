@@ -106,6 +106,67 @@ def make_run(path, dim, n, frames=3, history=True, xy=None, seed=1, cracks=0):
         f.create_group("checkpoint")
 
 
+def add_cells(path, dim, shape):
+    """Rigid cells as the engine writes them (README, "Output", /specimen/cells), replacing the particles: a grid of
+    cubic cells 5 mm wide whose facets across the plane x = middle crack over the frames (the others stay intact)."""
+    h = 5e-3
+    index = np.arange(np.prod(shape)).reshape(shape)
+    square = [(0, 0), (1, 0), (1, 1), (0, 1)]  # counter-clockwise
+    offsets = np.array([c + (0,) * (dim - 2) for c in square] + ([c + (1,) for c in square] if dim == 3 else []))
+    corner, faces, face_cell, facets, facet_a, facet_b, crossing = [], [], [], [], [], [], []
+
+    def side(cell, axis, upper):
+        """Corners of the cell's side normal to axis (its only side in 2D is its outline)."""
+        on = np.nonzero(offsets[:, axis] == upper)[0] if dim == 3 else np.arange(4)
+        return list(cell * len(offsets) + on)
+
+    for cell, ijk in enumerate(np.ndindex(*shape)):
+        corner.extend((np.array(ijk) + offsets) * h)
+        for axis in range(dim) if dim == 3 else [0]:
+            for upper in (0, 1):
+                faces.append(side(cell, axis, upper))
+                face_cell.append(cell)
+    contacts, surface = [], []
+    for ijk in np.ndindex(*shape):
+        for axis in range(dim):
+            nxt = list(ijk)
+            nxt[axis] += 1
+            a = index[ijk]
+            # A 2D facet is the side's two ends: the corners of the outline with offset 1 along axis.
+            ends = [a * 4 + q for q in range(4) if square[q][axis] == 1] if dim == 2 else side(a, axis, 1)
+            if nxt[axis] < shape[axis]:
+                contacts.append((ends, a, index[tuple(nxt)], axis == 0 and ijk[0] == shape[0] // 2 - 1))
+            else:
+                surface.append((ends, a, -1, False))
+    for ends, a, b, cracks in contacts + surface:
+        facets.append(ends), facet_a.append(a), facet_b.append(b), crossing.append(cracks)
+    corner = np.array(corner)
+    with h5py.File(path, "r+") as f:
+        F = f["frames/time"].shape[0]
+        sp = f["specimen"]
+        for k in ("x", "radius", "phase", "id"):
+            del sp[k]
+        sp["x"] = np.array([(np.array(ijk) + 0.5) * h for ijk in np.ndindex(*shape)])
+        sp["radius"] = np.full(index.size, h / 2)
+        sp["phase"] = np.zeros(index.size, np.int32)
+        sp["id"] = np.arange(index.size, dtype=np.int64)
+        g = sp.create_group("cells")
+        g.attrs["contacts"] = np.int64(len(contacts))
+        g["corner"] = corner
+        for name, polygons in (("facet", facets), ("face", faces)):
+            g[f"{name}_start"] = np.concatenate([[0], np.cumsum([len(q) for q in polygons])]).astype(np.int64)
+            g[f"{name}_corner"] = np.concatenate(polygons).astype(np.int64)
+        g["facet_a"], g["facet_b"] = np.array(facet_a, np.int64), np.array(facet_b, np.int64)
+        g["face_cell"] = np.array(face_cell, np.int64)
+        fr = f["frames"]
+        fr["cell_corner"] = np.tile(corner.ravel(), (F, 1))
+        crack = np.array(crossing[:len(contacts)], float)
+        fr["damage"] = np.outer(np.linspace(0, 1, F), crack) + 0.3 * (1 - crack)
+        for k in ("x", "v", "force"):
+            del fr[k]
+            fr[k] = np.tile(sp["x"][()].ravel(), (F, 1))
+
+
 PULL_SCENE = """[pullout]
 frp_phase = "aggregate"
 width = "50 mm"
@@ -202,6 +263,19 @@ def main():
         check_pngs("pull test", run_report(fp),
                    ["pull_history.png", "pull_energy.png", "pull_specimen.png", "pull_cracks.png", "pull_pullout.png",
                     "pull_pullout_cracks.png"])
+
+        # Rigid cells: the crack pattern of their facets, by the load's peak and at the end (2D), or at the end in
+        # the section at mid-thickness (3D: the scene plots no load).
+        fc2 = os.path.join(d, "cells2d.h5")
+        make_run(fc2, 2, 48, frames=5, xy="axial_strain:axial_stress")
+        add_cells(fc2, 2, (6, 8))
+        check_pngs("2D rigid cells", run_report(fc2),
+                   ["cells2d_history.png", "cells2d_xy.png", "cells2d_energy.png", "cells2d_specimen.png",
+                    "cells2d_cells.png"])
+        fc3 = os.path.join(d, "cells3d.h5")
+        make_run(fc3, 3, 96, frames=3, history=False)
+        add_cells(fc3, 3, (4, 6, 4))
+        check_pngs("3D rigid cells", run_report(fc3), ["cells3d_slice.png", "cells3d_cells.png"])
 
         missing = os.path.join(d, "no_such_run.h5")
         check_error("missing file", run_report(missing), missing, ["no such file"])
