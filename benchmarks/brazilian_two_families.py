@@ -27,14 +27,15 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from uniaxial_accuracy import ROOT, timed_run  # noqa: E402
 
 DIAMETER = 0.07  # [m], both scenes
-# family: scene, the history of the load [N per m of thickness], that of the plates' approach and its sign.
+# family: scene, the history of the load [N per m of thickness], that of the plates' approach and its sign, and the
+# picture of its cracks `report` draws (the bonds broken; the facets by their damage).
 FAMILIES = {
-    "explicit (bonded particles)": ("brazilian_meso_explicit_2d", "group.bottom.reaction_y", "closure", 1),
-    "rigid cells": ("brazilian_meso_rigid_cell_2d", "group.bottom.reaction_y", "group.top.disp_y", -1),
+    "explicit (bonded particles)": ("brazilian_meso_explicit_2d", "group.bottom.reaction_y", "closure", 1, "cracks"),
+    "rigid cells": ("brazilian_meso_rigid_cell_2d", "group.bottom.reaction_y", "group.top.disp_y", -1, "cells"),
 }
 
 
-def run_family(exe, out, seed, scene, load, travel, sign):
+def run_family(exe, out, seed, scene, load, travel, sign, picture):
     h5 = out / f"{scene}.h5"
     summary, cpu, wall = timed_run(exe, ROOT / "scenes" / f"{scene}.toml", h5, [f"seed={seed}"], keep=True)
     subprocess.run([exe, "report", str(h5)], check=True, capture_output=True)
@@ -48,7 +49,7 @@ def run_family(exe, out, seed, scene, load, travel, sign):
     return {"scene": scene, "bodies": int(bodies), "steps": int(summary["steps"]), "peak": p[i],
             "travel_at_peak": u[i], "strength": 2 * p[i] / (math.pi * DIAMETER), "breaks": int((kind == 0).sum()),
             "aggregates": int(spec.get("aggregates", 0)), "cpu": cpu, "wall": wall, "curve": (u, p),
-            "cracks_png": out / f"{scene}_cracks.png"}
+            "cracks_png": out / f"{scene}_{picture}.png"}
 
 
 def table(runs):
@@ -65,9 +66,9 @@ def figure(runs, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig = plt.figure(figsize=(13, 13))
-    grid = fig.add_gridspec(2, 2, height_ratios=[1, 1.5])
-    ax = fig.add_subplot(grid[0, :])
+    fig = plt.figure(figsize=(13, 21))
+    grid = fig.add_gridspec(3, 1, height_ratios=[1, 1.4, 1.2])
+    ax = fig.add_subplot(grid[0])
     for name, r in runs.items():
         u, p = r["curve"]
         ax.plot(u * 1e6, p * 1e-3, label=f"{name}: {r['cpu']:.0f} CPU s")
@@ -75,7 +76,7 @@ def figure(runs, path):
            title="Brazilian disc, D = 70 mm, three-phase concrete, one mesostructure")
     ax.legend()
     for k, (name, r) in enumerate(runs.items()):
-        sub = fig.add_subplot(grid[1, k])
+        sub = fig.add_subplot(grid[1 + k])
         if r["cracks_png"].exists():
             sub.imshow(plt.imread(r["cracks_png"]))
         sub.set_axis_off()
@@ -95,9 +96,9 @@ def main():
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     runs = {}
-    for name, (scene, load, travel, sign) in FAMILIES.items():
-        print(f"{name}: {scene} ...", flush=True)
-        runs[name] = run_family(a.mesocrack, out, a.seed, scene, load, travel, sign)
+    for name, family in FAMILIES.items():
+        print(f"{name}: {family[0]} ...", flush=True)
+        runs[name] = run_family(a.mesocrack, out, a.seed, *family)
     lines = table(runs)
     figure(runs, out / "two_families.png")
     text = [f"# One mesostructure (seed {a.seed}), two models", ""] + lines + [
