@@ -16,7 +16,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from uniaxial_accuracy import ROOT, append_rows, mean_cv, study_arguments, study_main, timed_run  # noqa: E402
+from uniaxial_accuracy import ROOT, append_rows, mean_cv, seed_list, study_arguments, study_main, timed_run  # noqa: E402
 
 DIAMETER = 0.07
 THICKNESS = {"thin": 0.03, "thick": 0.055}
@@ -26,21 +26,12 @@ TAB_9_2 = {"concrete_thin": (8.71, 2.64, 8.71, 2.64), "concrete_thick": (15.71, 
 FIELDS = ["disc", "seed", "cells", "peak_kN", "strength_MPa", "steps", "cpu_s"]
 
 
-def seeds(text):
-    """"1-6" or "1,3,5": the seeds."""
-    out = []
-    for part in text.split(","):
-        lo, _, hi = part.partition("-")
-        out += list(range(int(lo), int(hi or lo) + 1))
-    return out
-
-
 def plan(a):
     todo = []
     for disc in a.only.split(","):
         if disc not in TAB_9_2:
             sys.exit(f"--only: '{disc}' is not one of {', '.join(TAB_9_2)}")
-        for s in seeds(a.mortar_seeds if disc.startswith("mortar") else a.seeds):
+        for s in seed_list(a.mortar_seeds if disc.startswith("mortar") else a.seeds):
             todo.append((disc, s))
     return sorted(todo, key=lambda t: (not t[0].startswith("mortar"), t))  # the longest first
 

@@ -20,7 +20,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from uniaxial_accuracy import ROOT, append_rows, study_arguments, study_main, timed_run  # noqa: E402
+from uniaxial_accuracy import ROOT, append_rows, seed_list, study_arguments, study_main, timed_run  # noqa: E402
 
 # specimen: scene, the history of the load and of the load point's travel, --set overrides.
 SPECIMENS = {
@@ -36,20 +36,12 @@ OUTLINES = {  # [mm], counter-clockwise, as in the scenes
 FIELDS = ["specimen", "seed", "cells", "peak_kN", "travel_at_peak_mm", "crack_mm_or_deg", "steps", "cpu_s"]
 
 
-def seeds(text):
-    out = []
-    for part in text.split(","):
-        lo, _, hi = part.partition("-")
-        out += list(range(int(lo), int(hi or lo) + 1))
-    return out
-
-
 def plan(a):
     todo = []
     for sp in a.only.split(","):
         if sp not in SPECIMENS:
             sys.exit(f"--only: '{sp}' is not one of {', '.join(SPECIMENS)}")
-        todo += [(sp, s) for s in (seeds(a.seeds) if sp == "l_shape" else [1])]
+        todo += [(sp, s) for s in (seed_list(a.seeds) if sp == "l_shape" else [1])]
     return todo
 
 

@@ -227,6 +227,15 @@ def study_main(ap, fields, texts, key, plan, known, run_all, analyse):
     analyse(read_rows(csv_path, fields, texts), out)
 
 
+def seed_list(text):
+    """"1-6" or "1,3,5": the seeds a study's --seeds names."""
+    out = []
+    for part in text.split(","):
+        lo, _, hi = part.partition("-")
+        out += list(range(int(lo), int(hi or lo) + 1))
+    return out
+
+
 def mean_cv(xs):
     xs = [x for x in xs if x is not None]
     m = sum(xs) / len(xs)
