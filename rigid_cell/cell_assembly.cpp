@@ -3,6 +3,7 @@
 #include <string>
 
 #include "engine/errors.hpp"
+#include "rigid_cell/point_motion.hpp"
 
 namespace mc::rigid_cell {
 
@@ -22,22 +23,6 @@ Eigen::Matrix<double, 3, D> local_axes(const Vec<D>& n) {
     R.row(2) = n.cross(m).transpose();
   }
   return R;
-}
-
-// A_a^c of (3.2): the displacement of point c of a rigid body moving with (u, θ) at its node x.
-template <int D>
-Eigen::Matrix<double, D, D + Dim<D>::rot> point_motion(const Vec<D>& x, const Vec<D>& c) {
-  Eigen::Matrix<double, D, D + Dim<D>::rot> A;
-  A.template leftCols<D>().setIdentity();
-  const Vec<D> r = c - x;
-  if constexpr (D == 2) {
-    A.col(2) << -r.y(), r.x();  // θ e_z × r
-  } else {
-    A.template rightCols<3>() << 0, r.z(), -r.y(),  //
-        -r.z(), 0, r.x(),                           //
-        r.y(), -r.x(), 0;                           // θ × r = −[r]× θ
-  }
-  return A;
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "rigid_cell/point_motion.hpp"
+
 namespace mc::rigid_cell {
 
 namespace {
@@ -89,11 +91,9 @@ std::vector<double> CellPolygons<D>::moved(const Eigen::VectorXd& u) const {
   std::vector<double> x(geometry_.corner.size());
   for (std::size_t k = 0; k < cell_.size(); ++k) {
     const int c = cell_[k];
-    const Eigen::Map<const Vec<D>> reference(geometry_.corner.data() + D * k);
-    const auto uc = u.template segment<kDofs>(kDofs * c);
-    const typename Dim<D>::Rot rotation = uc.template tail<Dim<D>::rot>();
+    const Vec<D> reference = Eigen::Map<const Vec<D>>(geometry_.corner.data() + D * k);
     Eigen::Map<Vec<D>>(x.data() + D * k) =
-        reference + uc.template head<D>() + Dim<D>::cross(rotation, Vec<D>(reference - node_[c]));
+        reference + point_motion<D>(node_[c], reference) * u.template segment<kDofs>(kDofs * c);
   }
   return x;
 }

@@ -1,5 +1,7 @@
 #include "rigid_cell/plate_constraints.hpp"
 
+#include "rigid_cell/point_motion.hpp"
+
 namespace mc::rigid_cell {
 
 template <int D>
@@ -26,16 +28,13 @@ PlateConstraints<D>::PlateConstraints(const std::vector<Vec<D>>& nodes, const st
     const int row = c * kDofs, col = owner[c] * kDofs;
     for (int k = 0; k < kDofs; ++k) t.emplace_back(row + k, col + k, 1.0);
     if (plate_of[c] < 0) continue;
-    // u = U + Θ × r: the translation rows take −[r]× Θ (2D: Θ about z, ẑ × r = (−r_y, r_x)).
-    const Vec<D> r = nodes[c] - references[plate_of[c]];
-    if constexpr (D == 2) {
-      t.emplace_back(row, col + 2, -r[1]);
-      t.emplace_back(row + 1, col + 2, r[0]);
-    } else {
-      t.emplace_back(row, col + 4, r[2]), t.emplace_back(row, col + 5, -r[1]);
-      t.emplace_back(row + 1, col + 3, -r[2]), t.emplace_back(row + 1, col + 5, r[0]);
-      t.emplace_back(row + 2, col + 3, r[1]), t.emplace_back(row + 2, col + 4, -r[0]);
-    }
+    // The cell's node moves with the plate (3.2): its translation rows take the plate's rotation through
+    // A_reference^node (every entry but the skew matrix's zero diagonal, so the pattern does not hang on r); its
+    // own rotation is the plate's (the identity above).
+    const auto A = point_motion<D>(references[plate_of[c]], nodes[c]);
+    for (int i = 0; i < D; ++i)
+      for (int k = D; k < kDofs; ++k)
+        if (D == 2 || k - D != i) t.emplace_back(row + i, col + k, A(i, k));
   }
   map_.resize(n * kDofs, (free + plates_) * kDofs);
   map_.setFromTriplets(t.begin(), t.end());
