@@ -195,9 +195,10 @@ void RunOutput::append_frame(double time, std::int64_t step, const std::vector<d
 }
 
 void RunOutput::append_frame_row(const std::string& ds, const std::vector<double>& row) {
-  if (row.size() != file_.shape(ds).at(1))
+  const auto width = file_.shape(ds).at(1);
+  if (row.size() != width)
     throw std::invalid_argument(file_.path() + ":" + ds + ": a frame of " + std::to_string(row.size()) +
-                                " values, the table's rows hold " + std::to_string(file_.shape(ds).at(1)));
+                                " values, the table's rows hold " + std::to_string(width));
   file_.append_rows(ds, row.data(), 1);
 }
 
