@@ -13,7 +13,7 @@ PlateConstraints<D>::PlateConstraints(int cells) : first_plate_dof_(cells * kDof
 template <int D>
 PlateConstraints<D>::PlateConstraints(const std::vector<Vec<D>>& nodes, const std::vector<int>& plate_of,
                                       const std::vector<Vec<D>>& references)
-    : plates_(static_cast<int>(references.size())) {
+    : plates_(static_cast<int>(references.size())), references_(references) {
   const int n = static_cast<int>(nodes.size());
   std::vector<int> owner(n);  // the reduced block each cell moves with: its own, or its plate's
   int free = 0;

@@ -27,9 +27,11 @@ class PlateConstraints {
   int plates() const { return plates_; }
   // The reduced index of component k of a plate.
   int plate_dof(int plate, int k) const { return first_plate_dof_ + plate * kDofs + k; }
+  const Vec<D>& reference(int plate) const { return references_[plate]; }
 
  private:
   int plates_ = 0, first_plate_dof_ = 0;
+  std::vector<Vec<D>> references_;
   Eigen::SparseMatrix<double> map_;
 };
 

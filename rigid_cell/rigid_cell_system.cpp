@@ -31,6 +31,7 @@ RigidCellSystem<D>::RigidCellSystem(RigidCellSetup<D> setup) : setup_(std::move(
   build_cells();
   build_plates();
   solver_ = std::make_unique<StaticSolver<D>>(*model_, *plates_, prescribed_);
+  build_gauges();
   u_ = u_before_ = reactions_ = f_ext_ = Eigen::VectorXd::Zero(plates_->reduced());
   damage_.assign(model_->contacts(), 0.0);
   states_.assign(model_->contacts(), FacetState{});
@@ -100,6 +101,44 @@ void RigidCellSystem<D>::build_plates() {
       if (setup_.plates[p].held[k]) prescribed_.push_back(plates_->plate_dof(p, k));
 }
 
+// Each gauge's row over the reduced degrees of freedom, and the drive of an opening control: its plate's held
+// translations along its unit direction. A drive that does not open its gauge at the start is refused.
+template <int D>
+void RigidCellSystem<D>::build_gauges() {
+  const int n = plates_->reduced();
+  for (const PlateGauge<D>& g : setup_.gauges) {
+    Vec<D> dir = g.direction;
+    if (dir.isZero()) dir = plates_->reference(g.plate_b) - plates_->reference(g.plate_a);
+    if (dir.isZero())
+      throw InputError("gauge '" + g.name + "': its plates' reference points coincide: give its direction");
+    dir.normalize();
+    Eigen::VectorXd row = Eigen::VectorXd::Zero(n);
+    for (int k = 0; k < D; ++k) {
+      row[plates_->plate_dof(g.plate_b, k)] += dir[k];
+      row[plates_->plate_dof(g.plate_a, k)] -= dir[k];
+    }
+    gauges_.push_back(row);
+  }
+  if (!setup_.opening_control) return;
+  const OpeningDrive<D>& c = *setup_.opening_control;
+  const PlateSpec<D>& plate = setup_.plates[c.plate];
+  GaugeControl control{Eigen::VectorXd::Zero(n), gauges_[c.gauge]};
+  const Vec<D> dir = c.direction.normalized();
+  for (int k = 0; k < D; ++k) {
+    if (dir[k] == 0) continue;
+    if (!plate.held[k] || plate.velocity[k] != 0)
+      throw InputError("plate '" + plate.name + "' is driven by gauge '" + setup_.gauges[c.gauge].name + "' along " +
+                       "xyz"[k] + ": it must hold that translation (fix) with no velocity of its own");
+    control.drive[plates_->plate_dof(c.plate, k)] = dir[k];
+  }
+  if (!(solver_->gauge_sensitivity(control, std::vector<double>(model_->contacts(), 0.0)) > 0))
+    throw InputError("plate '" + plate.name + "' moving along its direction does not open gauge '" +
+                     setup_.gauges[c.gauge].name +
+                     "' (it closes it or leaves it): reverse the direction or drive "
+                     "another plate");
+  control_ = control;
+}
+
 // The held degrees of freedom at loading time t: velocity × the smooth rise (9.1).
 template <int D>
 void RigidCellSystem<D>::prescribe(double t) {
@@ -109,6 +148,12 @@ void RigidCellSystem<D>::prescribe(double t) {
     for (int k = 0; k < kDofs; ++k)
       if (s.held[k]) u_[plates_->plate_dof(p, k)] = s.velocity[k] * travel;
   }
+  if (!control_) return;
+  // The drive's own part is found by the solve: it starts from zero there.
+  const OpeningDrive<D>& c = *setup_.opening_control;
+  for (Eigen::Index d = 0; d < u_.size(); ++d)
+    if (control_->drive[d] != 0) u_[d] = 0;
+  control_->target = c.rate * smooth_rise_displacement(t, c.ramp_time);
 }
 
 template <int D>
@@ -141,13 +186,14 @@ void RigidCellSystem<D>::advance(double from, double to, int cuts) {
   const Eigen::VectorXd u = u_;
   const std::vector<double> damage = damage_;
   const std::vector<FacetState> states = states_;
+  if (control_) control_->lambda = control_->drive.dot(u_);  // λ so far (the drive is a unit vector)
   prescribe(to);
   StaticOptions options = setup_.options;
   options.monotone = cuts > kMaxCuts;
   // A crack running through a snap-through may extend by a few facets per iteration: it gets more of them.
   if (options.monotone) options.max_iterations *= kSnapThroughIterations;
   try {
-    const StaticResult r = solver_->solve(u_, f_ext_, damage_, states_, options);
+    const StaticResult r = solver_->solve(u_, f_ext_, damage_, states_, options, control_ ? &*control_ : nullptr);
     last_.iterations += r.iterations, last_.factorisations += r.factorisations, last_.residual = r.residual;
     snap_throughs_ += options.monotone;
   } catch (const InstabilityError&) {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,25 @@ struct PlateSpec {
   double ramp_time = 0;  // T of (9.1) [s]
 };
 
+// An opening gauge (a clip gauge, the CMOD) between two plates: n · (U_b − U_a), the relative displacement of their
+// reference points along n.
+template <int D>
+struct PlateGauge {
+  std::string name;
+  int plate_a = 0, plate_b = 0;
+  Vec<D> direction = Vec<D>::Zero();  // zero: the line from a's reference point to b's
+};
+
+// Indirect displacement control (static_solver.hpp GaugeControl): a plate travels along `direction` on held
+// translations so that a gauge opens by rate × the smooth rise (9.1).
+template <int D>
+struct OpeningDrive {
+  int gauge = 0, plate = 0;
+  Vec<D> direction = Vec<D>::Zero();
+  double rate = 0;       // [m/s]
+  double ramp_time = 0;  // T of (9.1) [s]
+};
+
 template <int D>
 struct RigidCellSetup {
   std::shared_ptr<const SpecimenShape<D>> shape;
@@ -44,6 +64,8 @@ struct RigidCellSetup {
   std::vector<std::pair<std::string, double>> facts;  // what building the mesostructure measured
   std::vector<std::vector<std::array<double, 2>>> outlines;
   std::vector<PlateSpec<D>> plates;
+  std::vector<PlateGauge<D>> gauges;
+  std::optional<OpeningDrive<D>> opening_control;
   double load_step = 0;  // [s] of loading time per static solve
   StaticOptions options;
   bool crack_log = false;
@@ -93,6 +115,7 @@ class RigidCellSystem final : public System {
   int cells() const { return static_cast<int>(tessellation_.cells.size()); }
   double plate_reaction(int plate, int k) const { return reactions_[plates_->plate_dof(plate, k)]; }
   double plate_displacement(int plate, int k) const { return u_[plates_->plate_dof(plate, k)]; }
+  double opening(int gauge) const { return gauges_[gauge].dot(u_); }
   std::size_t facets_damaged() const;
   std::size_t facets_cracked() const;
   double max_damage() const;
@@ -114,6 +137,8 @@ class RigidCellSystem final : public System {
   std::unique_ptr<PlateConstraints<D>> plates_;
   std::vector<int> prescribed_;  // reduced degrees of freedom
   std::unique_ptr<StaticSolver<D>> solver_;
+  std::vector<Eigen::VectorXd> gauges_;  // reduced rows: a gauge's reading is its row · u
+  std::optional<GaugeControl> control_;
   std::vector<Series> series_;
 
   std::int64_t step_ = 0;
@@ -129,6 +154,7 @@ class RigidCellSystem final : public System {
   void build_cells();
   void apply_strength_field(std::vector<FacetParams>& params);
   void build_plates();
+  void build_gauges();
   void prescribe(double t);
   void advance(double from, double to, int cuts);
   void log_cracks(const std::vector<double>& before);

@@ -25,11 +25,24 @@ struct StaticOptions {
   bool monotone = false;
 };
 
+// Indirect displacement control (CMOD-type): the prescribed displacements are u_p + λ·drive with λ unknown, found
+// in each secant iteration so that a gauge reading gᵀu equals its target. The stiffness is linear in the prescribed
+// displacements for a given damage, so u = u₀ + λ u₁ (u₀ with λ = 0, u₁ the response to a unit drive) and
+// λ = (target − gᵀu₀) / gᵀu₁: two solves on one factor. A load path that snaps back in the driven displacement
+// then stays in equilibrium as long as the gauge (a crack's opening) grows.
+struct GaugeControl {
+  Eigen::VectorXd drive;  // reduced; non-zero on prescribed degrees of freedom only
+  Eigen::VectorXd gauge;  // reduced: the reading is gauge · u
+  double target = 0;
+  double lambda = 0;  // λ of the last solve, where the iteration starts
+};
+
 struct StaticResult {
   int iterations = 0;      // secant iterations of this step
   int factorisations = 0;  // numeric factorisations among them
   int cg_iterations = 0;   // conjugate-gradient iterations of the solves done without one
   double residual = 0;     // the out-of-balance ratio reached
+  double lambda = 0;       // λ of a gauge control
 };
 
 template <int D>
@@ -44,9 +57,14 @@ class StaticSolver {
   // One load step: u (reduced) holds the prescribed displacements on entry and the solution on return; f_ext the
   // forces on the free reduced degrees of freedom. `damage` is the facets' damage (the last step's on entry); the
   // facets' states take the converged damage. Throws InstabilityError when the iteration does not converge or the
-  // stiffness is singular.
+  // stiffness is singular. With `control`, u's prescribed degrees of freedom hold the part without the drive on
+  // entry and the part with it on return.
   StaticResult solve(Eigen::VectorXd& u, const Eigen::VectorXd& f_ext, std::vector<double>& damage,
-                     std::vector<FacetState>& states, const StaticOptions& options = {});
+                     std::vector<FacetState>& states, const StaticOptions& options = {},
+                     const GaugeControl* control = nullptr);
+
+  // gᵀu₁ of a gauge control at `damage`: how far the gauge moves per unit drive (zero: the drive does not reach it).
+  double gauge_sensitivity(const GaugeControl& control, const std::vector<double>& damage);
 
   // Every cell's displacements and rotations for the reduced u.
   Eigen::VectorXd cell_displacements(const Eigen::VectorXd& u) const { return map_ * u; }
@@ -102,6 +120,9 @@ class StaticSolver {
   void factorise(const SparseMatrix& Kff, const std::vector<double>& damage);
   Eigen::VectorXd free_solution(const std::vector<double>& damage, const Eigen::VectorXd& rhs,
                                 const Eigen::VectorXd& guess, StaticResult& r);
+  // The reduced displacements for prescribed ones `prescribed` (zero on the free degrees of freedom) and forces f.
+  Eigen::VectorXd equilibrium(const std::vector<double>& damage, const Eigen::VectorXd& prescribed,
+                              const Eigen::VectorXd& f, const Eigen::VectorXd& guess, StaticResult& r);
 };
 
 extern template class StaticSolver<2>;

@@ -5,15 +5,14 @@
 
 namespace mc::scene_read {
 
-namespace {
-
 // An opening probe (a clip gauge, e.g. the CMOD): its sides are two particles (`particles` = [a, b]) or two
 // groups (`groups` = "left right"), its reading their relative displacement along `direction` (default: the
 // line from the first side to the second at the start).
 void read_opening(const Table& t, const Scene& s, ProbeSpec& p) {
   if (t.has("particles") == t.has("groups"))
-    t.fail("particles", "an opening probe takes its two sides from either 'particles' = [a, b] or 'groups' = "
-                        "\"first second\", one of them");
+    t.fail("particles",
+           "an opening probe takes its two sides from either 'particles' = [a, b] or 'groups' = "
+           "\"first second\", one of them");
   if (t.has("particles")) {
     p.particles = ids(t, "particles", 2);
     if (p.particles[0] == p.particles[1])
@@ -36,8 +35,6 @@ void read_opening(const Table& t, const Scene& s, ProbeSpec& p) {
   if (!p.direction.empty() && n2 == 0) t.fail("direction", "the direction must not be the zero vector");
 }
 
-}  // namespace
-
 void check_opening_walls(const Table& root, const Scene& s) {
   const auto tabs = root.tables("walls");
   for (std::size_t i = 0; i < s.walls.size(); ++i)
@@ -45,8 +42,10 @@ void check_opening_walls(const Table& root, const Scene& s) {
       std::string list;
       for (const auto& p : s.probes)
         if (p.kind == ProbeSpec::Kind::Opening) list += (list.empty() ? "" : ", ") + p.name;
-      tabs[i].fail("probe", "'" + s.walls[i].probe + "' is not the name of an opening probe ([[probes]] with kind = "
-                            "\"opening\"); declared: " + (list.empty() ? "none" : list));
+      tabs[i].fail("probe", "'" + s.walls[i].probe +
+                                "' is not the name of an opening probe ([[probes]] with kind = "
+                                "\"opening\"); declared: " +
+                                (list.empty() ? "none" : list));
     }
 }
 
@@ -86,8 +85,8 @@ void read_observers(const Table& root, Scene& s) {
   for (const Table& t : root.tables("probes")) {
     ProbeSpec p;
     p.name = t.string("name");
-    const std::string k = t.choice(
-        "kind", {"overlap", "gap", "relative_speed", "position", "velocity", "angular_velocity", "opening"});
+    const std::string k =
+        t.choice("kind", {"overlap", "gap", "relative_speed", "position", "velocity", "angular_velocity", "opening"});
     using K = ProbeSpec::Kind;
     p.kind = k == "overlap"          ? K::Overlap
              : k == "gap"            ? K::Gap

@@ -27,6 +27,8 @@ std::vector<CellSeries> rigid_cell_series(const Scene& s) {
           {W::PlateDisplacement, pre + (rotation ? "rotation_" : "disp_") + axis, rotation ? "rad" : "m", p, k});
     }
   }
+  for (std::size_t p = 0; p < s.probes.size(); ++p)
+    out.push_back({W::Opening, s.probes[p].name, "m", static_cast<int>(p)});
   if (s.rigid_cell && s.rigid_cell->energy) {
     out.push_back({W::BoundaryWork, "energy.boundary_work", "J"});
     out.push_back({W::StrainEnergy, "energy.strain", "J"});

@@ -22,6 +22,7 @@ struct CellSeries {
     MaxDamage,
     PlateReaction,      // the support's force (translations) or moment (rotations) on a plate
     PlateDisplacement,  // a plate's displacement or rotation
+    Opening,            // an opening probe's reading (`plate` holds the probe's index)
     BoundaryWork,
     StrainEnergy,
     Dissipated,

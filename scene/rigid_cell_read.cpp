@@ -156,6 +156,63 @@ void check_plates(const Table& root, const Scene& s) {
   }
 }
 
+// [[probes]]: opening gauges between two plates (the CMOD of a notched specimen); the other kinds read particles.
+void read_cell_probes(const Table& root, Scene& s) {
+  for (const Table& t : root.tables("probes")) {
+    ProbeSpec p;
+    p.name = t.string("name");
+    t.choice("kind", {"opening"});
+    p.kind = ProbeSpec::Kind::Opening;
+    if (t.has("particles"))
+      t.fail("particles", "a rigid-cell opening probe is read between two plates: 'groups' = \"first second\"");
+    for (const auto& o : s.probes)
+      if (o.name == p.name) t.fail("name", "probe names must be unique");
+    read_opening(t, s, p);
+    s.probes.push_back(p);
+    t.finish();
+  }
+}
+
+// [rigid_cell.opening_control]: which plate travels, along which direction, to open which probe at what rate.
+void read_opening_control(const Table& t, Scene& s) {
+  OpeningControlSpec c;
+  const std::string probe = t.string("probe");
+  c.probe = -1;
+  std::string declared;
+  for (std::size_t i = 0; i < s.probes.size(); ++i) {
+    if (s.probes[i].name == probe) c.probe = static_cast<int>(i);
+    declared += (declared.empty() ? "" : ", ") + s.probes[i].name;
+  }
+  if (c.probe < 0)
+    t.fail("probe", "'" + probe +
+                        "' is not the name of an opening probe ([[probes]] with kind = \"opening\"); "
+                        "declared: " +
+                        (declared.empty() ? "none" : declared));
+  const std::string plate = t.string("plate");
+  c.plate = -1;
+  for (std::size_t g = 0; g < s.groups.size(); ++g)
+    if (s.groups[g].name == plate) c.plate = static_cast<int>(g);
+  if (c.plate < 0) t.fail("plate", "'" + plate + "' is not the name of a plate ([[groups]])");
+  c.direction = vec(t, "direction", Unit::None, s.dimension);
+  double n2 = 0;
+  for (double x : c.direction) n2 += x * x;
+  if (n2 == 0) t.fail("direction", "the direction the plate travels must not be the zero vector");
+  const GroupSpec& g = s.groups[c.plate];
+  for (int k = 0; k < s.dimension; ++k) {
+    if (c.direction[k] == 0) continue;
+    const std::string axis(1, "xyz"[k]);
+    if (!(g.fix & (1u << k)))
+      t.fail("direction", "plate '" + plate + "' travels along " + axis + ": add " + axis + " to its 'fix'");
+    if (!g.velocity.empty() && g.velocity[k] != 0)
+      t.fail("plate", "plate '" + plate + "' has a velocity along " + axis +
+                          ", which the opening control sets: leave it out of the plate's 'velocity'");
+  }
+  c.rate = t.number("rate", Unit::Velocity, Range::positive());
+  c.ramp_time = t.number("ramp_time", Unit::Time, Range::non_negative(), 0.0);
+  t.finish();
+  s.rigid_cell->opening_control = c;
+}
+
 void read_load_step(const Table& root, Scene& s) {
   const Table t = root.table("timestep");
   s.timestep.fixed = t.number("fixed", Unit::Time, Range::positive());
@@ -165,11 +222,11 @@ void read_load_step(const Table& root, Scene& s) {
 }  // namespace
 
 void read_rigid_cell(const Table& root, Scene& s) {
-  for (const char* key : {"walls", "bonds", "physics", "regions", "probes", "wall_strains"})
+  for (const char* key : {"walls", "bonds", "physics", "measure", "wall_strains"})
     if (root.has(key))
       root.fail(key,
                 "a rigid-cell scene ([rigid_cell]) is held and loaded by plates ([[groups]] by box); it has "
-                "no walls, bonds, physics, measurement regions or probes");
+                "no walls, bonds, physics or measurement regions");
   const Table t = root.table("rigid_cell");
   RigidCellSpec& r = s.rigid_cell.emplace();
   r.damage_tolerance = t.number("damage_tolerance", Unit::None, Range{0.0, 1.0, true, false}, r.damage_tolerance);
@@ -178,6 +235,7 @@ void read_rigid_cell(const Table& root, Scene& s) {
   r.crack_log = t.boolean("crack_log", false);
   r.energy = t.boolean("energy", false);
   const std::optional<Table> field = t.optional_table("random_field");
+  const std::optional<Table> control = t.optional_table("opening_control");
   t.finish();
   read_facet_laws(root, s);
   read_cell_specimen(root, s);
@@ -185,6 +243,8 @@ void read_rigid_cell(const Table& root, Scene& s) {
   read_mesostructure(root, s);
   read_groups(root, s);
   check_plates(root, s);
+  read_cell_probes(root, s);
+  if (control) read_opening_control(*control, s);
   read_load_step(root, s);
 }
 

@@ -183,8 +183,18 @@ struct RandomFieldSpec {
   std::uint64_t seed_offset = 0;  // the field's seed is the scene's plus this: several fields on the same cells
 };
 
+// Indirect displacement control of a rigid-cell scene ([rigid_cell.opening_control]): a plate travels along
+// `direction` so that an opening probe (between two plates) opens at `rate` through the smooth rise (9.1).
+struct OpeningControlSpec {
+  int probe = 0;  // index into Scene::probes
+  int plate = 0;  // index into Scene::groups
+  std::vector<double> direction;
+  double rate = 0, ramp_time = 0;
+};
+
 struct RigidCellSpec {
   CellSpecimenSpec specimen;
+  std::optional<OpeningControlSpec> opening_control;
   std::vector<FacetLawSpec> facets;
   std::optional<RandomFieldSpec> random_field;             // absent: f_t and G_t as the facet laws give them
   double damage_tolerance = 1e-6, force_tolerance = 1e-6;  // rigid_cell/static_solver.hpp

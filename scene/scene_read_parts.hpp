@@ -31,6 +31,8 @@ void read_groups(const Table& root, Scene& s);         // scene/boundary_read.cp
 void check_driven_axes(const Table& t, const GroupSpec& g, int d);
 void read_physics(const Table& root, Scene& s);    // scene/boundary_read.cpp
 void read_observers(const Table& root, Scene& s);  // scene/observers_read.cpp
+// An opening probe's sides (particles or groups) and direction (scene/observers_read.cpp).
+void read_opening(const Table& t, const Scene& s, ProbeSpec& p);
 // A scene with a [rigid_cell] table: its facet laws, cell specimen, mesostructure, plates and load step.
 void read_rigid_cell(const Table& root, Scene& s);  // scene/rigid_cell_read.cpp
 // Each wall under opening control names an opening probe (after read_observers).

@@ -106,6 +106,13 @@ RigidCellSetup<D> setup_of(const Scene& s) {
   };
   if (r.random_field) setup.strength_field = strength_field<D>(s, *setup.shape);
   for (const GroupSpec& g : s.groups) setup.plates.push_back(plate_of<D>(g));
+  for (const ProbeSpec& p : s.probes) {
+    PlateGauge<D> g{p.name, p.groups[0], p.groups[1]};
+    if (!p.direction.empty()) g.direction = vec_of<D>(p.direction);
+    setup.gauges.push_back(g);
+  }
+  if (const auto& c = r.opening_control)
+    setup.opening_control = OpeningDrive<D>{c->probe, c->plate, vec_of<D>(c->direction), c->rate, c->ramp_time};
   setup.load_step = s.timestep.fixed;
   setup.options = {r.damage_tolerance, r.force_tolerance, r.max_iterations};
   setup.crack_log = r.crack_log;
@@ -131,6 +138,7 @@ std::vector<Series> series_of(const Scene& s, const RigidCellSystem<D>* sys) {
       case W::MaxDamage: f = [sys] { return sys->max_damage(); }; break;
       case W::PlateReaction: f = [sys, p, k] { return sys->plate_reaction(p, k); }; break;
       case W::PlateDisplacement: f = [sys, p, k] { return sys->plate_displacement(p, k); }; break;
+      case W::Opening: f = [sys, p] { return sys->opening(p); }; break;
       case W::BoundaryWork: f = [sys] { return sys->boundary_work(); }; break;
       case W::StrainEnergy: f = [sys] { return sys->strain_energy(); }; break;
       case W::Dissipated: f = [sys] { return sys->boundary_work() - sys->strain_energy(); }; break;
