@@ -13,8 +13,8 @@ namespace mc::rigid_cell {
 
 template <int D>
 struct MassProperties {
-  double volume = 0;                                            // [m³]; 2D: [m²] × 1 m
-  Vec<D> first = Vec<D>::Zero();                                // ∫ r dV [m⁴]
+  double volume = 0;                                                         // [m³]; 2D: [m²] × 1 m
+  Vec<D> first = Vec<D>::Zero();                                             // ∫ r dV [m⁴]
   Eigen::Matrix<double, D, D> second = Eigen::Matrix<double, D, D>::Zero();  // ∫ r rᵀ dV [m⁵]
 
   Vec<D> centroid() const { return first / volume; }  // about the node
@@ -26,6 +26,26 @@ struct MassProperties {
     } else {
       return second.trace() * Eigen::Matrix3d::Identity() - second;
     }
+  }
+  // The cell's mass matrix about its node for a density ρ, Květoň (8.6)-(8.8): m on the translations, the inertia
+  // tensor on the rotations, and between them the additional momentum (8.7) of a centroid that is not the node,
+  // S_m = −[m Δ]× (the kinetic energy ½∫ρ|u̇ + θ̇ × r|² dV couples u̇ and θ̇ through ∫ρ r dV = m Δ). 2D: (x, y, θ).
+  Eigen::Matrix<double, D + Dim<D>::rot, D + Dim<D>::rot> mass_matrix(double density) const {
+    constexpr int n = D + Dim<D>::rot;
+    Eigen::Matrix<double, n, n> M = Eigen::Matrix<double, n, n>::Zero();
+    const double m = density * volume;
+    const Vec<D> s = density * first;  // m Δ
+    M.template topLeftCorner<D, D>() = m * Eigen::Matrix<double, D, D>::Identity();
+    M.template bottomRightCorner<Dim<D>::rot, Dim<D>::rot>() = density * inertia();
+    Eigen::Matrix<double, D, Dim<D>::rot> S;
+    if constexpr (D == 2) {
+      S << -s.y(), s.x();
+    } else {
+      S << 0, s.z(), -s.y(), -s.z(), 0, s.x(), s.y(), -s.x(), 0;
+    }
+    M.template topRightCorner<D, Dim<D>::rot>() = S;
+    M.template bottomLeftCorner<Dim<D>::rot, D>() = S.transpose();
+    return M;
   }
   MassProperties& operator+=(const MassProperties& o) {
     volume += o.volume;
