@@ -72,7 +72,16 @@ Slopes crack_band_slopes(const FacetParams& p, double L) {
           18 * p.alpha * p.E0 * ft2L / (32 * p.alpha * p.E0 * p.Gt - 9 * ft2L)};
 }
 
-double damage(const Eigen::Vector3d& e, const FacetParams& p, double L, const FacetState& s) {
+double rate_increase(const FacetParams& p, double strain_rate) {
+  return p.c1 > 0 ? 1 + p.c1 * std::asinh(strain_rate / p.c0) : 1.0;
+}
+
+double strain_rate(const Eigen::Vector3d& e_rate, const FacetParams& p) {
+  const Eigen::Vector3d& r = e_rate;
+  return std::sqrt(r[0] * r[0] + p.alpha * (r[1] * r[1] + r[2] * r[2]));
+}
+
+double damage(const Eigen::Vector3d& e, const FacetParams& p, double L, const FacetState& s, double strain_rate) {
   if (!(p.ft > 0)) return 0;
   const double eT = std::hypot(e[1], e[2]);
   const double e_eq = std::sqrt(e[0] * e[0] + p.alpha * eT * eT);  // (3.12)
@@ -89,8 +98,10 @@ double damage(const Eigen::Vector3d& e, const FacetParams& p, double L, const Fa
     const double n_t = std::log(k.Kt / (k.Kt - k.Ks)) / std::log(1 - 2 * w0 / M_PI);
     K = -k.Kt * (1 - std::pow((omega - M_PI / 2) / (w0 - M_PI / 2), n_t));
   }
-  const double beyond = std::max(0.0, e_eq - f_eq / p.E0);
-  const double s_eq = std::min((1 - s.D_max) * p.E0 * e_eq, f_eq * std::exp(K / f_eq * beyond));  // (3.17)
+  // (3.17), and (8.16): the limit raised by F(ẇ), the softening's initial slope K unchanged.
+  const double limit = rate_increase(p, strain_rate) * f_eq;
+  const double beyond = std::max(0.0, e_eq - limit / p.E0);
+  const double s_eq = std::min((1 - s.D_max) * p.E0 * e_eq, limit * std::exp(K / f_eq * beyond));
   return std::max(s.D_max, 1 - s_eq / (p.E0 * e_eq));  // (3.14)
 }
 

@@ -13,7 +13,15 @@ struct FacetParams {
   double alpha = 0;  // tangential-to-normal stiffness ratio α [-]
   double ft = 0;     // tensile strength f_t [Pa]; 0: elastic
   double Gt = 0;     // fracture energy in tension G_t [N/m]
+  // The rate dependence of (8.16)-(8.17): F = 1 + c₁ asinh(ė/c₀) scales the elastic limit; c₁ = 0: none.
+  double c0 = 0;  // [1/s] (Tab. 8.1)
+  double c1 = 0;  // [-]
 };
+
+// Květoň (8.17) after Cusatis (2011): the increase F of the elastic limit at the facet's equivalent strain rate
+// [1/s]. The thesis writes it of the crack-opening rate ẇ but gives c₀ in s⁻¹ (Tab. 8.1): the rate of the facet's
+// strain, its opening rate over its length.
+double rate_increase(const FacetParams& p, double strain_rate);
 
 // The macroscopic elastic constants of a tessellation with these E₀ and α, and the other way round: Květoň (3.8)
 // in 3D; in 2D (plane stress, unit thickness) by the same uniform-strain average, E = 2E₀(1 + α)/(3 + α),
@@ -48,7 +56,12 @@ Slopes crack_band_slopes(const FacetParams& p, double L);
 // Cedolin 2007; the thesis prints α for √α, which would not parametrise (3.12)).
 //
 // The damage for local strain e = (e_N, e_M[, e_L]) of a facet of length L, given the damage reached before:
-// (3.12)-(3.19). Never below D_max.
-double damage(const Eigen::Vector3d& e, const FacetParams& p, double L, const FacetState& s);
+// (3.12)-(3.19), with the elastic limit raised by F at the equivalent strain rate (8.16). Never below D_max.
+double damage(const Eigen::Vector3d& e, const FacetParams& p, double L, const FacetState& s, double strain_rate = 0);
+
+// The facet's equivalent strain rate √(ė_N² + α ė_T²) as (3.12), from its strain rate ė (the strain of the cells'
+// velocities): the relative speed of its two cells (Květoň §8.4: "the difference in velocities of particles it
+// connects") over its length.
+double strain_rate(const Eigen::Vector3d& e_rate, const FacetParams& p);
 
 }  // namespace mc::rigid_cell

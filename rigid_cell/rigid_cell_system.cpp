@@ -31,10 +31,47 @@ RigidCellSystem<D>::RigidCellSystem(RigidCellSetup<D> setup) : setup_(std::move(
   build_cells();
   build_plates();
   solver_ = std::make_unique<StaticSolver<D>>(*model_, *plates_, prescribed_);
-  build_gauges();
-  u_ = u_before_ = reactions_ = f_ext_ = Eigen::VectorXd::Zero(plates_->reduced());
+  u_ = u_before_ = reactions_ = f_ext_ = v_ = a_ = Eigen::VectorXd::Zero(plates_->reduced());
+  for (int p = 0; p < plates_->plates(); ++p)
+    for (int k = 0; k < kDofs; ++k) f_ext_[plates_->plate_dof(p, k)] = setup_.plates[p].load[k];
   damage_.assign(model_->contacts(), 0.0);
   states_.assign(model_->contacts(), FacetState{});
+  for (std::size_t c = 0; c < model_->contacts(); ++c) rate_dependent_ = rate_dependent_ || model_->params(c).c1 > 0;
+  if (rate_dependent_ && !setup_.dynamics)
+    throw InputError(
+        "a facet law's rate dependence (rate_c0, rate_c1; Kveton (8.16)-(8.17)) acts on the cells' "
+        "velocities: it needs [rigid_cell.dynamics]");
+  build_dynamics();
+  build_gauges();
+}
+
+// Květoň (8.6)-(8.8): each cell's mass matrix about its node, assembled block-diagonally and carried to the
+// reduced degrees of freedom (a plate's cells into one rigid body, Tᵀ M T); the solver's effective stiffness of
+// (8.4) with Rayleigh damping, K + (a₀ + a_M γ/(βΔt)) M + a_K γ/(βΔt) K₀.
+template <int D>
+void RigidCellSystem<D>::build_dynamics() {
+  if (!setup_.dynamics) return;
+  const DynamicsSpec& d = *setup_.dynamics;
+  newmark_.emplace(d.beta, d.gamma, setup_.load_step);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int c = 0; c < cells(); ++c) {
+    const double density = setup_.phase_density.at(phase_[c]);
+    const auto M = tessellation_.cells[c].mass.mass_matrix(density);
+    for (int i = 0; i < kDofs; ++i)
+      for (int j = 0; j < kDofs; ++j) t.emplace_back(c * kDofs + i, c * kDofs + j, M(i, j));
+  }
+  SparseMatrix cells_mass(cells() * kDofs, cells() * kDofs);
+  cells_mass.setFromTriplets(t.begin(), t.end());
+  const SparseMatrix& T = plates_->map();
+  mass_ = T.transpose() * cells_mass * T;
+  const double c1 = d.gamma / (d.beta * setup_.load_step);
+  solver_->set_inertia(mass_, newmark_->a0() + d.mass_damping * c1, d.stiffness_damping * c1);
+}
+
+template <int D>
+Eigen::VectorXd RigidCellSystem<D>::intact_forces(const Eigen::VectorXd& u) const {
+  const SparseMatrix& T = plates_->map();
+  return T.transpose() * model_->internal_forces(T * u, std::vector<double>(model_->contacts(), 0.0));
 }
 
 template <int D>
@@ -164,6 +201,12 @@ void RigidCellSystem<D>::step() {
   ++step_;
   last_ = {};
   cuts_ = 0;
+  if (newmark_) {
+    dynamic_step();
+    time_ += setup_.load_step;
+    log_cracks(damage_before);
+    return;
+  }
   try {
     advance(time_, time_ + setup_.load_step, 0);
   } catch (const InstabilityError& e) {
@@ -174,9 +217,57 @@ void RigidCellSystem<D>::step() {
   }
   time_ += setup_.load_step;
   reactions_ = solver_->reactions(u_, f_ext_, damage_);
-  // The plates' work, trapezoidal over the step (exact for the secant-linear response within it).
-  for (int d : prescribed_) work_ += 0.5 * (reactions_before[d] + reactions_[d]) * (u_[d] - u_before_[d]);
+  add_work(reactions_before);
   log_cracks(damage_before);
+}
+
+// The work of the supports and the applied loads over the step, trapezoidal (exact for the secant-linear response
+// within it, and for Newmark's average acceleration on an elastic specimen). The loads act from the first step on.
+template <int D>
+void RigidCellSystem<D>::add_work(const Eigen::VectorXd& reactions_before) {
+  for (int d : prescribed_) work_ += 0.5 * (reactions_before[d] + reactions_[d]) * (u_[d] - u_before_[d]);
+  const double before = step_ == 1 ? 0.0 : 1.0;
+  work_ += 0.5 * (1 + before) * f_ext_.dot(u_ - u_before_);  // zero on held degrees of freedom
+}
+
+// One Newmark step (8.4): the plates' held degrees of freedom at t + Δt, the inertial and damping loads of the last
+// state, the secant iteration on the effective stiffness, then (8.2)-(8.3). A step whose iteration does not
+// converge stops the run (exit 4): halving it would change the effective stiffness, and the dynamics with it.
+template <int D>
+void RigidCellSystem<D>::dynamic_step() {
+  const NewmarkScheme& s = *newmark_;
+  const DynamicsSpec& d = *setup_.dynamics;
+  const Eigen::VectorXd reactions_before = reactions_, u = u_;
+  prescribe(time_ + setup_.load_step);
+  const double c1 = d.gamma / (d.beta * s.dt), c2 = d.gamma / d.beta - 1, c3 = 0.5 * s.dt * (d.gamma / d.beta - 2);
+  const Eigen::VectorXd damped = c1 * u + c2 * v_ + c3 * a_;
+  Eigen::VectorXd f = f_ext_ + mass_ * s.inertial_history(u, v_, a_);
+  if (d.mass_damping != 0) f += d.mass_damping * (mass_ * damped);
+  if (d.stiffness_damping != 0) f += d.stiffness_damping * intact_forces(damped);
+  if (control_) control_->lambda = control_->drive.dot(u);
+  StaticOptions options = setup_.options;
+  if (rate_dependent_) {
+    // (8.16)-(8.17): each facet's strain rate from the velocities at the step's start (the strain is linear in
+    // the cells' motion, so the strain of the velocities is the strain rate).
+    const Eigen::VectorXd v_cells = solver_->cell_displacements(v_);
+    strain_rates_.resize(model_->contacts());
+    for (std::size_t c = 0; c < model_->contacts(); ++c)
+      strain_rates_[c] = strain_rate(model_->strain(c, v_cells), model_->params(c));
+    options.strain_rates = &strain_rates_;
+  }
+  try {
+    last_ = solver_->solve(u_, f, damage_, states_, options, control_ ? &*control_ : nullptr);
+  } catch (const InstabilityError& e) {
+    std::ostringstream m;
+    m << "Newmark step " << step_ << " (t = " << time_ + setup_.load_step << " s): " << e.what();
+    throw InstabilityError(m.str());
+  }
+  const Eigen::VectorXd a_next = s.acceleration(u_, u, v_, a_);
+  v_ = s.velocity(v_, a_, a_next);
+  a_ = a_next;
+  // The supports' force: K u + M ü + C u̇ − f at the held degrees of freedom.
+  reactions_ = solver_->reactions(u_, f, damage_);
+  add_work(reactions_before);
 }
 
 // The static solve from loading time `from` to `to`; when its secant iteration does not converge, the state goes
@@ -259,6 +350,11 @@ double RigidCellSystem<D>::strain_energy() const {
 }
 
 template <int D>
+double RigidCellSystem<D>::kinetic_energy() const {
+  return newmark_ ? 0.5 * v_.dot(mass_ * v_) : 0.0;
+}
+
+template <int D>
 SpecimenData RigidCellSystem<D>::specimen() const {
   SpecimenData d{D, {}, {}, {}, setup_.phase_names, {}, setup_.facts, setup_.outlines, polygons_->geometry()};
   for (int c = 0; c < cells(); ++c) {
@@ -284,12 +380,15 @@ template <int D>
 void RigidCellSystem<D>::frame(std::vector<double>& x, std::vector<double>& v, std::vector<double>& force) const {
   const Eigen::VectorXd u = solver_->cell_displacements(u_), before = solver_->cell_displacements(u_before_);
   const Eigen::VectorXd f = model_->internal_forces(u, damage_);
+  // Dynamics: Newmark's velocities; static solves: the step's travel over its loading time.
+  const Eigen::VectorXd velocity =
+      newmark_ ? Eigen::VectorXd(solver_->cell_displacements(v_)) : Eigen::VectorXd((u - before) / setup_.load_step);
   x.clear(), v.clear(), force.clear();
   for (int c = 0; c < cells(); ++c)
     for (int k = 0; k < D; ++k) {
       const int i = c * kDofs + k;
       x.push_back(tessellation_.cells[c].node[k] + u[i]);
-      v.push_back((u[i] - before[i]) / setup_.load_step);
+      v.push_back(velocity[i]);
       force.push_back(f[i]);
     }
 }
@@ -326,6 +425,7 @@ void RigidCellSystem<D>::save(Archive& a) const {
   a.reals["u_before"] = vec(u_before_);
   a.reals["reactions"] = vec(reactions_);
   a.reals["damage"] = damage_;
+  if (newmark_) a.reals["v"] = vec(v_), a.reals["a"] = vec(a_);
   a.reals["factored_damage"] = solver_->factored_damage();
   a.put("D_max", states_);
   a.put("cracks", cracks_);
@@ -346,6 +446,7 @@ void RigidCellSystem<D>::restore(const Archive& a) {
     v = Eigen::Map<const Eigen::VectorXd>(d.data(), static_cast<Eigen::Index>(d.size()));
   };
   vec("u", u_), vec("u_before", u_before_), vec("reactions", reactions_);
+  if (newmark_) vec("v", v_), vec("a", a_);
   damage_ = a.reals.at("damage");
   // The factor the solves were preconditioned with (absent from checkpoints of older builds: factorised afresh).
   if (const auto f = a.reals.find("factored_damage"); f != a.reals.end() && !f->second.empty())

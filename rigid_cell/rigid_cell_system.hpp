@@ -16,6 +16,7 @@
 #include "engine/system.hpp"
 #include "rigid_cell/cell_assembly.hpp"
 #include "rigid_cell/cell_polygons.hpp"
+#include "rigid_cell/newmark.hpp"
 #include "rigid_cell/plate_constraints.hpp"
 #include "rigid_cell/random_field.hpp"
 #include "rigid_cell/static_solver.hpp"
@@ -31,6 +32,16 @@ struct PlateSpec {
   std::array<bool, D + Dim<D>::rot> held{};
   Eigen::Matrix<double, D + Dim<D>::rot, 1> velocity = Eigen::Matrix<double, D + Dim<D>::rot, 1>::Zero();
   double ramp_time = 0;  // T of (9.1) [s]
+  // Force and moment on its free degrees of freedom about its reference point, acting from the first step on.
+  Eigen::Matrix<double, D + Dim<D>::rot, 1> load = Eigen::Matrix<double, D + Dim<D>::rot, 1>::Zero();
+};
+
+// Implicit dynamics (Květoň ch. 8): Newmark's β and γ (8.2)-(8.5) and Rayleigh damping C = a_M M + a_K K₀ on the
+// undamaged stiffness. Absent: each step is a static solve.
+struct DynamicsSpec {
+  double beta = NewmarkScheme::kBeta, gamma = NewmarkScheme::kGamma;
+  double mass_damping = 0;       // a_M [1/s]
+  double stiffness_damping = 0;  // a_K [s]
 };
 
 // An opening gauge (a clip gauge, the CMOD) between two plates: n · (U_b − U_a), the relative displacement of their
@@ -59,6 +70,7 @@ struct RigidCellSetup {
   std::uint64_t seed = 1;
   int max_rejections = 2000;
   std::vector<std::string> phase_names;
+  std::vector<double> phase_density;                  // [kg/m³]: the cells' mass, for dynamics
   std::function<int(const Vec<D>&)> phase_at;         // the phase of the cell with this node (the mesostructure)
   std::function<FacetParams(int, int)> facet;         // the law between two phases (InputError if none is declared)
   std::vector<std::pair<std::string, double>> facts;  // what building the mesostructure measured
@@ -66,7 +78,8 @@ struct RigidCellSetup {
   std::vector<PlateSpec<D>> plates;
   std::vector<PlateGauge<D>> gauges;
   std::optional<OpeningDrive<D>> opening_control;
-  double load_step = 0;  // [s] of loading time per static solve
+  double load_step = 0;  // [s] of loading time per static solve, or the time step of a dynamic one
+  std::optional<DynamicsSpec> dynamics;
   StaticOptions options;
   bool crack_log = false;
   // Květoň (3.21): the field h that scales each contact facet's f_t by h and G_t by h² at its centroid; null: none.
@@ -127,6 +140,7 @@ class RigidCellSystem final : public System {
   // damage dissipated (a static solve has no kinetic energy).
   double boundary_work() const { return work_; }
   double strain_energy() const;
+  double kinetic_energy() const;  // ½ u̇ᵀ M u̇ (dynamics; 0 for static solves)
 
  private:
   RigidCellSetup<D> setup_;
@@ -144,6 +158,10 @@ class RigidCellSystem final : public System {
   std::int64_t step_ = 0;
   double time_ = 0, work_ = 0;
   Eigen::VectorXd u_, u_before_, reactions_, f_ext_;  // reduced
+  // Dynamics: the scheme, the reduced mass matrix, velocities and accelerations.
+  std::optional<NewmarkScheme> newmark_;
+  SparseMatrix mass_;
+  Eigen::VectorXd v_, a_;
   std::vector<double> damage_;
   std::vector<FacetState> states_;
   std::vector<Crack<D>> cracks_;
@@ -155,6 +173,13 @@ class RigidCellSystem final : public System {
   void apply_strength_field(std::vector<FacetParams>& params);
   void build_plates();
   void build_gauges();
+  void build_dynamics();
+  void dynamic_step();
+  void add_work(const Eigen::VectorXd& reactions_before);
+  Eigen::VectorXd intact_forces(const Eigen::VectorXd& u) const;  // K₀ u, reduced
+  // Rate dependence (8.16)-(8.17), when a facet law declares it: each facet's strain rate at the step's start.
+  bool rate_dependent_ = false;
+  std::vector<double> strain_rates_;
   void prescribe(double t);
   void advance(double from, double to, int cuts);
   void log_cracks(const std::vector<double>& before);

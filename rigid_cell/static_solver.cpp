@@ -119,6 +119,33 @@ void StaticSolver<D>::check_support(const CellAssembly<D>& model, const SparseMa
 }
 
 template <int D>
+void StaticSolver<D>::set_inertia(const SparseMatrix& mass, double c_M, double c_K) {
+  mass_ = mass, c_M_ = c_M, c_K_ = c_K;
+  const std::vector<double> intact(model_.contacts(), 0.0);
+  const SparseMatrix mass_free = (select_ * mass_ * select_.transpose()).template triangularView<Eigen::Lower>();
+  shift_free_ = c_M * mass_free + c_K * free_stiffness_(intact);
+  factored_.clear();
+  analysed_ = false;  // the pattern may have grown
+}
+
+template <int D>
+const SparseMatrix& StaticSolver<D>::stiffness(const std::vector<double>& damage) {
+  const SparseMatrix& K = free_stiffness_(damage);
+  if (shift_free_.size() == 0) return K;
+  shifted_ = K + shift_free_;  // the same pattern every time: CHOLMOD's one analysis holds
+  return shifted_;
+}
+
+template <int D>
+Eigen::VectorXd StaticSolver<D>::forces(const Eigen::VectorXd& u, const std::vector<double>& damage) const {
+  const Eigen::VectorXd u_cells = map_ * u;
+  Eigen::VectorXd f = map_.transpose() * model_.internal_forces(u_cells, damage);
+  if (c_M_ != 0) f += c_M_ * (mass_ * u);
+  if (c_K_ != 0) f += c_K_ * (map_.transpose() * model_.internal_forces(u_cells, std::vector<double>(damage.size())));
+  return f;
+}
+
+template <int D>
 void StaticSolver<D>::factorise(const SparseMatrix& Kff, const std::vector<double>& damage) {
   // CHOLMOD's supernodal factorisation opens OpenMP regions with a thread count fixed when it was compiled (4 in
   // Debian's); on small supernodes their wake-ups cost more than they save (a 786-DOF disc: 2.9 s of system time
@@ -146,7 +173,7 @@ template <int D>
 Eigen::VectorXd StaticSolver<D>::free_solution(const std::vector<double>& damage, const Eigen::VectorXd& rhs,
                                                const Eigen::VectorXd& guess, StaticResult& r) {
   if (!factored_.empty() && damage == factored_) return cholesky_.solve(rhs);
-  const SparseMatrix& Kff = free_stiffness_(damage);
+  const SparseMatrix& Kff = stiffness(damage);
   if (!factored_.empty()) {
     cg_.compute(Kff);
     const Eigen::VectorXd x = cg_.solveWithGuess(rhs, guess);
@@ -164,7 +191,7 @@ template <int D>
 Eigen::VectorXd StaticSolver<D>::equilibrium(const std::vector<double>& damage, const Eigen::VectorXd& prescribed,
                                              const Eigen::VectorXd& f, const Eigen::VectorXd& guess, StaticResult& r) {
   // f_free − K_fp u_p, the prescribed displacements' forces on the free degrees of freedom for this damage.
-  const Eigen::VectorXd rhs = select_ * (f - map_.transpose() * model_.internal_forces(map_ * prescribed, damage));
+  const Eigen::VectorXd rhs = select_ * (f - forces(prescribed, damage));
   return prescribed + select_.transpose() * free_solution(damage, rhs, select_ * guess, r);
 }
 
@@ -204,7 +231,8 @@ StaticResult StaticSolver<D>::solve(Eigen::VectorXd& u, const Eigen::VectorXd& f
     const Eigen::VectorXd u_cells = map_ * u;
     change = 0;
     for (std::size_t c = 0; c < model_.contacts(); ++c) {
-      next[c] = rigid_cell::damage(model_.strain(c, u_cells), model_.params(c), model_.length(c), states[c]);
+      const double rate = options.strain_rates ? (*options.strain_rates)[c] : 0.0;
+      next[c] = rigid_cell::damage(model_.strain(c, u_cells), model_.params(c), model_.length(c), states[c], rate);
       if (options.monotone) next[c] = std::max(next[c], damage[c]);
       change = std::max(change, std::abs(next[c] - damage[c]));
     }
@@ -223,7 +251,7 @@ StaticResult StaticSolver<D>::solve(Eigen::VectorXd& u, const Eigen::VectorXd& f
     smallest_change = std::min(smallest_change, change);
     if (stalled == kStallIterations && !options.monotone) break;
     if (change > options.damage_tolerance) continue;
-    const Eigen::VectorXd f_int = map_.transpose() * model_.internal_forces(u_cells, damage);
+    const Eigen::VectorXd f_int = forces(u, damage);
     const double scale = std::max(
         {(select_ * f_int).cwiseAbs().maxCoeff(), f_int.cwiseAbs().maxCoeff(), f_ext.cwiseAbs().maxCoeff(), 1e-300});
     r.residual = (select_ * (f_ext - f_int)).cwiseAbs().maxCoeff() / scale;
@@ -235,7 +263,7 @@ StaticResult StaticSolver<D>::solve(Eigen::VectorXd& u, const Eigen::VectorXd& f
     // right-hand side, is too large for a specimen nearly cut through (its forces are small against its
     // stiffness), and would repeat in every iteration. The next solves use the factor of this damage itself.
     if (change == 0 && factored_ != damage) {
-      factorise(free_stiffness_(damage), damage);
+      factorise(stiffness(damage), damage);
       ++r.factorisations;
     }
   }
@@ -251,7 +279,7 @@ StaticResult StaticSolver<D>::solve(Eigen::VectorXd& u, const Eigen::VectorXd& f
 template <int D>
 Eigen::VectorXd StaticSolver<D>::reactions(const Eigen::VectorXd& u, const Eigen::VectorXd& f_ext,
                                            const std::vector<double>& damage) const {
-  Eigen::VectorXd r = map_.transpose() * model_.internal_forces(map_ * u, damage) - f_ext;
+  Eigen::VectorXd r = forces(u, damage) - f_ext;
   for (std::size_t d = 0; d < is_prescribed_.size(); ++d)
     if (!is_prescribed_[d]) r[d] = 0;
   return r;

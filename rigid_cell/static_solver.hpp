@@ -23,6 +23,10 @@ struct StaticOptions {
   // monotone sequence), to a state past a snap-back of the load path that displacement control cannot follow,
   // with the damage the jump left behind (as the crack running dynamically would).
   bool monotone = false;
+  // Rate dependence (8.16)-(8.17): each facet's equivalent strain rate, held through the step's iteration (taken
+  // from the velocities the step starts with: a rate that followed the iterate would raise the limit as the damage
+  // grows, and the iteration would swing). Null: none.
+  const std::vector<double>* strain_rates = nullptr;
 };
 
 // Indirect displacement control (CMOD-type): the prescribed displacements are u_p + λ·drive with λ unknown, found
@@ -73,10 +77,15 @@ class StaticSolver {
   Eigen::VectorXd reactions(const Eigen::VectorXd& u, const Eigen::VectorXd& f_ext,
                             const std::vector<double>& damage) const;
 
+  // Implicit dynamics (Newmark (8.4)): from now on every solve is of (K(D) + c_M M + c_K K₀) u = f, with M the
+  // reduced mass matrix and K₀ the undamaged stiffness (the effective stiffness of a step with Rayleigh damping
+  // C = a_M M + a_K K₀). The caller puts the step's inertial and damping loads into f. Drops any factor.
+  void set_inertia(const SparseMatrix& mass, double c_M, double c_K);
+
   // The damage whose stiffness is factorised (empty before the first solve), and a factorisation at a given one:
   // a checkpoint keeps it, since the solves that use it as a preconditioner depend on it in their last bits.
   const std::vector<double>& factored_damage() const { return factored_; }
-  void factorise_at(const std::vector<double>& damage) { factorise(free_stiffness_(damage), damage); }
+  void factorise_at(const std::vector<double>& damage) { factorise(stiffness(damage), damage); }
 
  private:
   using Cholesky = Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>;
@@ -105,6 +114,11 @@ class StaticSolver {
 
   const CellAssembly<D>& model_;
   SparseMatrix map_;  // u_cells = map_ · u
+  // Newmark's constant part c_M M + c_K K₀ (set_inertia): c_M = 0 and c_K = 0 for a static solve.
+  SparseMatrix mass_;        // reduced
+  SparseMatrix shift_free_;  // its free × free lower triangle
+  SparseMatrix shifted_;     // K_ff(D) plus it
+  double c_M_ = 0, c_K_ = 0;
   std::vector<bool> is_prescribed_;
   SparseMatrix select_;  // free × all: picks the free degrees of freedom
   FreeStiffness<D> free_stiffness_;
@@ -118,6 +132,10 @@ class StaticSolver {
 
   static void check_support(const CellAssembly<D>& model, const SparseMatrix& map, const std::vector<int>& prescribed);
   void factorise(const SparseMatrix& Kff, const std::vector<double>& damage);
+  // The lower triangle of the free stiffness for a damage, with the constant shift of a dynamic solve.
+  const SparseMatrix& stiffness(const std::vector<double>& damage);
+  // (K(D) + shift) u over every reduced degree of freedom.
+  Eigen::VectorXd forces(const Eigen::VectorXd& u, const std::vector<double>& damage) const;
   Eigen::VectorXd free_solution(const std::vector<double>& damage, const Eigen::VectorXd& rhs,
                                 const Eigen::VectorXd& guess, StaticResult& r);
   // The reduced displacements for prescribed ones `prescribed` (zero on the free degrees of freedom) and forces f.

@@ -32,6 +32,7 @@ std::vector<CellSeries> rigid_cell_series(const Scene& s) {
   if (s.rigid_cell && s.rigid_cell->energy) {
     out.push_back({W::BoundaryWork, "energy.boundary_work", "J"});
     out.push_back({W::StrainEnergy, "energy.strain", "J"});
+    if (s.rigid_cell->dynamics) out.push_back({W::KineticEnergy, "energy.kinetic", "J"});
     out.push_back({W::Dissipated, "energy.dissipated", "J"});
   }
   return out;

@@ -25,6 +25,7 @@ struct CellSeries {
     Opening,            // an opening probe's reading (`plate` holds the probe's index)
     BoundaryWork,
     StrainEnergy,
+    KineticEnergy,  // dynamics
     Dissipated,
   } what;
   std::string name, unit;

@@ -35,6 +35,15 @@ void read_facet_laws(const Table& root, Scene& s) {
     }
     f.tensile_strength = t.number("tensile_strength", Unit::Pressure, Range::non_negative(), 0.0);
     if (f.tensile_strength > 0) f.fracture_energy = t.number("fracture_energy", Unit::EnergyPerArea, Range::positive());
+    // Květoň (8.16)-(8.17): F = 1 + c₁ asinh(ė/c₀) on the elastic limit, c₀ a strain rate (Tab. 8.1).
+    if (t.has("rate_c1") || t.has("rate_c0")) {
+      if (!(f.tensile_strength > 0))
+        t.fail(t.has("rate_c1") ? "rate_c1" : "rate_c0",
+               "a rate dependence scales the elastic limit of a facet that "
+               "damages: give tensile_strength and fracture_energy");
+      f.rate_c1 = t.number("rate_c1", Unit::None, Range::positive());
+      f.rate_c0 = t.number("rate_c0", Unit::Rate, Range::positive());
+    }
     for (const auto& o : s.rigid_cell->facets)
       if ((o.phase_a == f.phase_a && o.phase_b == f.phase_b) || (o.phase_a == f.phase_b && o.phase_b == f.phase_a))
         t.fail("phase_b", "a facet law for this pair of phases is already given");
@@ -139,15 +148,25 @@ void check_plates(const Table& root, const Scene& s) {
   for (std::size_t g = 0; g < s.groups.size(); ++g) {
     const GroupSpec& p = s.groups[g];
     const Table& t = tables[g];
-    for (const char* key : {"tags", "ids", "force", "moment"})
+    for (const char* key : {"tags", "ids"})
       if (t.has(key))
         t.fail(key,
                "a rigid-cell plate takes the cells whose nodes lie in its box (box_lo, box_hi) and holds or "
-               "drives them (fix, velocity, angular_velocity, ramp_time); it has no '" +
+               "drives them (fix, velocity, angular_velocity, ramp_time) or loads them (force, moment); it has no '" +
                    std::string(key) + "'");
+    // A load acts on the plate's free degrees of freedom: on a held one the support would take it.
+    const int r = s.dimension == 2 ? 1 : 3;
+    const std::vector<std::string> dofs = s.dimension == 2 ? std::vector<std::string>{"x", "y", "rz"}
+                                                           : std::vector<std::string>{"x", "y", "z", "rx", "ry", "rz"};
+    for (int k = 0; k < s.dimension + r; ++k) {
+      const bool rotation = k >= s.dimension;
+      const auto& load = rotation ? p.moment : p.force;
+      if (!load.empty() && load[rotation ? k - s.dimension : k] != 0 && (p.fix & (1u << k)))
+        t.fail(rotation ? "moment" : "force",
+               "loads the plate along " + dofs[k] + ", which it holds (fix): a load acts on a free degree of freedom");
+    }
     if (p.box_lo.empty()) t.fail("box_lo", "a rigid-cell plate takes the cells whose nodes lie in its box");
     check_driven_axes(t, p, s.dimension);  // a plate moves along its velocity on held axes only
-    const int r = s.dimension == 2 ? 1 : 3;
     for (int k = 0; k < r && !p.angular_velocity.empty(); ++k)
       if (p.angular_velocity[k] != 0 && !(p.fix & (1u << (s.dimension + k))))
         t.fail("fix", "the plate turns at its angular velocity about a held axis only: add its rotation to 'fix'");
@@ -213,6 +232,23 @@ void read_opening_control(const Table& t, Scene& s) {
   s.rigid_cell->opening_control = c;
 }
 
+// [rigid_cell.dynamics]: Newmark's parameters within (8.5), and Rayleigh damping.
+void read_dynamics(const Table& t, Scene& s) {
+  CellDynamicsSpec d;
+  d.beta = t.number("beta", Unit::None, Range::positive(), d.beta);
+  d.gamma = t.number("gamma", Unit::None, Range::at_least(0.5), d.gamma);
+  if (!(2 * d.beta >= d.gamma)) {
+    std::ostringstream m;
+    m << "Newmark's scheme is unconditionally stable for 2 beta >= gamma >= 0.5 (Kveton (8.5)); gamma is " << d.gamma
+      << ", so beta must be at least " << d.gamma / 2;
+    t.fail("beta", m.str());
+  }
+  d.mass_damping = t.number("mass_damping", Unit::Rate, Range::non_negative(), 0.0);
+  d.stiffness_damping = t.number("stiffness_damping", Unit::Time, Range::non_negative(), 0.0);
+  t.finish();
+  s.rigid_cell->dynamics = d;
+}
+
 void read_load_step(const Table& root, Scene& s) {
   const Table t = root.table("timestep");
   s.timestep.fixed = t.number("fixed", Unit::Time, Range::positive());
@@ -236,10 +272,12 @@ void read_rigid_cell(const Table& root, Scene& s) {
   r.energy = t.boolean("energy", false);
   const std::optional<Table> field = t.optional_table("random_field");
   const std::optional<Table> control = t.optional_table("opening_control");
+  const std::optional<Table> dynamics = t.optional_table("dynamics");
   t.finish();
   read_facet_laws(root, s);
   read_cell_specimen(root, s);
   if (field) read_random_field(*field, s);
+  if (dynamics) read_dynamics(*dynamics, s);
   read_mesostructure(root, s);
   read_groups(root, s);
   check_plates(root, s);

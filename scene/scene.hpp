@@ -169,7 +169,8 @@ struct FacetLawSpec {
   int phase_a = 0, phase_b = 0;
   double E0 = 0, alpha = 0, E = 0, nu = 0;
   double tensile_strength = 0, fracture_energy = 0;
-  std::string where;  // the table, for messages: "file: contacts[0]"
+  double rate_c0 = 0, rate_c1 = 0;  // (8.17); rate_c1 = 0: rate-independent
+  std::string where;                // the table, for messages: "file: contacts[0]"
 };
 
 // Květoň §3.4 (3.21): one random field h(x) of mean 1 scales each contact facet's tensile strength by h and its
@@ -192,8 +193,15 @@ struct OpeningControlSpec {
   double rate = 0, ramp_time = 0;
 };
 
+// Implicit dynamics of a rigid-cell scene ([rigid_cell.dynamics], Květoň ch. 8): Newmark's β, γ and Rayleigh damping.
+struct CellDynamicsSpec {
+  double beta = 0.3, gamma = 0.55;                 // Květoň §9.1
+  double mass_damping = 0, stiffness_damping = 0;  // a_M [1/s], a_K [s] of C = a_M M + a_K K₀
+};
+
 struct RigidCellSpec {
   CellSpecimenSpec specimen;
+  std::optional<CellDynamicsSpec> dynamics;  // absent: static load steps
   std::optional<OpeningControlSpec> opening_control;
   std::vector<FacetLawSpec> facets;
   std::optional<RandomFieldSpec> random_field;             // absent: f_t and G_t as the facet laws give them

@@ -31,7 +31,7 @@ std::vector<std::vector<std::optional<FacetParams>>> facet_table(const Scene& s)
   const std::size_t n = s.phases.size();
   std::vector<std::vector<std::optional<FacetParams>>> table(n, std::vector<std::optional<FacetParams>>(n));
   for (const FacetLawSpec& f : s.rigid_cell->facets) {
-    FacetParams p{f.E0, f.alpha, f.tensile_strength, f.fracture_energy};
+    FacetParams p{f.E0, f.alpha, f.tensile_strength, f.fracture_energy, f.rate_c0, f.rate_c1};
     if (f.E0 == 0) {
       try {
         const FacetParams m = mesoscopic(D, f.E, f.nu);
@@ -73,6 +73,8 @@ PlateSpec<D> plate_of(const GroupSpec& g) {
   for (int k = 0; k < D && !g.velocity.empty(); ++k) p.velocity[k] = g.velocity[k];
   for (int k = 0; k < Dim<D>::rot && !g.angular_velocity.empty(); ++k) p.velocity[D + k] = g.angular_velocity[k];
   p.ramp_time = g.ramp_time.value_or(0.0);
+  for (int k = 0; k < D && !g.force.empty(); ++k) p.load[k] = g.force[k];
+  for (int k = 0; k < Dim<D>::rot && !g.moment.empty(); ++k) p.load[D + k] = g.moment[k];
   return p;
 }
 
@@ -84,7 +86,7 @@ RigidCellSetup<D> setup_of(const Scene& s) {
   setup.l_min = r.specimen.l_min;
   setup.seed = s.seed;
   setup.max_rejections = r.specimen.max_rejections;
-  for (const auto& p : s.phases) setup.phase_names.push_back(p.name);
+  for (const auto& p : s.phases) setup.phase_names.push_back(p.name), setup.phase_density.push_back(p.density);
   // Without a mesostructure every cell is of the first phase; with one, a cell whose node lies in an aggregate
   // is aggregate, the others mortar (Tang §4.3.1, as the explicit engine's particles).
   if (s.mesostructure.fraction > 0) {
@@ -114,6 +116,8 @@ RigidCellSetup<D> setup_of(const Scene& s) {
   if (const auto& c = r.opening_control)
     setup.opening_control = OpeningDrive<D>{c->probe, c->plate, vec_of<D>(c->direction), c->rate, c->ramp_time};
   setup.load_step = s.timestep.fixed;
+  if (const auto& d = r.dynamics)
+    setup.dynamics = DynamicsSpec{d->beta, d->gamma, d->mass_damping, d->stiffness_damping};
   setup.options = {r.damage_tolerance, r.force_tolerance, r.max_iterations};
   setup.crack_log = r.crack_log;
   return setup;
@@ -141,7 +145,10 @@ std::vector<Series> series_of(const Scene& s, const RigidCellSystem<D>* sys) {
       case W::Opening: f = [sys, p] { return sys->opening(p); }; break;
       case W::BoundaryWork: f = [sys] { return sys->boundary_work(); }; break;
       case W::StrainEnergy: f = [sys] { return sys->strain_energy(); }; break;
-      case W::Dissipated: f = [sys] { return sys->boundary_work() - sys->strain_energy(); }; break;
+      case W::KineticEnergy: f = [sys] { return sys->kinetic_energy(); }; break;
+      case W::Dissipated:
+        f = [sys] { return sys->boundary_work() - sys->strain_energy() - sys->kinetic_energy(); };
+        break;
     }
     out.push_back({c.name, c.unit, std::move(f)});
   }

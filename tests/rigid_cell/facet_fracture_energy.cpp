@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "engine/errors.hpp"
 #include "rigid_cell/cell_assembly.hpp"
@@ -16,7 +17,7 @@ namespace {
 // w along x (pure tension) or y (pure shear) in small steps. Returns the work of the pull per unit facet area,
 // ∫ f dw / A (trapezoids), far enough that the exponential tail left is below e^-15.
 template <int D>
-double work_to_separate(double h, const FacetParams& p, int direction, double peak_over_ft) {
+double work_to_separate(double h, const FacetParams& p, int direction, double peak_over_ft, double strain_rate = 0) {
   const Vec<D> size = (Vec<D>::Ones() * h).eval() + Vec<D>::UnitX() * h;
   const auto shape = SpecimenShape<D>::box(size);
   std::vector<Vec<D>> nodes{Vec<D>::Ones() * h / 2, Vec<D>::Ones() * h / 2 + Vec<D>::UnitX() * h};
@@ -25,13 +26,13 @@ double work_to_separate(double h, const FacetParams& p, int direction, double pe
   const CellAssembly<D> model(t, {p});
   constexpr int n = CellAssembly<D>::kDofs;
   const double area = t.facets[0].area;
-  const double w_max = (direction == 0 ? 40 : 300) * p.Gt / p.ft, dw = w_max / 40000;
+  const double w_max = (direction == 0 ? 40 : 300) * p.Gt / p.ft * peak_over_ft, dw = w_max / 40000;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(model.dofs());
   FacetState state;
   double work = 0, previous = 0, peak = 0;
   for (double w = dw; w <= w_max; w += dw) {
     u[n + direction] = w;
-    const double D_now = damage(model.strain(0, u), p, model.length(0), state);
+    const double D_now = damage(model.strain(0, u), p, model.length(0), state, strain_rate);
     state.D_max = D_now;
     const double f = model.force(0, u, D_now)[direction];  // on the right cell: pulls it back
     work += 0.5 * (previous - f) * dw;
@@ -54,6 +55,30 @@ TEST_CASE("one facet pulled apart dissipates G_t per unit area whatever its size
     CHECK(work_to_separate<3>(h, p, 0, 1.0) == doctest::Approx(p.Gt).epsilon(0.01));
     CHECK(work_to_separate<2>(h, p, 0, 1.0) == doctest::Approx(p.Gt).epsilon(0.01));
   }
+}
+
+TEST_CASE("facet_law_at_a_strain_rate_raises_its_elastic_limit_by_F_and_dissipates_the_closed_form_energy") {
+  // Květoň (8.16)-(8.17) with Tab. 8.1's set 1 (c₀ 1e-5 /s, c₁ 0.05) at 1 /s: F = 1 + c₁ asinh(ė/c₀) = 1.610. The
+  // limit rises to F f_t with the softening's initial slope −K_t unchanged, so one facet pulled apart at that rate
+  // dissipates per unit area L ∫ s de = L F² f_t²/(2E₀) + F (G_t − L f_t²/(2E₀)) (the second term the softening's
+  // F f_t × f_t/K_t, with K_t of (3.20)); at F = 1 that is G_t.
+  FacetParams p{48e9, 0.29, 3e6, 80.0, 1e-5, 0.05};
+  const double rate = 1.0, F = rate_increase(p, rate);
+  CHECK(F == doctest::Approx(1 + 0.05 * std::asinh(1e5)).epsilon(1e-14));
+  for (double h : {1e-3, 4e-3}) {
+    CAPTURE(h);
+    const double L = h;  // the node distance of two cubes side by side
+    const double expected = L * F * F * p.ft * p.ft / (2 * p.E0) + F * (p.Gt - L * p.ft * p.ft / (2 * p.E0));
+    // 1 %: as the rate-independent facet above (trapezoids and the tail err by less than 1e-4).
+    CHECK(work_to_separate<3>(h, p, 0, F, rate) == doctest::Approx(expected).epsilon(0.01));
+  }
+  // Far below c₀ the law is the rate-independent one; without c₁ rates are ignored.
+  CHECK(rate_increase(p, 1e-9) == doctest::Approx(1).epsilon(1e-4));
+  p.c1 = 0;
+  CHECK(rate_increase(p, 1e3) == 1);
+  // The strain rate of a facet: √(ė_N² + α ė_T²) (3.12).
+  CHECK(strain_rate(Eigen::Vector3d(3e-2, 2e-2, 0), p) ==
+        doctest::Approx(std::sqrt(9e-4 + 0.29 * 4e-4)).epsilon(1e-14));
 }
 
 TEST_CASE("facet law: pure shear holds 3 f_t, softening starts at omega_0, compression holds 16 f_t (Kveton 3.16)") {
@@ -84,8 +109,7 @@ TEST_CASE("a facet whose crack band would snap back (Kveton 3.20: tension and sh
     if (h < L_max) {
       CHECK_NOTHROW(CellAssembly<2>(t, {p}));
     } else {
-      CHECK_THROWS_WITH_AS(CellAssembly<2>(t, {p}), doctest::Contains("facet 0 between cells 0 and 1"),
-                           mc::InputError);
+      CHECK_THROWS_WITH_AS(CellAssembly<2>(t, {p}), doctest::Contains("facet 0 between cells 0 and 1"), mc::InputError);
     }
   }
 }

@@ -1,0 +1,174 @@
+// Rigid cells in implicit dynamics (Květoň ch. 8, [rigid_cell.dynamics]) through the real `mesocrack` command: the
+// discrete cantilever swings at its first natural frequency, a wave runs along an elastic bar at the bar speed, the
+// trapezoidal rule keeps the energy, a resumed run is the same run, and a step that does not converge stops the
+// run with exit 4.
+#include <cmath>
+#include <numbers>
+
+#include "tests/common/cli_harness.hpp"
+
+namespace {
+
+std::vector<double> series(const mc::H5File& f, const std::string& name) { return f.read_doubles("/history/" + name); }
+
+// The times at which `y` falls through `level`, linearly interpolated between samples.
+std::vector<double> downward_crossings(const std::vector<double>& t, const std::vector<double>& y, double level) {
+  std::vector<double> at;
+  for (std::size_t i = 1; i < y.size(); ++i)
+    if (y[i - 1] > level && y[i] <= level)
+      at.push_back(t[i - 1] + (level - y[i - 1]) / (y[i] - y[i - 1]) * (t[i] - t[i - 1]));
+  return at;
+}
+
+// Work of the supports and loads against the energy stored and moving: what the run dissipated, relative to the work.
+double dissipated_share(const mc::H5File& f) {
+  return std::abs(series(f, "energy.dissipated").back()) / series(f, "energy.boundary_work").back();
+}
+
+}  // namespace
+
+TEST_CASE("rigid_cell_cantilever_swings_at_the_euler_bernoulli_first_frequency_about_its_static_deflection") {
+  const TempDir d;
+  const Result r = mesocrack({"run", (kScenes / "cantilever_dynamic_kveton.toml").string(), "-o", "beam.h5"}, d.dir);
+  REQUIRE_MESSAGE(r.code == 0, r.describe());
+  const mc::H5File f((d / "beam.h5").string(), mc::H5File::Mode::ReadOnly);
+  const auto t = series(f, "time"), y = series(f, "group.end.disp_y");
+  // Květoň (3.8): E = E₀ (2 + 3α)/(4 + α) of the facets' E₀ 48 GPa, α 0.29; beam 200 × 20 × 20 mm, ρ 2400.
+  const double E = 48e9 * (2 + 3 * 0.29) / (4 + 0.29), L = 0.2, h = 0.02, I = h * h * h * h / 12, rho = 2400;
+  const double omega = 1.8751 * 1.8751 * std::sqrt(E * I / (rho * h * h * L * L * L * L));  // (8.14)
+  const double lowest = *std::min_element(y.begin(), y.end());
+  // The end swings about its static deflection: three downward passes through it in 11 ms.
+  const auto passes = downward_crossings(t, y, 0.5 * lowest);
+  REQUIRE(passes.size() >= 3);
+  const double period = (passes.back() - passes.front()) / static_cast<double>(passes.size() - 1);
+  // 5 % as the issue asks: measured 294.4 Hz against 295.4 Hz. Euler–Bernoulli leaves out shear and the section's
+  // rotary inertia (about −1.5 % at L/h = 10) and the cells' statics are 3.4 % stiffer than beam theory
+  // (rigid_cell_elasticity.cpp); the trapezoidal rule lengthens the period by Ω²/12 = 0.07 % at 68 steps per period.
+  CHECK(2 * std::numbers::pi / period == doctest::Approx(omega).epsilon(0.05));
+  // (8.13): the swing reaches twice the static deflection F L³/3EI, shear included (κ, G of ν): within the 5 % the
+  // statics hold.
+  const double nu = (1 - 0.29) / (4 + 0.29), G = E / (2 * (1 + nu)), kappa = 10 * (1 + nu) / (12 + 11 * nu);
+  const double deflection = L * L * L / (3 * E * I) + L / (kappa * G * h * h);
+  CHECK(-0.5 * lowest == doctest::Approx(deflection).epsilon(0.05));
+  // The trapezoidal rule (β ¼, γ ½) conserves the energy of a linear system exactly: the load's work is the stored
+  // plus the kinetic energy to round-off.
+  CHECK(dissipated_share(f) < 1e-9);
+}
+
+TEST_CASE("rigid_cell_bar_carries_an_elastic_wave_at_the_bar_speed") {
+  const TempDir d;
+  const fs::path scene = kScenes / "rigid_cell_wave_2d.toml";
+  const Result r = mesocrack({"run", scene.string(), "-o", "bar.h5"}, d.dir);
+  REQUIRE_MESSAGE(r.code == 0, r.describe());
+  const mc::H5File f((d / "bar.h5").string(), mc::H5File::Mode::ReadOnly);
+  const auto t = series(f, "time"), x = series(f, "group.free_end.disp_x");
+  const double E0 = 30e9, rho = 2400, v = 0.1, height = 0.02, rise = 20e-6;
+  const double c = std::sqrt(E0 / rho);  // α = 1: E = E₀, ν = 0, so no lateral coupling
+  // The free end moves at twice the particle speed once the front has passed; it reaches half of that (the
+  // struck end's speed) a half rise time after the front's middle arrives. Its speed by central differences.
+  double arrival = 0;
+  for (std::size_t i = 1; i + 1 < t.size(); ++i) {
+    const double speed = (x[i + 1] - x[i - 1]) / (t[i + 1] - t[i - 1]);
+    if (speed >= v) {
+      const double before = (x[i] - x[i - 2]) / (t[i] - t[i - 2]);
+      arrival = t[i - 1] + (v - before) / (speed - before) * (t[i] - t[i - 1]) - rise / 2;
+      break;
+    }
+  }
+  REQUIRE(arrival > 0);
+  // From the struck plate's box centre (1 mm) to the free one's (399 mm); the plates' reference points, their cells'
+  // centroids, lie within about a millimetre of these (0.3 % of the run). 2 % as the issue asks: measured −0.45 %.
+  CHECK(0.398 / arrival == doctest::Approx(c).epsilon(0.02));
+  // The struck end pushes with σ = ρ c v over the bar's height (the impedance of a bar): measured to 0.01 %.
+  const auto push = series(f, "group.struck.reaction_x");
+  CHECK(push[100] == doctest::Approx(rho * c * v * height).epsilon(0.01));
+  // γ = 0.55 damps (8.5): a little of the work is lost to the scheme, none is created.
+  const double lost = series(f, "energy.dissipated").back() / series(f, "energy.boundary_work").back();
+  CHECK(lost > 0);
+  CHECK(lost < 0.01);
+  // The trapezoidal rule on the same bar: nothing lost, to round-off.
+  const Result exact = mesocrack({"run", scene.string(), "-o", "trapezoidal.h5", "--set",
+                                  "rigid_cell.dynamics.beta=0.25", "--set", "rigid_cell.dynamics.gamma=0.5"},
+                                 d.dir);
+  REQUIRE_MESSAGE(exact.code == 0, exact.describe());
+  CHECK(dissipated_share(mc::H5File((d / "trapezoidal.h5").string(), mc::H5File::Mode::ReadOnly)) < 1e-9);
+}
+
+TEST_CASE("rigid_cell_dynamic_run_resumed_halfway_gives_the_same_bits") {
+  const TempDir d;
+  const std::string scene = (kScenes / "rigid_cell_wave_2d.toml").string();
+  const Result whole = mesocrack({"run", scene, "-o", "whole.h5"}, d.dir);
+  REQUIRE_MESSAGE(whole.code == 0, whole.describe());
+  // Stopped at step 160, with the front halfway along the bar: the velocities and accelerations go on from there.
+  const Result first = mesocrack(
+      {"run", scene, "-o", "parts.h5", "--set", "run.steps=160", "--set", "output.checkpoint_every=160"}, d.dir);
+  REQUIRE_MESSAGE(first.code == 0, first.describe());
+  const Result rest = mesocrack({"run", scene, "--resume", "parts.h5", "--set", "output.checkpoint_every=160"}, d.dir);
+  REQUIRE_MESSAGE(rest.code == 0, rest.describe());
+  check_same_run(d / "whole.h5", d / "parts.h5");
+}
+
+TEST_CASE("rigid_cell_newmark_step_that_does_not_converge_stops_with_exit_4_naming_the_step_and_residual") {
+  const TempDir d;
+  // The bar pulled instead of pushed, its facets made weak enough (f_t 0.5 MPa) that the tensile wave's 0.85 MPa
+  // damages them, with one secant iteration allowed per step.
+  const Result r = mesocrack({"run", (kScenes / "rigid_cell_wave_2d.toml").string(), "-o", "weak.h5", "--set",
+                              "groups[0].velocity=[\"-0.1 m/s\", 0]", "--set", "contacts[0].tensile_strength=0.5 MPa",
+                              "--set", "contacts[0].fracture_energy=10 N/m", "--set", "rigid_cell.max_iterations=1"},
+                             d.dir);
+  CHECK(r.code == 4);
+  CHECK_MESSAGE(contains(r.err, "Newmark step"), r.err);
+  CHECK_MESSAGE(contains(r.err, "out-of-balance ratio"), r.err);
+  // What ran is kept, with no NaN in it.
+  const mc::H5File f((d / "weak.h5").string(), mc::H5File::Mode::ReadOnly);
+  for (double x : series(f, "group.struck.reaction_x")) REQUIRE(std::isfinite(x));
+}
+
+TEST_CASE("rigid_cell_rate_dependent_facets_hold_more_of_a_tensile_wave") {
+  const TempDir d;
+  // The bar pulled (a tensile wave of ρcv = 0.85 MPa) with facets of f_t 0.6 MPa: rate-independent they damage all
+  // along the bar behind the front; with Tab. 8.1's set 1 (c₀ 1e-5 /s, c₁ 0.05) the front's strain rate (about
+  // 1 /s) raises their limit by F ≈ 1.6 while it passes, and they damage less (measured: 827 facets to D 0.98
+  // without, 407 to D 0.41 with).
+  const std::vector<std::string> pulled = {"--set", "groups[0].velocity=[\"-0.1 m/s\", 0]",
+                                           "--set", "contacts[0].tensile_strength=0.6 MPa",
+                                           "--set", "contacts[0].fracture_energy=10 N/m"};
+  auto run = [&](const std::string& out, std::vector<std::string> extra) {
+    std::vector<std::string> args{"run", (kScenes / "rigid_cell_wave_2d.toml").string(), "-o", out};
+    args.insert(args.end(), pulled.begin(), pulled.end());
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Result r = mesocrack(args, d.dir);
+    REQUIRE_MESSAGE(r.code == 0, r.describe());
+    return mc::H5File((d / out).string(), mc::H5File::Mode::ReadOnly);
+  };
+  const mc::H5File plain = run("plain.h5", {});
+  const mc::H5File rated = run("rated.h5", {"--set", "contacts[0].rate_c0=1e-5", "--set", "contacts[0].rate_c1=0.05"});
+  CHECK(series(rated, "damage.max").back() < 0.5 * series(plain, "damage.max").back());
+  CHECK(series(rated, "facets.damaged").back() < series(plain, "facets.damaged").back());
+  // A rate dependence in a static scene is refused: it acts on velocities.
+  const Result quasi = mesocrack({"run", (kScenes / "rigid_cell_tension_2d.toml").string(), "-o", "static.h5", "--set",
+                                  "contacts[0].tensile_strength=3 MPa", "--set", "contacts[0].fracture_energy=60 N/m",
+                                  "--set", "contacts[0].rate_c0=1e-5", "--set", "contacts[0].rate_c1=0.05"},
+                                 d.dir);
+  CHECK(quasi.code == 2);
+  CHECK_MESSAGE(contains(quasi.err, "[rigid_cell.dynamics]"), quasi.err);
+  CHECK_FALSE(fs::exists(d / "static.h5"));
+}
+
+TEST_CASE("rigid_cell_dynamics_bad_input_names_the_key") {
+  const TempDir d;
+  const std::string scene = (kScenes / "rigid_cell_wave_2d.toml").string();
+  const Result unstable = mesocrack(
+      {"run", scene, "-o", "a.h5", "--set", "rigid_cell.dynamics.beta=0.2", "--set", "rigid_cell.dynamics.gamma=0.5"},
+      d.dir);
+  CHECK(unstable.code == 2);
+  CHECK_MESSAGE(contains(unstable.err, "rigid_cell.dynamics.beta"), unstable.err);
+  CHECK_MESSAGE(contains(unstable.err, "(8.5)"), unstable.err);
+  CHECK_FALSE(fs::exists(d / "a.h5"));
+  // A load on a held degree of freedom would go straight into the support.
+  const Result held = mesocrack({"run", scene, "-o", "b.h5", "--set", "groups[0].force=[\"1 N\", 0]"}, d.dir);
+  CHECK(held.code == 2);
+  CHECK_MESSAGE(contains(held.err, "groups[0].force"), held.err);
+  CHECK_MESSAGE(contains(held.err, "which it holds"), held.err);
+  CHECK_FALSE(fs::exists(d / "b.h5"));
+}
