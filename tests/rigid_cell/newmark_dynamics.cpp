@@ -11,6 +11,7 @@
 #include "engine/errors.hpp"
 #include "rigid_cell/mass_properties.hpp"
 #include "rigid_cell/newmark.hpp"
+#include "tests/rigid_cell/box_cell.hpp"
 
 using namespace mc;
 using namespace mc::rigid_cell;
@@ -33,29 +34,12 @@ double box_kinetic_energy(const Vec<3>& lo, const Vec<3>& hi, const Vec<3>& node
   return 0.5 * density * e * (hi - lo).prod() / 8;  // eight points, equal weights
 }
 
-MassProperties<3> box_cell(const Vec<3>& lo, const Vec<3>& hi, const Vec<3>& node) {
-  MassProperties<3> m;
-  for (int k = 0; k < 3; ++k) {
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    for (double side : {lo[k], hi[k]}) {
-      std::array<Vec<3>, 4> f;
-      const double u[4] = {lo[i], hi[i], hi[i], lo[i]}, w[4] = {lo[j], lo[j], hi[j], hi[j]};
-      for (int c = 0; c < 4; ++c) {
-        f[c][k] = side, f[c][i] = u[c], f[c][j] = w[c];
-        f[c] -= node;
-      }
-      m += pyramid<3>(f);
-    }
-  }
-  return m;
-}
-
 }  // namespace
 
 TEST_CASE("cell_mass_matrix_gives_the_kinetic_energy_of_every_rigid_motion_about_an_off_centre_node") {
   const Vec<3> lo(0, 0, 0), hi(0.03, 0.02, 0.01), node(0.012, 0.005, 0.004);
   const double density = 2400;
-  const Eigen::Matrix<double, 6, 6> M = box_cell(lo, hi, node).mass_matrix(density);
+  const Eigen::Matrix<double, 6, 6> M = mc::test::box_cell(lo, hi, node).mass_matrix(density);
   CHECK((M - M.transpose()).norm() == 0);
   // Six motions, each a translation and a turn: ½ q̇ᵀ M q̇ against the integral. The coupling S_m (8.7) matters:
   // without it a translation along x with a turn about z misses 2 m Δ_y v_x ω_z.

@@ -8,31 +8,12 @@
 #include "engine/errors.hpp"
 #include "rigid_cell/node_placement.hpp"
 #include "rigid_cell/tessellation.hpp"
+#include "tests/rigid_cell/box_cell.hpp"
 
 using namespace mc;
 using namespace mc::rigid_cell;
 
 namespace {
-
-// The six faces of the box [lo, hi], each about `apex`.
-std::vector<std::array<Vec<3>, 4>> box_faces(const Vec<3>& lo, const Vec<3>& hi, const Vec<3>& apex) {
-  std::vector<std::array<Vec<3>, 4>> faces;
-  for (int k = 0; k < 3; ++k) {
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    for (double side : {lo[k], hi[k]}) {
-      std::array<Vec<3>, 4> f;
-      const double u[4] = {lo[i], hi[i], hi[i], lo[i]}, v[4] = {lo[j], lo[j], hi[j], hi[j]};
-      for (int c = 0; c < 4; ++c) {
-        f[c][k] = side;
-        f[c][i] = u[c];
-        f[c][j] = v[c];
-        f[c] -= apex;
-      }
-      faces.push_back(f);
-    }
-  }
-  return faces;
-}
 
 // The inertia about a point at `d` from the centroid, from the one about the centroid (parallel axes).
 Eigen::Matrix3d shifted(const Eigen::Matrix3d& about_centroid, double volume, const Vec<3>& d) {
@@ -43,8 +24,7 @@ Eigen::Matrix3d shifted(const Eigen::Matrix3d& about_centroid, double volume, co
 
 TEST_CASE("inertia of a box cell about an off-centre node equals the closed form (Kveton 8.9-8.12)") {
   const Vec<3> lo(0, 0, 0), hi(0.03, 0.02, 0.01), node(0.012, 0.005, 0.004);
-  MassProperties<3> m;
-  for (const auto& f : box_faces(lo, hi, node)) m += pyramid<3>(f);
+  const MassProperties<3> m = mc::test::box_cell(lo, hi, node);
   const double a = 0.03, b = 0.02, c = 0.01, v = a * b * c;
   CHECK(m.volume == doctest::Approx(v).epsilon(1e-12));
   const Vec<3> centroid = 0.5 * (lo + hi) - node;
