@@ -8,6 +8,7 @@
 #include "engine/errors.hpp"
 #include "engine/ramp.hpp"
 #include "rigid_cell/node_placement.hpp"
+#include "rigid_cell/point_motion.hpp"
 
 namespace mc::rigid_cell {
 
@@ -30,10 +31,12 @@ template <int D>
 RigidCellSystem<D>::RigidCellSystem(RigidCellSetup<D> setup) : setup_(std::move(setup)) {
   build_cells();
   build_plates();
-  solver_ = std::make_unique<StaticSolver<D>>(*model_, *plates_, prescribed_);
-  u_ = u_before_ = reactions_ = f_ext_ = v_ = a_ = Eigen::VectorXd::Zero(plates_->reduced());
+  solver_ = std::make_unique<StaticSolver<D>>(*model_, *plates_, prescribed_, setup_.dynamics.has_value());
+  u_ = u_before_ = reactions_ = f_ext_ = v_ = a_ = plate_loads_ = wave_load_ =
+      Eigen::VectorXd::Zero(plates_->reduced());
   for (int p = 0; p < plates_->plates(); ++p)
-    for (int k = 0; k < kDofs; ++k) f_ext_[plates_->plate_dof(p, k)] = setup_.plates[p].load[k];
+    for (int k = 0; k < kDofs; ++k) plate_loads_[plates_->plate_dof(p, k)] = setup_.plates[p].load[k];
+  build_stress_wave();
   damage_.assign(model_->contacts(), 0.0);
   states_.assign(model_->contacts(), FacetState{});
   for (std::size_t c = 0; c < model_->contacts(); ++c) rate_dependent_ = rate_dependent_ || model_->params(c).c1 > 0;
@@ -66,6 +69,38 @@ void RigidCellSystem<D>::build_dynamics() {
   mass_ = T.transpose() * cells_mass * T;
   const double c1 = d.gamma / (d.beta * setup_.load_step);
   solver_->set_inertia(mass_, newmark_->a0() + d.mass_damping * c1, d.stiffness_damping * c1);
+}
+
+// Květoň (9.5): each surface facet in the wave's box takes −A n of a unit pressure at its centroid, carried to its
+// cell's degrees of freedom (a force at c does the work of (A_x^c)ᵀ F on them, (3.2)) and through the plates.
+template <int D>
+void RigidCellSystem<D>::build_stress_wave() {
+  if (!setup_.stress_wave) return;
+  const StressWave<D>& w = *setup_.stress_wave;
+  if (!setup_.dynamics)
+    throw InputError("a stress wave (Kveton (9.5)) loads a specimen in time: it needs [rigid_cell.dynamics]");
+  Eigen::VectorXd on_cells = Eigen::VectorXd::Zero(cells() * kDofs);
+  int loaded = 0;
+  for (std::size_t f = tessellation_.contacts; f < tessellation_.facets.size(); ++f) {
+    const Facet<D>& facet = tessellation_.facets[f];
+    if ((facet.centroid.array() < w.lo.array()).any() || (facet.centroid.array() > w.hi.array()).any()) continue;
+    const Vec<D> force = -facet.area * facet.normal;
+    on_cells.segment<kDofs>(facet.a * kDofs) +=
+        point_motion<D>(tessellation_.cells[facet.a].node, facet.centroid).transpose() * force;
+    ++loaded;
+  }
+  if (loaded == 0)
+    throw InputError("the stress wave's box " + box_text<D>(w.lo, w.hi) +
+                     " holds the centroid of no surface facet: it must take in a face of the specimen");
+  wave_load_ = plates_->map().transpose() * on_cells;
+}
+
+template <int D>
+Eigen::VectorXd RigidCellSystem<D>::loads_at(double t) const {
+  if (t <= 0) return Eigen::VectorXd::Zero(plate_loads_.size());
+  Eigen::VectorXd f = plate_loads_;
+  if (setup_.stress_wave) f += setup_.stress_wave->at(t) * wave_load_;
+  return f;
 }
 
 template <int D>
@@ -185,6 +220,7 @@ void RigidCellSystem<D>::prescribe(double t) {
     for (int k = 0; k < kDofs; ++k)
       if (s.held[k]) u_[plates_->plate_dof(p, k)] = s.velocity[k] * travel;
   }
+  f_ext_ = loads_at(t);
   if (!control_) return;
   // The drive's own part is found by the solve: it starts from zero there.
   const OpeningDrive<D>& c = *setup_.opening_control;
@@ -196,13 +232,14 @@ void RigidCellSystem<D>::prescribe(double t) {
 template <int D>
 void RigidCellSystem<D>::step() {
   const std::vector<double> damage_before = damage_;
-  const Eigen::VectorXd reactions_before = reactions_;
+  const Eigen::VectorXd reactions_before = reactions_, loads_before = loads_at(time_);
   u_before_ = u_;
   ++step_;
   last_ = {};
   cuts_ = 0;
   if (newmark_) {
     dynamic_step();
+    add_work(reactions_before, loads_before);
     time_ += setup_.load_step;
     log_cracks(damage_before);
     return;
@@ -217,17 +254,16 @@ void RigidCellSystem<D>::step() {
   }
   time_ += setup_.load_step;
   reactions_ = solver_->reactions(u_, f_ext_, damage_);
-  add_work(reactions_before);
+  add_work(reactions_before, loads_before);
   log_cracks(damage_before);
 }
 
 // The work of the supports and the applied loads over the step, trapezoidal (exact for the secant-linear response
 // within it, and for Newmark's average acceleration on an elastic specimen). The loads act from the first step on.
 template <int D>
-void RigidCellSystem<D>::add_work(const Eigen::VectorXd& reactions_before) {
+void RigidCellSystem<D>::add_work(const Eigen::VectorXd& reactions_before, const Eigen::VectorXd& loads_before) {
   for (int d : prescribed_) work_ += 0.5 * (reactions_before[d] + reactions_[d]) * (u_[d] - u_before_[d]);
-  const double before = step_ == 1 ? 0.0 : 1.0;
-  work_ += 0.5 * (1 + before) * f_ext_.dot(u_ - u_before_);  // zero on held degrees of freedom
+  work_ += 0.5 * (loads_before + f_ext_).dot(u_ - u_before_);  // the loads: zero on held degrees of freedom
 }
 
 // One Newmark step (8.4): the plates' held degrees of freedom at t + Δt, the inertial and damping loads of the last
@@ -237,7 +273,7 @@ template <int D>
 void RigidCellSystem<D>::dynamic_step() {
   const NewmarkScheme& s = *newmark_;
   const DynamicsSpec& d = *setup_.dynamics;
-  const Eigen::VectorXd reactions_before = reactions_, u = u_;
+  const Eigen::VectorXd u = u_;
   prescribe(time_ + setup_.load_step);
   const double c1 = d.gamma / (d.beta * s.dt), c2 = d.gamma / d.beta - 1, c3 = 0.5 * s.dt * (d.gamma / d.beta - 2);
   const Eigen::VectorXd damped = c1 * u + c2 * v_ + c3 * a_;
@@ -267,7 +303,6 @@ void RigidCellSystem<D>::dynamic_step() {
   a_ = a_next;
   // The supports' force: K u + M ü + C u̇ − f at the held degrees of freedom.
   reactions_ = solver_->reactions(u_, f, damage_);
-  add_work(reactions_before);
 }
 
 // The static solve from loading time `from` to `to`; when its secant iteration does not converge, the state goes

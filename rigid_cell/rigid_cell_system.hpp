@@ -5,9 +5,11 @@
 // smooth rise (9.1). What the scene records is given to it as series (set_histories) reading the accessors below.
 #pragma once
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -63,6 +65,18 @@ struct OpeningDrive {
   double ramp_time = 0;  // T of (9.1) [s]
 };
 
+// Květoň (9.5): a stress wave on the specimen's surface, one cosine pulse of pressure σ(t) = ½ σ_max (1 − cos 2πt/t_P)
+// for t ≤ t_P, then none, on the surface facets whose centroids lie in a box (positive: pushing into the specimen).
+template <int D>
+struct StressWave {
+  Vec<D> lo, hi;
+  double pressure = 0;  // σ_max [Pa]
+  double duration = 0;  // t_P [s]
+  double at(double t) const {
+    return t <= duration ? 0.5 * pressure * (1 - std::cos(2 * std::numbers::pi * t / duration)) : 0.0;
+  }
+};
+
 template <int D>
 struct RigidCellSetup {
   std::shared_ptr<const SpecimenShape<D>> shape;
@@ -80,6 +94,7 @@ struct RigidCellSetup {
   std::optional<OpeningDrive<D>> opening_control;
   double load_step = 0;  // [s] of loading time per static solve, or the time step of a dynamic one
   std::optional<DynamicsSpec> dynamics;
+  std::optional<StressWave<D>> stress_wave;
   StaticOptions options;
   bool crack_log = false;
   // Květoň (3.21): the field h that scales each contact facet's f_t by h and G_t by h² at its centroid; null: none.
@@ -158,6 +173,7 @@ class RigidCellSystem final : public System {
   std::int64_t step_ = 0;
   double time_ = 0, work_ = 0;
   Eigen::VectorXd u_, u_before_, reactions_, f_ext_;  // reduced
+  Eigen::VectorXd plate_loads_, wave_load_;           // the plates' loads; the stress wave's at unit pressure
   // Dynamics: the scheme, the reduced mass matrix, velocities and accelerations.
   std::optional<NewmarkScheme> newmark_;
   SparseMatrix mass_;
@@ -175,7 +191,9 @@ class RigidCellSystem final : public System {
   void build_gauges();
   void build_dynamics();
   void dynamic_step();
-  void add_work(const Eigen::VectorXd& reactions_before);
+  void add_work(const Eigen::VectorXd& reactions_before, const Eigen::VectorXd& loads_before);
+  void build_stress_wave();
+  Eigen::VectorXd loads_at(double t) const;                       // the applied loads at time t (none at t = 0)
   Eigen::VectorXd intact_forces(const Eigen::VectorXd& u) const;  // K₀ u, reduced
   // Rate dependence (8.16)-(8.17), when a facet law declares it: each facet's strain rate at the step's start.
   bool rate_dependent_ = false;

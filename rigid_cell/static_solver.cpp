@@ -51,10 +51,10 @@ SparseMatrix free_rows(const std::vector<bool>& is_prescribed) {
 
 template <int D>
 StaticSolver<D>::StaticSolver(const CellAssembly<D>& model, const PlateConstraints<D>& plates,
-                              const std::vector<int>& prescribed)
+                              const std::vector<int>& prescribed, bool inertia)
     : model_(model),
       // Checked first: an unsupported specimen is refused before its stiffness pattern is built.
-      map_((check_support(model, plates.map(), prescribed), plates.map())),
+      map_((check_support(model, plates.map(), prescribed, inertia), plates.map())),
       is_prescribed_(mask(plates.reduced(), prescribed)),
       select_(free_rows(is_prescribed_)),
       free_stiffness_(model, map_ * select_.transpose()) {
@@ -74,7 +74,8 @@ StaticSolver<D>::StaticSolver(const CellAssembly<D>& model, const std::vector<in
 // Cells that share a reduced degree of freedom (the cells of one plate) hold each other.
 template <int D>
 void StaticSolver<D>::check_support(const CellAssembly<D>& model, const SparseMatrix& map,
-                                    const std::vector<int>& prescribed) {
+                                    const std::vector<int>& prescribed, bool inertia) {
+  if (inertia) return;
   const int n = model.cells();
   std::vector<std::vector<int>> neighbours(n), cells_of_dof(map.cols());
   for (std::size_t c = 0; c < model.contacts(); ++c) {

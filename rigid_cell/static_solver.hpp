@@ -53,8 +53,10 @@ template <int D>
 class StaticSolver {
  public:
   // `prescribed`: the reduced degrees of freedom whose displacement is given. Throws InputError naming a cell that
-  // no chain of contact facets and plates joins to a prescribed degree of freedom.
-  StaticSolver(const CellAssembly<D>& model, const PlateConstraints<D>& plates, const std::vector<int>& prescribed);
+  // no chain of contact facets and plates joins to a prescribed degree of freedom, unless `inertia` says every
+  // solve will carry a mass (set_inertia): a free body then moves as its load and inertia say.
+  StaticSolver(const CellAssembly<D>& model, const PlateConstraints<D>& plates, const std::vector<int>& prescribed,
+               bool inertia = false);
   // Without plates: `prescribed` indexes cell × kDofs + component.
   StaticSolver(const CellAssembly<D>& model, const std::vector<int>& prescribed);
 
@@ -130,7 +132,8 @@ class StaticSolver {
   bool analysed_ = false;
   Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower, FactorPreconditioner> cg_;
 
-  static void check_support(const CellAssembly<D>& model, const SparseMatrix& map, const std::vector<int>& prescribed);
+  static void check_support(const CellAssembly<D>& model, const SparseMatrix& map, const std::vector<int>& prescribed,
+                            bool inertia);
   void factorise(const SparseMatrix& Kff, const std::vector<double>& damage);
   // The lower triangle of the free stiffness for a damage, with the constant shift of a dynamic solve.
   const SparseMatrix& stiffness(const std::vector<double>& damage);

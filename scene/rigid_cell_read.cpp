@@ -249,6 +249,21 @@ void read_dynamics(const Table& t, Scene& s) {
   s.rigid_cell->dynamics = d;
 }
 
+// [rigid_cell.stress_wave]: Květoň (9.5), a cosine pulse of pressure on a face of the specimen, in dynamics only.
+void read_stress_wave(const Table& t, Scene& s) {
+  StressWaveSpec w;
+  if (!s.rigid_cell->dynamics)
+    t.fail("pressure", "a stress wave loads the specimen in time: it needs [rigid_cell.dynamics]");
+  w.box_lo = vec(t, "box_lo", Unit::Length, s.dimension);
+  w.box_hi = vec(t, "box_hi", Unit::Length, s.dimension);
+  check_box(t, "box_lo", w.box_lo, "box_hi", w.box_hi);
+  w.pressure = t.number("pressure", Unit::Pressure, Range::any());
+  if (w.pressure == 0) t.fail("pressure", "a stress wave of no pressure loads nothing");
+  w.duration = t.number("duration", Unit::Time, Range::positive());
+  t.finish();
+  s.rigid_cell->stress_wave = w;
+}
+
 void read_load_step(const Table& root, Scene& s) {
   const Table t = root.table("timestep");
   s.timestep.fixed = t.number("fixed", Unit::Time, Range::positive());
@@ -273,11 +288,13 @@ void read_rigid_cell(const Table& root, Scene& s) {
   const std::optional<Table> field = t.optional_table("random_field");
   const std::optional<Table> control = t.optional_table("opening_control");
   const std::optional<Table> dynamics = t.optional_table("dynamics");
+  const std::optional<Table> wave = t.optional_table("stress_wave");
   t.finish();
   read_facet_laws(root, s);
   read_cell_specimen(root, s);
   if (field) read_random_field(*field, s);
   if (dynamics) read_dynamics(*dynamics, s);
+  if (wave) read_stress_wave(*wave, s);
   read_mesostructure(root, s);
   read_groups(root, s);
   check_plates(root, s);

@@ -199,8 +199,15 @@ struct CellDynamicsSpec {
   double mass_damping = 0, stiffness_damping = 0;  // a_M [1/s], a_K [s] of C = a_M M + a_K K₀
 };
 
+// Květoň (9.5): one cosine pulse of pressure on the surface facets in a box ([rigid_cell.stress_wave]).
+struct StressWaveSpec {
+  std::vector<double> box_lo, box_hi;
+  double pressure = 0, duration = 0;  // σ_max [Pa] (positive: pushing in), t_P [s]
+};
+
 struct RigidCellSpec {
   CellSpecimenSpec specimen;
+  std::optional<StressWaveSpec> stress_wave;
   std::optional<CellDynamicsSpec> dynamics;  // absent: static load steps
   std::optional<OpeningControlSpec> opening_control;
   std::vector<FacetLawSpec> facets;

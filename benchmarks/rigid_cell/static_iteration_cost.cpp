@@ -1,11 +1,14 @@
-// What a static secant iteration of the rigid-cell model costs as the specimen grows: a 3D prism of Voronoi cells
+// What a secant iteration of the rigid-cell model costs as the specimen grows: a 3D prism of Voronoi cells
 // (100 × 100 × 200 mm, Květoň's concrete of Tab. 9.1) held at its bottom cells and pulled at its top cells, from
 // 10^3 to 10^5 degrees of freedom. For each size: the parts of an iteration timed alone (the stiffness refilled,
 // CHOLMOD's numeric factorisation, one pair of triangular solves, the facets' strains and damage), then the static
 // solver on the first steps past the elastic limit (secant iterations, factorisations, conjugate-gradient
 // iterations, wall time per iteration) and the linear solver's share of that time. The order of the time per
-// iteration in the degrees of freedom, fitted over the sizes run, projects it to 10^6.
-// Usage: static_iteration_cost [--dofs 1000,3000,10000,30000,100000] [--steps N]
+// iteration in the degrees of freedom, fitted over the sizes run, projects it to 10^6. Then the same prism in
+// Newmark's implicit dynamics (Květoň (8.4), β 0.3, γ 0.55, ρ 2 400 kg/m³, steps of ten cell transits of the bar
+// wave): the top pulled so that it reaches the strain at the tensile strength halfway, the time per elastic step
+// (one solve with the kept factor) and per damaged step (a secant iteration inside it).
+// Usage: static_iteration_cost [--dofs 1000,3000,10000,30000,100000] [--steps N] [--newmark-steps N]
 #include <omp.h>
 
 #include <Eigen/CholmodSupport>
@@ -18,6 +21,7 @@
 
 #include "engine/errors.hpp"
 #include "rigid_cell/free_stiffness.hpp"
+#include "rigid_cell/newmark.hpp"
 #include "rigid_cell/node_placement.hpp"
 #include "rigid_cell/static_solver.hpp"
 
@@ -60,25 +64,35 @@ struct Row {
   double solver_share() const { return (factorisations * factorise + (iterations + cg) * solve + cg * product) / wall; }
 };
 
-Row measure(int target_dofs, int max_steps) {
+// The prism at one size: its cells, facets, and the held degrees of freedom (every one of the cells within l_min
+// of the bottom and the top; the top's z translations are pulled).
+struct Prism {
+  double l_min;
+  Tessellation<3> t;
+  CellAssembly<3> model;
+  std::vector<int> held, top;
+  std::vector<bool> is_held;
+  explicit Prism(int target_dofs)
+      : l_min(std::cbrt(kNodesPerVolume * kSize.prod() * 6 / target_dofs)),
+        t(tessellate(place_nodes(SpecimenShape<3>::box(kSize), l_min, 1, 3000), SpecimenShape<3>::box(kSize),
+                     3 * l_min)),
+        model(t, std::vector<FacetParams>(t.contacts, kConcrete)),
+        is_held(model.dofs(), false) {
+    constexpr int n = CellAssembly<3>::kDofs;
+    for (int c = 0; c < model.cells(); ++c) {
+      const double z = t.cells[c].node.z();
+      if (z > l_min && z < kSize.z() - l_min) continue;
+      for (int k = 0; k < n; ++k) held.push_back(n * c + k), is_held[n * c + k] = true;
+      if (z >= kSize.z() - l_min) top.push_back(n * c + 2);
+    }
+  }
+};
+
+Row measure(const Prism& p, int max_steps) {
   Row r;
-  const double l_min = std::cbrt(kNodesPerVolume * kSize.prod() * 6 / target_dofs);
-  const auto shape = SpecimenShape<3>::box(kSize);
-  const auto t = tessellate(place_nodes(shape, l_min, 1, 3000), shape, 3 * l_min);
-  const CellAssembly<3> model(t, std::vector<FacetParams>(t.contacts, kConcrete));
-  constexpr int n = CellAssembly<3>::kDofs;
+  const auto& [l_min, t, model, held, top, is_held] = p;
   r.cells = model.cells();
   r.facets = model.contacts();
-
-  // Held: every degree of freedom of the cells within l_min of the bottom and the top.
-  std::vector<int> held, top;
-  std::vector<bool> is_held(model.dofs(), false);
-  for (int c = 0; c < model.cells(); ++c) {
-    const double z = t.cells[c].node.z();
-    if (z > l_min && z < kSize.z() - l_min) continue;
-    for (int k = 0; k < n; ++k) held.push_back(n * c + k), is_held[n * c + k] = true;
-    if (z >= kSize.z() - l_min) top.push_back(n * c + 2);
-  }
   r.dofs = model.dofs() - static_cast<int>(held.size());
   // Made first: it sets the BLAS to one thread, as in a run.
   StaticSolver<3> solver(model, held);
@@ -138,12 +152,75 @@ Row measure(int target_dofs, int max_steps) {
   return r;
 }
 
+// The prism in Newmark steps (8.4): per step the inertial load M (a₀u + a₁u̇ + a₂ü), the secant iteration on
+// K(D) + a₀M (the factor kept while no facet's damage changes), then (8.2)-(8.3).
+struct DynamicRow {
+  double dt = 0;
+  int elastic_steps = 0, damaged_steps = 0, iterations = 0, factorisations = 0, cg = 0;
+  double elastic_wall = 0, damaged_wall = 0;
+  double share = 0;  // the linear solver's, over the damaged steps
+};
+
+DynamicRow measure_newmark(const Prism& p, const Row& parts, int steps) {
+  DynamicRow r;
+  const auto& [l_min, t, model, held, top, is_held] = p;
+  constexpr int n = CellAssembly<3>::kDofs;
+  const double rho = 2400, c = std::sqrt(macroscopic(3, kConcrete.E0, kConcrete.alpha).E / rho);
+  r.dt = 10 * l_min / c;
+  const NewmarkScheme s(NewmarkScheme::kBeta, NewmarkScheme::kGamma, r.dt);
+  std::vector<Eigen::Triplet<double>> mass;
+  for (int cell = 0; cell < model.cells(); ++cell) {
+    const auto M = t.cells[cell].mass.mass_matrix(rho);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) mass.emplace_back(n * cell + i, n * cell + j, M(i, j));
+  }
+  SparseMatrix M(model.dofs(), model.dofs());
+  M.setFromTriplets(mass.begin(), mass.end());
+  StaticSolver<3> solver(model, held);
+  solver.set_inertia(M, s.a0(), 0);
+  // The top reaches the strain at the tensile strength at half the steps.
+  const double speed = 2 * kSize.z() * kConcrete.ft / kConcrete.E0 / (steps * r.dt);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(model.dofs()), v = u, a = u;
+  std::vector<double> damage(model.contacts(), 0.0);
+  std::vector<FacetState> states(model.contacts());
+  StaticOptions options;
+  options.damage_tolerance = 1e-4;
+  for (int step = 1; step <= steps; ++step) {
+    const auto t0 = Clock::now();
+    Eigen::VectorXd q = u;
+    for (int d : top) q[d] = speed * step * r.dt;
+    const Eigen::VectorXd f = M * s.inertial_history(u, v, a);
+    StaticResult res;
+    try {
+      res = solver.solve(q, f, damage, states, options);
+    } catch (const InstabilityError& e) {
+      std::fprintf(stderr, "  Newmark step %d stops the measurement: %s\n", step, e.what());
+      break;
+    }
+    const Eigen::VectorXd a_next = s.acceleration(q, u, v, a);
+    v = s.velocity(v, a, a_next);
+    a = a_next, u = q;
+    const double wall = seconds_since(t0);
+    if (step == 1) continue;  // its factorisation is timed with the parts
+    if (res.iterations <= 1) {
+      r.elastic_steps += 1, r.elastic_wall += wall;
+    } else {
+      r.damaged_steps += 1, r.damaged_wall += wall;
+      r.iterations += res.iterations, r.factorisations += res.factorisations, r.cg += res.cg_iterations;
+    }
+  }
+  if (r.damaged_wall > 0)
+    r.share = (r.factorisations * parts.factorise + (r.iterations + r.cg) * parts.solve + r.cg * parts.product) /
+              r.damaged_wall;
+  return r;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   omp_set_max_active_levels(0);
   std::vector<int> sizes{1000, 3000, 10000, 30000, 100000};
-  int steps = 5;
+  int steps = 5, newmark_steps = 40;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i];
     if (a == "--dofs") {
@@ -155,8 +232,10 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--steps") {
       steps = std::stoi(argv[i + 1]);
+    } else if (a == "--newmark-steps") {
+      newmark_steps = std::stoi(argv[i + 1]);
     } else {
-      std::fprintf(stderr, "usage: %s [--dofs 1000,3000,...] [--steps N]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--dofs 1000,3000,...] [--steps N] [--newmark-steps N]\n", argv[0]);
       return 2;
     }
   }
@@ -166,8 +245,11 @@ int main(int argc, char** argv) {
       "CG iterations | per iteration [ms] | linear solver share "
       "|\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<Row> rows;
+  std::vector<DynamicRow> dynamic;
   for (int target : sizes) {
-    const Row r = measure(target, steps);
+    const Prism prism(target);
+    const Row r = measure(prism, steps);
+    dynamic.push_back(measure_newmark(prism, r, newmark_steps));
     rows.push_back(r);
     std::printf(
         "| %d | %d | %zu | %ld | %.3g | %.3g | %.2f | %.1f | %.2f | %.2f | %.2f | %d | %d | %d | %d | %.1f | %.0f %% "
@@ -189,6 +271,18 @@ int main(int argc, char** argv) {
         "\nper iteration ∝ DOFs^%.2f, factorisation ∝ DOFs^%.2f (between %d and %d DOFs): at 10^6 DOFs %.2f s per "
         "iteration, %.0f s per factorisation\n",
         p, pf, a.dofs, b.dofs, b.per_iteration() * std::pow(1e6 / b.dofs, p), b.factorise * std::pow(1e6 / b.dofs, pf));
+  }
+  std::printf(
+      "\nNewmark steps (β 0.3, γ 0.55), %d per size:\n\n| free DOFs | Δt [µs] | elastic steps | per elastic step "
+      "[ms] | damaged steps | secant iterations per damaged step | per damaged step [ms] | linear solver share "
+      "|\n|---|---|---|---|---|---|---|---|\n",
+      newmark_steps);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const DynamicRow& d = dynamic[i];
+    std::printf("| %d | %.2f | %d | %.2f | %d | %.1f | %.1f | %.0f %% |\n", rows[i].dofs, d.dt * 1e6, d.elastic_steps,
+                d.elastic_steps ? d.elastic_wall / d.elastic_steps * 1e3 : 0.0, d.damaged_steps,
+                d.damaged_steps ? double(d.iterations) / d.damaged_steps : 0.0,
+                d.damaged_steps ? d.damaged_wall / d.damaged_steps * 1e3 : 0.0, 100 * d.share);
   }
   return 0;
 }

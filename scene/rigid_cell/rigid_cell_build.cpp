@@ -116,6 +116,8 @@ RigidCellSetup<D> setup_of(const Scene& s) {
   if (const auto& c = r.opening_control)
     setup.opening_control = OpeningDrive<D>{c->probe, c->plate, vec_of<D>(c->direction), c->rate, c->ramp_time};
   setup.load_step = s.timestep.fixed;
+  if (const auto& w = r.stress_wave)
+    setup.stress_wave = StressWave<D>{vec_of<D>(w->box_lo), vec_of<D>(w->box_hi), w->pressure, w->duration};
   if (const auto& d = r.dynamics)
     setup.dynamics = DynamicsSpec{d->beta, d->gamma, d->mass_damping, d->stiffness_damping};
   setup.options = {r.damage_tolerance, r.force_tolerance, r.max_iterations};
