@@ -42,6 +42,12 @@ struct NewmarkScheme {
   V inertial_history(const V& u, const V& v, const V& a) const {
     return a0() * u + a1() * v + a2() * a;
   }
+  // The damping part of (8.4): C multiplies γ/(βΔt) u_{t+Δt} on the left, and this on the right.
+  double damping_coefficient() const { return gamma / (beta * dt); }
+  template <class V>
+  V damping_history(const V& u, const V& v, const V& a) const {
+    return damping_coefficient() * u + (gamma / beta - 1) * v + 0.5 * dt * (gamma / beta - 2) * a;
+  }
 };
 
 // What the scheme does to an undamped oscillator of circular frequency ω (Hughes 1987, §9.1): its displacements

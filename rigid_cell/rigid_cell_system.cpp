@@ -66,9 +66,8 @@ void RigidCellSystem<D>::build_dynamics() {
   SparseMatrix cells_mass(cells() * kDofs, cells() * kDofs);
   cells_mass.setFromTriplets(t.begin(), t.end());
   const SparseMatrix& T = plates_->map();
-  mass_ = T.transpose() * cells_mass * T;
-  const double c1 = d.gamma / (d.beta * setup_.load_step);
-  solver_->set_inertia(mass_, newmark_->a0() + d.mass_damping * c1, d.stiffness_damping * c1);
+  const double c = newmark_->damping_coefficient();
+  solver_->set_inertia(T.transpose() * cells_mass * T, newmark_->a0() + d.mass_damping * c, d.stiffness_damping * c);
 }
 
 // Květoň (9.5): each surface facet in the wave's box takes −A n of a unit pressure at its centroid, carried to its
@@ -101,12 +100,6 @@ Eigen::VectorXd RigidCellSystem<D>::loads_at(double t) const {
   Eigen::VectorXd f = plate_loads_;
   if (setup_.stress_wave) f += setup_.stress_wave->at(t) * wave_load_;
   return f;
-}
-
-template <int D>
-Eigen::VectorXd RigidCellSystem<D>::intact_forces(const Eigen::VectorXd& u) const {
-  const SparseMatrix& T = plates_->map();
-  return T.transpose() * model_->internal_forces(T * u, std::vector<double>(model_->contacts(), 0.0));
 }
 
 template <int D>
@@ -275,11 +268,11 @@ void RigidCellSystem<D>::dynamic_step() {
   const DynamicsSpec& d = *setup_.dynamics;
   const Eigen::VectorXd u = u_;
   prescribe(time_ + setup_.load_step);
-  const double c1 = d.gamma / (d.beta * s.dt), c2 = d.gamma / d.beta - 1, c3 = 0.5 * s.dt * (d.gamma / d.beta - 2);
-  const Eigen::VectorXd damped = c1 * u + c2 * v_ + c3 * a_;
-  Eigen::VectorXd f = f_ext_ + mass_ * s.inertial_history(u, v_, a_);
-  if (d.mass_damping != 0) f += d.mass_damping * (mass_ * damped);
-  if (d.stiffness_damping != 0) f += d.stiffness_damping * intact_forces(damped);
+  const SparseMatrix& M = solver_->mass();
+  const Eigen::VectorXd damped = s.damping_history(u, v_, a_);
+  Eigen::VectorXd f = f_ext_ + M * s.inertial_history(u, v_, a_);
+  if (d.mass_damping != 0) f += d.mass_damping * (M * damped);
+  if (d.stiffness_damping != 0) f += d.stiffness_damping * solver_->intact_forces(damped);
   if (control_) control_->lambda = control_->drive.dot(u);
   StaticOptions options = setup_.options;
   if (rate_dependent_) {
@@ -386,7 +379,7 @@ double RigidCellSystem<D>::strain_energy() const {
 
 template <int D>
 double RigidCellSystem<D>::kinetic_energy() const {
-  return newmark_ ? 0.5 * v_.dot(mass_ * v_) : 0.0;
+  return newmark_ ? 0.5 * v_.dot(solver_->mass() * v_) : 0.0;
 }
 
 template <int D>

@@ -174,9 +174,8 @@ class RigidCellSystem final : public System {
   double time_ = 0, work_ = 0;
   Eigen::VectorXd u_, u_before_, reactions_, f_ext_;  // reduced
   Eigen::VectorXd plate_loads_, wave_load_;           // the plates' loads; the stress wave's at unit pressure
-  // Dynamics: the scheme, the reduced mass matrix, velocities and accelerations.
+  // Dynamics: the scheme, velocities and accelerations (the reduced mass matrix is the solver's).
   std::optional<NewmarkScheme> newmark_;
-  SparseMatrix mass_;
   Eigen::VectorXd v_, a_;
   std::vector<double> damage_;
   std::vector<FacetState> states_;
@@ -193,8 +192,7 @@ class RigidCellSystem final : public System {
   void dynamic_step();
   void add_work(const Eigen::VectorXd& reactions_before, const Eigen::VectorXd& loads_before);
   void build_stress_wave();
-  Eigen::VectorXd loads_at(double t) const;                       // the applied loads at time t (none at t = 0)
-  Eigen::VectorXd intact_forces(const Eigen::VectorXd& u) const;  // K₀ u, reduced
+  Eigen::VectorXd loads_at(double t) const;  // the applied loads at time t (none at t = 0)
   // Rate dependence (8.16)-(8.17), when a facet law declares it: each facet's strain rate at the step's start.
   bool rate_dependent_ = false;
   std::vector<double> strain_rates_;

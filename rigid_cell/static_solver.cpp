@@ -142,8 +142,13 @@ Eigen::VectorXd StaticSolver<D>::forces(const Eigen::VectorXd& u, const std::vec
   const Eigen::VectorXd u_cells = map_ * u;
   Eigen::VectorXd f = map_.transpose() * model_.internal_forces(u_cells, damage);
   if (c_M_ != 0) f += c_M_ * (mass_ * u);
-  if (c_K_ != 0) f += c_K_ * (map_.transpose() * model_.internal_forces(u_cells, std::vector<double>(damage.size())));
+  if (c_K_ != 0) f += c_K_ * intact_forces(u);
   return f;
+}
+
+template <int D>
+Eigen::VectorXd StaticSolver<D>::intact_forces(const Eigen::VectorXd& u) const {
+  return map_.transpose() * model_.internal_forces(map_ * u, std::vector<double>(model_.contacts(), 0.0));
 }
 
 template <int D>
