@@ -47,11 +47,13 @@ void throw_unbounded(int cell, const Vec<D>& node) {
 
 template <int D>
 void finish(Tessellation<D>& t, const std::vector<Vec<D>>& nodes, std::vector<Facet<D>> surface) {
-  std::sort(t.facets.begin(), t.facets.end(), [](const Facet<D>& x, const Facet<D>& y) {
-    return std::tie(x.a, x.b) < std::tie(y.a, y.b);
-  });
+  std::sort(t.facets.begin(), t.facets.end(),
+            [](const Facet<D>& x, const Facet<D>& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
+  // A node as far from two faces has two surface facets of one length: their normals tell them apart.
   std::sort(surface.begin(), surface.end(), [](const Facet<D>& x, const Facet<D>& y) {
-    return std::tie(x.a, x.length) < std::tie(y.a, y.length);
+    return std::tie(x.a, x.length) < std::tie(y.a, y.length) ||
+           (std::tie(x.a, x.length) == std::tie(y.a, y.length) &&
+            std::lexicographical_compare(x.normal.data(), x.normal.data() + D, y.normal.data(), y.normal.data() + D));
   });
   t.contacts = t.facets.size();
   t.facets.insert(t.facets.end(), surface.begin(), surface.end());
@@ -67,6 +69,24 @@ void finish(Tessellation<D>& t, const std::vector<Vec<D>>& nodes, std::vector<Fa
   }
 }
 
+// Solves 2 (pᵢ − p₀) · (x − p₀) = |pᵢ − p₀|², i = 1..D.
+template <int D>
+std::pair<Vec<D>, std::array<int, D + 1>> circumcentre(std::array<std::pair<int, Vec<D>>, D + 1> vertices) {
+  std::sort(vertices.begin(), vertices.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  Eigen::Matrix<double, D, D> A;
+  Vec<D> b;
+  for (int i = 0; i < D; ++i) {
+    const Vec<D> d = vertices[i + 1].second - vertices[0].second;
+    A.row(i) = d.transpose();
+    b[i] = 0.5 * d.squaredNorm();
+  }
+  std::array<int, D + 1> key;
+  for (int i = 0; i <= D; ++i) key[i] = vertices[i].first;
+  return {vertices[0].second + A.partialPivLu().solve(b), key};
+}
+
+template std::pair<Vec<2>, std::array<int, 3>> circumcentre<2>(std::array<std::pair<int, Vec<2>>, 3>);
+template std::pair<Vec<3>, std::array<int, 4>> circumcentre<3>(std::array<std::pair<int, Vec<3>>, 4>);
 template void throw_unbounded(int, const Vec<2>&);
 template void throw_unbounded(int, const Vec<3>&);
 template void finish(Tessellation<2>&, const std::vector<Vec<2>>&, std::vector<Facet<2>>);

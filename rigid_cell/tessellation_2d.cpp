@@ -33,10 +33,17 @@ Tessellation<2> tessellate(const std::vector<Vec<2>>& nodes, const SpecimenShape
   if (dt.dimension() < 2) throw_unbounded(0, nodes.at(0));  // too few nodes and images to enclose a cell
 
   std::vector<Vec<2>> centre;
+  std::vector<std::array<int, 3>> key;
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
-    const K::Point_2 c = dt.circumcenter(f);
+    std::array<std::pair<int, Vec<2>>, 3> v;
+    for (int k = 0; k < 3; ++k) {
+      const K::Point_2& p = f->vertex(k)->point();
+      v[k] = {f->vertex(k)->info(), Vec<2>(p.x(), p.y())};
+    }
+    const auto [c, sorted] = circumcentre<2>(v);
     f->info() = static_cast<int>(centre.size());
-    centre.push_back({c.x(), c.y()});
+    centre.push_back(c);
+    key.push_back(sorted);
   }
 
   Tessellation<2> t;
@@ -53,7 +60,9 @@ Tessellation<2> tessellate(const std::vector<Vec<2>>& nodes, const SpecimenShape
     Facet<2> facet;
     facet.a = a;
     facet.b = b < n ? b : -1;
-    facet.vertices = {centre[f->info()], centre[g->info()]};
+    int first = f->info(), second = g->info();
+    if (key[second] < key[first]) std::swap(first, second);  // an order of the ends CGAL's layout does not set
+    facet.vertices = {centre[first], centre[second]};
     const Vec<2> d = points[b] - points[a];
     facet.length = d.norm();
     facet.normal = d / facet.length;

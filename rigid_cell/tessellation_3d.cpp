@@ -54,21 +54,26 @@ Tessellation<3> tessellate(const std::vector<Vec<3>>& nodes, const SpecimenShape
   // circle: the exact predicates split them into a flat tetrahedron, whose circumcentre is undefined. Its true
   // neighbours' centres bound the Voronoi edge dual to that circle, so a face simply leaves the flat one out.
   std::vector<Vec<3>> centre;
+  std::vector<std::array<int, 4>> key;
   std::vector<bool> flat;
   for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c) {
-    Vec<3> p[4];
+    std::array<std::pair<int, Vec<3>>, 4> v;
     for (int k = 0; k < 4; ++k) {
       const K::Point_3& q = c->vertex(k)->point();
-      p[k] = {q.x(), q.y(), q.z()};
+      v[k] = {c->vertex(k)->info(), Vec<3>(q.x(), q.y(), q.z())};
     }
+    std::sort(v.begin(), v.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    Vec<3> p[4];
+    for (int k = 0; k < 4; ++k) p[k] = v[k].second;
     double edge = 0;
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j) edge = std::max(edge, (p[i] - p[j]).norm());
     const double volume = std::abs((p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0]))) / 6;
     c->info() = static_cast<int>(centre.size());
     flat.push_back(volume < kFlat * edge * edge * edge);
-    const K::Point_3 o = dt.dual(c);
-    centre.push_back({o.x(), o.y(), o.z()});
+    const auto [o, sorted] = circumcentre<3>(v);
+    centre.push_back(o);
+    key.push_back(sorted);
   }
 
   Tessellation<3> t;
@@ -80,12 +85,19 @@ Tessellation<3> tessellate(const std::vector<Vec<3>>& nodes, const SpecimenShape
     Facet<3> facet;
     facet.a = a;
     facet.b = b < n ? b : -1;
+    std::vector<int> around;
     auto c = dt.incident_cells(*e), done = c;
     do {
       if (dt.is_infinite(c)) throw_unbounded(a, nodes[a]);
-      if (!flat[c->info()]) facet.vertices.push_back(centre[c->info()]);
+      if (!flat[c->info()]) around.push_back(c->info());
     } while (++c != done);
-    if (facet.vertices.size() < 3) continue;  // a face of zero area
+    if (around.size() < 3) continue;  // a face of zero area
+    // The polygon from the tetrahedron of least key, towards its neighbour of lesser key: where CGAL's circulator
+    // starts depends on its memory layout, and the face's area, centroid and pyramids would round with it.
+    const auto least = std::min_element(around.begin(), around.end(), [&](int x, int y) { return key[x] < key[y]; });
+    std::rotate(around.begin(), least, around.end());
+    if (key[around.back()] < key[around[1]]) std::reverse(around.begin() + 1, around.end());
+    for (int k : around) facet.vertices.push_back(centre[k]);
     const Vec<3> d = points[b] - points[a];
     facet.length = d.norm();
     facet.normal = d / facet.length;
