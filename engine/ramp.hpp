@@ -29,4 +29,16 @@ inline double smooth_rise_displacement(double t, double ramp_time) {
   return t * t / (2 * ramp_time) + ramp_time / (4 * M_PI * M_PI) * (std::cos(2 * M_PI * t / ramp_time) - 1);
 }
 
+// Its velocity per unit of the full velocity: t/T − sin(2πt/T)/(2π), then 1 (at once, from t = 0 on, when T = 0).
+inline double smooth_rise_velocity(double t, double ramp_time) {
+  if (ramp_time <= 0 || t >= ramp_time) return 1;
+  return t / ramp_time - std::sin(2 * M_PI * t / ramp_time) / (2 * M_PI);
+}
+
+// Its acceleration per unit of the full velocity: (1 − cos(2πt/T))/T, then 0.
+inline double smooth_rise_acceleration(double t, double ramp_time) {
+  if (ramp_time <= 0 || t >= ramp_time) return 0;
+  return (1 - std::cos(2 * M_PI * t / ramp_time)) / ramp_time;
+}
+
 }  // namespace mc

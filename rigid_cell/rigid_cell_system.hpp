@@ -4,6 +4,7 @@
 // advances the loading time by `load_step`; the plates' held degrees of freedom follow their velocity through the
 // smooth rise (9.1). What the scene records is given to it as series (set_histories) reading the accessors below.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -18,6 +19,7 @@
 #include "engine/system.hpp"
 #include "rigid_cell/cell_assembly.hpp"
 #include "rigid_cell/cell_polygons.hpp"
+#include "rigid_cell/central_difference.hpp"
 #include "rigid_cell/newmark.hpp"
 #include "rigid_cell/plate_constraints.hpp"
 #include "rigid_cell/random_field.hpp"
@@ -38,9 +40,11 @@ struct PlateSpec {
   Eigen::Matrix<double, D + Dim<D>::rot, 1> load = Eigen::Matrix<double, D + Dim<D>::rot, 1>::Zero();
 };
 
-// Implicit dynamics (Květoň ch. 8): Newmark's β and γ (8.2)-(8.5) and Rayleigh damping C = a_M M + a_K K₀ on the
-// undamaged stiffness. Absent: each step is a static solve.
+// Dynamics (Květoň ch. 8): implicit by Newmark's β and γ (8.2)-(8.5), or explicit by central differences
+// (central_difference.hpp); Rayleigh damping C = a_M M + a_K K₀ on the undamaged stiffness. Absent: each step is a
+// static solve.
 struct DynamicsSpec {
+  enum class Scheme { Newmark, CentralDifference } scheme = Scheme::Newmark;
   double beta = NewmarkScheme::kBeta, gamma = NewmarkScheme::kGamma;
   double mass_damping = 0;       // a_M [1/s]
   double stiffness_damping = 0;  // a_K [s]
@@ -65,16 +69,29 @@ struct OpeningDrive {
   double ramp_time = 0;  // T of (9.1) [s]
 };
 
-// Květoň (9.5): a stress wave on the specimen's surface, one cosine pulse of pressure σ(t) = ½ σ_max (1 − cos 2πt/t_P)
-// for t ≤ t_P, then none, on the surface facets whose centroids lie in a box (positive: pushing into the specimen).
+// A stress wave on the specimen's surface, on the surface facets whose centroids lie in a box (positive: pushing
+// into the specimen): Květoň's (9.5), one cosine pulse σ(t) = ½ σ_max (1 − cos 2πt/t_P) for t ≤ t_P, then none; or
+// a piecewise-linear pressure through given points (a measured wave, §9.5.3), none after the last.
 template <int D>
 struct StressWave {
   Vec<D> lo, hi;
-  double pressure = 0;  // σ_max [Pa]
-  double duration = 0;  // t_P [s]
+  double pressure = 0;                   // σ_max [Pa]
+  double duration = 0;                   // t_P [s]
+  std::vector<double> times, pressures;  // the piecewise-linear wave, when given [s], [Pa]
   double at(double t) const {
-    return t <= duration ? 0.5 * pressure * (1 - std::cos(2 * std::numbers::pi * t / duration)) : 0.0;
+    if (times.empty())
+      return t <= duration ? 0.5 * pressure * (1 - std::cos(2 * std::numbers::pi * t / duration)) : 0.0;
+    if (t <= times.front() || t >= times.back()) return 0.0;
+    const auto i = static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), t) - times.begin());
+    const double s = (t - times[i - 1]) / (times[i] - times[i - 1]);
+    return pressures[i - 1] + s * (pressures[i] - pressures[i - 1]);
   }
+};
+
+// A plane across the specimen, normal to an axis, across which the mean normal stress is read.
+struct SectionPlane {
+  int axis = 0;
+  double at = 0;  // [m]
 };
 
 template <int D>
@@ -93,8 +110,11 @@ struct RigidCellSetup {
   std::vector<PlateGauge<D>> gauges;
   std::optional<OpeningDrive<D>> opening_control;
   double load_step = 0;  // [s] of loading time per static solve, or the time step of a dynamic one
+  // Central differences: a load_step of 0 asks for this fraction of the critical step (0 < safety ≤ 1).
+  double timestep_safety = 0;
   std::optional<DynamicsSpec> dynamics;
   std::optional<StressWave<D>> stress_wave;
+  std::vector<SectionPlane> sections;
   StaticOptions options;
   bool crack_log = false;
   // Květoň (3.21): the field h that scales each contact facet's f_t by h and G_t by h² at its centroid; null: none.
@@ -143,7 +163,11 @@ class RigidCellSystem final : public System {
   int cells() const { return static_cast<int>(tessellation_.cells.size()); }
   double plate_reaction(int plate, int k) const { return reactions_[plates_->plate_dof(plate, k)]; }
   double plate_displacement(int plate, int k) const { return u_[plates_->plate_dof(plate, k)]; }
+  double plate_velocity(int plate, int k) const { return v_[plates_->plate_dof(plate, k)]; }  // dynamics
   double opening(int gauge) const { return gauges_[gauge].dot(u_); }
+  // The mean normal stress across a section plane [Pa], tension positive: the facets between cells on its two
+  // sides, their forces' component along the axis over their area projected on the plane.
+  double section_stress(int section) const;
   std::size_t facets_damaged() const;
   std::size_t facets_cracked() const;
   double max_damage() const;
@@ -156,6 +180,9 @@ class RigidCellSystem final : public System {
   double boundary_work() const { return work_; }
   double strain_energy() const;
   double kinetic_energy() const;  // ½ u̇ᵀ M u̇ (dynamics; 0 for static solves)
+  // Central differences: the undamaged specimen's highest frequency [rad/s] and the critical step it sets [s].
+  double highest_frequency() const { return explicit_ ? explicit_->highest_frequency() : 0.0; }
+  double critical_timestep() const { return explicit_ ? explicit_->critical_timestep() : 0.0; }
 
  private:
   RigidCellSetup<D> setup_;
@@ -174,8 +201,10 @@ class RigidCellSystem final : public System {
   double time_ = 0, work_ = 0;
   Eigen::VectorXd u_, u_before_, reactions_, f_ext_;  // reduced
   Eigen::VectorXd plate_loads_, wave_load_;           // the plates' loads; the stress wave's at unit pressure
-  // Dynamics: the scheme, velocities and accelerations (the reduced mass matrix is the solver's).
+  // Dynamics: the reduced mass matrix, the scheme, velocities and accelerations.
+  SparseMatrix mass_;
   std::optional<NewmarkScheme> newmark_;
+  std::unique_ptr<CentralDifference<D>> explicit_;
   Eigen::VectorXd v_, a_;
   std::vector<double> damage_;
   std::vector<FacetState> states_;
@@ -190,8 +219,20 @@ class RigidCellSystem final : public System {
   void build_gauges();
   void build_dynamics();
   void dynamic_step();
+  void explicit_step();
+  void build_explicit();
+  // The plates' held motion at t (on their held degrees of freedom; zero elsewhere): velocity × the smooth rise
+  // (9.1) and its derivatives.
+  KinematicState held_motion(double t) const;
+  void impose_held_motion(double t);  // v and a of the held degrees of freedom as held_motion says
   void add_work(const Eigen::VectorXd& reactions_before, const Eigen::VectorXd& loads_before);
   void build_stress_wave();
+  void build_sections();
+  struct SectionFacets {
+    std::vector<std::pair<std::size_t, double>> facets;  // contact facet, +1 if its cell b lies beyond the plane
+    double area = 0;                                     // Σ sign A n_axis: the section's area
+  };
+  std::vector<SectionFacets> sections_;
   Eigen::VectorXd loads_at(double t) const;  // the applied loads at time t (none at t = 0)
   // Rate dependence (8.16)-(8.17), when a facet law declares it: each facet's strain rate at the step's start.
   bool rate_dependent_ = false;

@@ -83,7 +83,6 @@ class StaticSolver {
   // reduced mass matrix and K₀ the undamaged stiffness (the effective stiffness of a step with Rayleigh damping
   // C = a_M M + a_K K₀). The caller puts the step's inertial and damping loads into f. Drops any factor.
   void set_inertia(const SparseMatrix& mass, double c_M, double c_K);
-  const SparseMatrix& mass() const { return mass_; }  // reduced; empty before set_inertia
   // K₀ u: the undamaged stiffness's forces, over every reduced degree of freedom.
   Eigen::VectorXd intact_forces(const Eigen::VectorXd& u) const;
 

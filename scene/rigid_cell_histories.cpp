@@ -1,6 +1,15 @@
 #include "scene/rigid_cell_histories.hpp"
 
+#include <sstream>
+
 namespace mc {
+
+std::string section_history_name(const SectionSpec& s) {
+  std::ostringstream m;
+  m << "section."
+    << "xyz"[s.axis] << "_" << s.at * 1e3 << "mm";
+  return m.str();
+}
 
 std::vector<CellSeries> rigid_cell_series(const Scene& s) {
   using W = CellSeries::What;
@@ -25,10 +34,15 @@ std::vector<CellSeries> rigid_cell_series(const Scene& s) {
           {W::PlateReaction, pre + (rotation ? "moment_" : "reaction_") + axis, rotation ? "N m" : "N", p, k});
       out.push_back(
           {W::PlateDisplacement, pre + (rotation ? "rotation_" : "disp_") + axis, rotation ? "rad" : "m", p, k});
+      if (s.rigid_cell && s.rigid_cell->dynamics && !rotation)
+        out.push_back({W::PlateVelocity, pre + "velocity_" + axis, "m/s", p, k});
     }
   }
   for (std::size_t p = 0; p < s.probes.size(); ++p)
     out.push_back({W::Opening, s.probes[p].name, "m", static_cast<int>(p)});
+  if (s.rigid_cell)
+    for (std::size_t i = 0; i < s.rigid_cell->sections.size(); ++i)
+      out.push_back({W::SectionStress, section_history_name(s.rigid_cell->sections[i]), "Pa", static_cast<int>(i)});
   if (s.rigid_cell && s.rigid_cell->energy) {
     out.push_back({W::BoundaryWork, "energy.boundary_work", "J"});
     out.push_back({W::StrainEnergy, "energy.strain", "J"});

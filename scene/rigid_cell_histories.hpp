@@ -22,7 +22,9 @@ struct CellSeries {
     MaxDamage,
     PlateReaction,      // the support's force (translations) or moment (rotations) on a plate
     PlateDisplacement,  // a plate's displacement or rotation
+    PlateVelocity,      // a plate's velocity (dynamics; translations)
     Opening,            // an opening probe's reading (`plate` holds the probe's index)
+    SectionStress,      // the mean normal stress across a section plane (`plate` holds its index)
     BoundaryWork,
     StrainEnergy,
     KineticEnergy,  // dynamics
@@ -33,5 +35,8 @@ struct CellSeries {
 };
 
 std::vector<CellSeries> rigid_cell_series(const Scene& s);
+
+// "section.z_70mm": the history of the mean normal stress across a section plane.
+std::string section_history_name(const SectionSpec& s);
 
 }  // namespace mc

@@ -232,9 +232,13 @@ void read_opening_control(const Table& t, Scene& s) {
   s.rigid_cell->opening_control = c;
 }
 
-// [rigid_cell.dynamics]: Newmark's parameters within (8.5), and Rayleigh damping.
+// [rigid_cell.dynamics]: the scheme, Newmark's parameters within (8.5), and Rayleigh damping.
 void read_dynamics(const Table& t, Scene& s) {
   CellDynamicsSpec d;
+  d.central_difference = t.choice("scheme", {"newmark", "central_difference"}, "newmark") == "central_difference";
+  if (d.central_difference)
+    for (const char* key : {"beta", "gamma"})
+      if (t.has(key)) t.fail(key, "is a parameter of Newmark's scheme; the central-difference scheme has none");
   d.beta = t.number("beta", Unit::None, Range::positive(), d.beta);
   d.gamma = t.number("gamma", Unit::None, Range::at_least(0.5), d.gamma);
   if (!(2 * d.beta >= d.gamma)) {
@@ -257,16 +261,57 @@ void read_stress_wave(const Table& t, Scene& s) {
   w.box_lo = vec(t, "box_lo", Unit::Length, s.dimension);
   w.box_hi = vec(t, "box_hi", Unit::Length, s.dimension);
   check_box(t, "box_lo", w.box_lo, "box_hi", w.box_hi);
-  w.pressure = t.number("pressure", Unit::Pressure, Range::any());
-  if (w.pressure == 0) t.fail("pressure", "a stress wave of no pressure loads nothing");
-  w.duration = t.number("duration", Unit::Time, Range::positive());
+  if (t.has("times") || t.has("pressures")) {
+    if (t.has("pressure") || t.has("duration"))
+      t.fail("times", "give the cosine pulse (pressure, duration) or the piecewise-linear wave (times, pressures)");
+    w.times = t.numbers("times", Unit::Time, Range::non_negative(), 0);
+    w.pressures = t.numbers("pressures", Unit::Pressure, Range::any(), 0);
+    if (w.times.size() < 2 || w.times.size() != w.pressures.size())
+      t.fail("pressures", "needs one pressure per time, and at least two points");
+    if (w.times.front() != 0) t.fail("times", "the wave starts at time 0");
+    for (std::size_t i = 1; i < w.times.size(); ++i)
+      if (!(w.times[i] > w.times[i - 1])) t.fail("times", "must increase");
+    if (w.pressures.front() != 0 || w.pressures.back() != 0)
+      t.fail("pressures", "the wave rises from 0 and returns to 0 (a jump would be a shock the steps cannot resolve)");
+    if (std::all_of(w.pressures.begin(), w.pressures.end(), [](double p) { return p == 0; }))
+      t.fail("pressures", "a stress wave of no pressure loads nothing");
+  } else {
+    w.pressure = t.number("pressure", Unit::Pressure, Range::any());
+    if (w.pressure == 0) t.fail("pressure", "a stress wave of no pressure loads nothing");
+    w.duration = t.number("duration", Unit::Time, Range::positive());
+  }
   t.finish();
   s.rigid_cell->stress_wave = w;
 }
 
+// The load step, or the time step of dynamics: given ('fixed'); under central differences it may instead be the
+// fraction 'safety' of the critical step (0.8 unless given), as in the explicit engine.
+// [rigid_cell.sections]: planes normal to one axis at the given positions, each with a history of the mean normal
+// stress across it.
+void read_sections(const Table& t, Scene& s) {
+  const std::vector<std::string> axes =
+      s.dimension == 2 ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"};
+  const std::string axis = t.choice("axis", axes);
+  const int k = static_cast<int>(std::find(axes.begin(), axes.end(), axis) - axes.begin());
+  const std::vector<double> at = t.numbers("at", Unit::Length, Range::any(), 0);
+  if (at.empty()) t.fail("at", "give at least one position of a section plane");
+  for (double x : at) s.rigid_cell->sections.push_back({k, x});
+  t.finish();
+}
+
 void read_load_step(const Table& root, Scene& s) {
   const Table t = root.table("timestep");
-  s.timestep.fixed = t.number("fixed", Unit::Time, Range::positive());
+  const bool explicit_scheme = s.rigid_cell->dynamics && s.rigid_cell->dynamics->central_difference;
+  if (!explicit_scheme && t.has("safety"))
+    t.fail("safety", "a fraction of the critical step belongs to explicit dynamics (scheme = \"central_difference\")");
+  if (explicit_scheme && t.has("fixed") && t.has("safety"))
+    t.fail("safety", "give either 'fixed' or 'safety', not both");
+  if (explicit_scheme && !t.has("fixed")) {
+    s.timestep.fixed = 0;
+    s.timestep.safety = t.number("safety", Unit::None, Range{0.0, 1.0, true, false}, 0.8);
+  } else {
+    s.timestep.fixed = t.number("fixed", Unit::Time, Range::positive());
+  }
   t.finish();
 }
 
@@ -289,12 +334,14 @@ void read_rigid_cell(const Table& root, Scene& s) {
   const std::optional<Table> control = t.optional_table("opening_control");
   const std::optional<Table> dynamics = t.optional_table("dynamics");
   const std::optional<Table> wave = t.optional_table("stress_wave");
+  const std::optional<Table> sections = t.optional_table("sections");
   t.finish();
   read_facet_laws(root, s);
   read_cell_specimen(root, s);
   if (field) read_random_field(*field, s);
   if (dynamics) read_dynamics(*dynamics, s);
   if (wave) read_stress_wave(*wave, s);
+  if (sections) read_sections(*sections, s);
   read_mesostructure(root, s);
   read_groups(root, s);
   check_plates(root, s);

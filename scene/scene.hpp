@@ -193,20 +193,31 @@ struct OpeningControlSpec {
   double rate = 0, ramp_time = 0;
 };
 
-// Implicit dynamics of a rigid-cell scene ([rigid_cell.dynamics], Květoň ch. 8): Newmark's β, γ and Rayleigh damping.
+// Dynamics of a rigid-cell scene ([rigid_cell.dynamics], Květoň ch. 8): implicit by Newmark's β, γ, or explicit by
+// central differences; Rayleigh damping.
 struct CellDynamicsSpec {
+  bool central_difference = false;
   double beta = 0.3, gamma = 0.55;                 // Květoň §9.1
   double mass_damping = 0, stiffness_damping = 0;  // a_M [1/s], a_K [s] of C = a_M M + a_K K₀
 };
 
-// Květoň (9.5): one cosine pulse of pressure on the surface facets in a box ([rigid_cell.stress_wave]).
+// A pressure wave on the surface facets in a box ([rigid_cell.stress_wave]): Květoň's cosine pulse (9.5), or a
+// piecewise-linear one through given points (the measured waves of his §9.5.3).
 struct StressWaveSpec {
   std::vector<double> box_lo, box_hi;
-  double pressure = 0, duration = 0;  // σ_max [Pa] (positive: pushing in), t_P [s]
+  double pressure = 0, duration = 0;     // σ_max [Pa] (positive: pushing in), t_P [s]
+  std::vector<double> times, pressures;  // [s], [Pa]; non-empty: the piecewise-linear wave
+};
+
+// A section plane normal to an axis ([rigid_cell.sections]): the mean normal stress across it is a history.
+struct SectionSpec {
+  int axis = 0;
+  double at = 0;  // [m]
 };
 
 struct RigidCellSpec {
   CellSpecimenSpec specimen;
+  std::vector<SectionSpec> sections;
   std::optional<StressWaveSpec> stress_wave;
   std::optional<CellDynamicsSpec> dynamics;  // absent: static load steps
   std::optional<OpeningControlSpec> opening_control;

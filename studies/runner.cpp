@@ -235,7 +235,8 @@ class Runner {
 
   void check_stop(StopState& st, double v) {
     if (system_->time() < st.spec.after_time) return;
-    st.peak = std::max(st.peak, v);
+    // A post-peak stop follows the magnitude: a load may be a positive or a negative reaction.
+    st.peak = std::max(st.peak, st.spec.kind == StopSpec::Kind::PostPeak ? std::abs(v) : v);
     std::ostringstream m;
     m << "stopped: " << st.spec.quantity;
     if (st.spec.kind == StopSpec::Kind::Below && v < st.spec.value)
@@ -244,8 +245,8 @@ class Runner {
       m << " = " << v << " > " << st.spec.value;
     else if (st.spec.kind == StopSpec::Kind::MagnitudeAbove && std::abs(v) > st.spec.value)
       m << " = " << v << ", beyond ±" << st.spec.value;
-    else if (st.spec.kind == StopSpec::Kind::PostPeak && st.peak > 0 && v < st.spec.value * st.peak)
-      m << " fell to " << v / st.peak << " of its peak " << st.peak;
+    else if (st.spec.kind == StopSpec::Kind::PostPeak && st.peak > 0 && std::abs(v) < st.spec.value * st.peak)
+      m << " fell to " << std::abs(v) / st.peak << " of its peak magnitude " << st.peak;
     else
       return;
     if (stop_reason_.empty()) stop_reason_ = m.str();

@@ -116,10 +116,15 @@ RigidCellSetup<D> setup_of(const Scene& s) {
   if (const auto& c = r.opening_control)
     setup.opening_control = OpeningDrive<D>{c->probe, c->plate, vec_of<D>(c->direction), c->rate, c->ramp_time};
   setup.load_step = s.timestep.fixed;
+  setup.timestep_safety = s.timestep.safety;
   if (const auto& w = r.stress_wave)
-    setup.stress_wave = StressWave<D>{vec_of<D>(w->box_lo), vec_of<D>(w->box_hi), w->pressure, w->duration};
+    setup.stress_wave =
+        StressWave<D>{vec_of<D>(w->box_lo), vec_of<D>(w->box_hi), w->pressure, w->duration, w->times, w->pressures};
   if (const auto& d = r.dynamics)
-    setup.dynamics = DynamicsSpec{d->beta, d->gamma, d->mass_damping, d->stiffness_damping};
+    setup.dynamics =
+        DynamicsSpec{d->central_difference ? DynamicsSpec::Scheme::CentralDifference : DynamicsSpec::Scheme::Newmark,
+                     d->beta, d->gamma, d->mass_damping, d->stiffness_damping};
+  for (const SectionSpec& x : r.sections) setup.sections.push_back({x.axis, x.at});
   setup.options = {r.damage_tolerance, r.force_tolerance, r.max_iterations};
   setup.crack_log = r.crack_log;
   return setup;
@@ -144,7 +149,9 @@ std::vector<Series> series_of(const Scene& s, const RigidCellSystem<D>* sys) {
       case W::MaxDamage: f = [sys] { return sys->max_damage(); }; break;
       case W::PlateReaction: f = [sys, p, k] { return sys->plate_reaction(p, k); }; break;
       case W::PlateDisplacement: f = [sys, p, k] { return sys->plate_displacement(p, k); }; break;
+      case W::PlateVelocity: f = [sys, p, k] { return sys->plate_velocity(p, k); }; break;
       case W::Opening: f = [sys, p] { return sys->opening(p); }; break;
+      case W::SectionStress: f = [sys, p] { return sys->section_stress(p); }; break;
       case W::BoundaryWork: f = [sys] { return sys->boundary_work(); }; break;
       case W::StrainEnergy: f = [sys] { return sys->strain_energy(); }; break;
       case W::KineticEnergy: f = [sys] { return sys->kinetic_energy(); }; break;
