@@ -15,16 +15,6 @@ namespace {
 constexpr double kPowerTolerance = 1e-7;
 constexpr int kPowerIterations = 3000;
 
-SparseMatrix free_rows(const std::vector<bool>& is_prescribed) {
-  std::vector<Eigen::Triplet<double>> pick;
-  const int n = static_cast<int>(is_prescribed.size());
-  for (int d = 0, row = 0; d < n; ++d)
-    if (!is_prescribed[d]) pick.emplace_back(row++, d, 1.0);
-  SparseMatrix select(static_cast<Eigen::Index>(pick.size()), n);
-  select.setFromTriplets(pick.begin(), pick.end());
-  return select;
-}
-
 }  // namespace
 
 template <int D>

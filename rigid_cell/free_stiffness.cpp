@@ -42,6 +42,17 @@ void contact_shares(const CellAssembly<D>& model, std::size_t c,
 
 }  // namespace
 
+// free × all: the rows of the identity at the degrees of freedom not prescribed.
+SparseMatrix free_rows(const std::vector<bool>& is_prescribed) {
+  std::vector<Eigen::Triplet<double>> pick;
+  const int n = static_cast<int>(is_prescribed.size());
+  for (int d = 0, row = 0; d < n; ++d)
+    if (!is_prescribed[d]) pick.emplace_back(row++, d, 1.0);
+  SparseMatrix select(static_cast<Eigen::Index>(pick.size()), n);
+  select.setFromTriplets(pick.begin(), pick.end());
+  return select;
+}
+
 template <int D>
 FreeStiffness<D>::FreeStiffness(const CellAssembly<D>& model, const SparseMatrix& to_cells) {
   const Eigen::SparseMatrix<double, Eigen::RowMajor> rows = to_cells;

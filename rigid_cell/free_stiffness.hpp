@@ -14,6 +14,9 @@ namespace mc::rigid_cell {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
+// free × all: the rows of the identity at the degrees of freedom not prescribed.
+SparseMatrix free_rows(const std::vector<bool>& is_prescribed);
+
 template <int D>
 class FreeStiffness {
  public:

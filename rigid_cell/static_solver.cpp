@@ -36,17 +36,6 @@ std::vector<bool> mask(int size, const std::vector<int>& prescribed) {
   return is_prescribed;
 }
 
-// free × all: the rows of the identity at the degrees of freedom not prescribed.
-SparseMatrix free_rows(const std::vector<bool>& is_prescribed) {
-  std::vector<Eigen::Triplet<double>> pick;
-  const int n = static_cast<int>(is_prescribed.size());
-  for (int d = 0, row = 0; d < n; ++d)
-    if (!is_prescribed[d]) pick.emplace_back(row++, d, 1.0);
-  SparseMatrix select(static_cast<Eigen::Index>(pick.size()), n);
-  select.setFromTriplets(pick.begin(), pick.end());
-  return select;
-}
-
 }  // namespace
 
 template <int D>
