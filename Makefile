@@ -2,7 +2,7 @@
 BUILD ?= build
 JOBS  ?= $(shell nproc)
 
-.PHONY: setup build demo test bench clean
+.PHONY: setup build demo test bench peers-bench clean
 setup:
 	@bash tools/setup.sh
 
@@ -21,6 +21,11 @@ test: build
 
 bench: build
 	$(BUILD)/benchmarks/throughput
+
+# The peers (Yade; installed with --install, never a dependency) against ours on the shared specimen, same session.
+PEERS_ARGS ?= --install --specimens n10k --rounds 2
+peers-bench: build
+	/usr/bin/python3 benchmarks/peers/peers_bench.py --build $(BUILD) $(PEERS_ARGS)
 
 clean:
 	rm -rf $(BUILD) out

@@ -12,6 +12,7 @@
 // world and the best is kept. Ratios are always taken within one run: the machine is shared and noisy.
 //
 //   throughput [--quick] [--only shared|bonded|cpm|scaling|effects] [--specimen-dir DIR] [--reps N]
+//   throughput --one n10k:parallel:1 [--specimen-dir DIR]   (one run, one RESULT line: benchmarks/peers/)
 #include <omp.h>
 #include <unistd.h>
 
@@ -34,7 +35,8 @@ using namespace mc::bench;
 [[noreturn]] void usage(const std::string& why) {
   std::fprintf(
       stderr,
-      "%s\nusage: throughput [--quick] [--only shared|bonded|cpm|scaling|effects] [--specimen-dir DIR] [--reps N]\n",
+      "%s\nusage: throughput [--quick] [--only shared|bonded|cpm|scaling|effects] [--specimen-dir DIR] [--reps N]\n"
+      "       throughput --one SPECIMEN:MODEL:THREADS [--specimen-dir DIR]\n",
       why.c_str());
   std::exit(2);
 }
@@ -64,6 +66,15 @@ Options parse(int argc, char** argv) {
       if (*end || r < 1 || r > 100) usage("--reps '" + v + "': allowed an integer from 1 to 100");
       o.reps = static_cast<int>(r);
       o.reps_given = true;
+    } else if (a == "--one") {
+      const std::string v = value();
+      const auto c1 = v.find(':'), c2 = v.rfind(':');
+      if (c1 == std::string::npos || c2 == c1) usage("--one '" + v + "': give SPECIMEN:MODEL:THREADS");
+      o.one_specimen = v.substr(0, c1), o.one_model = v.substr(c1 + 1, c2 - c1 - 1);
+      o.one_threads = std::atoi(v.c_str() + c2 + 1);
+      if (o.one_model != "unbonded" && o.one_model != "parallel" && o.one_model != "cpm")
+        usage("--one: model '" + o.one_model + "': allowed unbonded, parallel, cpm");
+      if (o.one_threads < 1 || o.one_threads > 64) usage("--one: threads must be an integer from 1 to 64");
     } else if (a == "--help" || a == "-h") {
       usage("Throughput of the stepping loop, as markdown tables.");
     } else {
@@ -90,6 +101,15 @@ int main(int argc, char** argv) {
   policy_set_here = std::getenv("MESOCRACK_BENCH_POLICY_SET") != nullptr;
   const char* policy = std::getenv("OMP_WAIT_POLICY");
   const Options opt = parse(argc, argv);
+  if (!opt.one_specimen.empty()) {
+    try {
+      one_shared(opt);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "throughput: %s\n", e.what());
+      return 1;
+    }
+    return 0;
+  }
   const auto t0 = Clock::now();
   std::printf("# mesocrack throughput%s\n\n", opt.quick ? " (--quick: small sizes)" : "");
   std::printf(

@@ -252,6 +252,34 @@ inline void print_shared_memory(const std::vector<SharedRun>& runs) {
       "including the process itself and the particle list read from the file.)\n\n");
 }
 
+// One run of the shared specimen, as one line the peers' runs also print (benchmarks/peers/peers_bench.py).
+inline void one_shared(const Options& opt) {
+  Material mat;
+  mat.bonded = opt.one_model == "parallel";
+  mat.cpm = opt.one_model == "cpm";
+  const SphereList<3> s = read_in_morton_order(opt.specimen_dir + "/" + opt.one_specimen + ".spheres");
+  double zlo = kInf, zhi = -kInf, radius = 0;
+  for (int i = 0; i < s.size(); ++i) {
+    radius = std::max(radius, s.radius[i]);
+    zlo = std::min(zlo, s.x[i][2] - s.radius[i]);
+    zhi = std::max(zhi, s.x[i][2] + s.radius[i]);
+  }
+  omp_set_num_threads(opt.one_threads);
+  const int steps = 2000;
+  double strain = kNaN;
+  Timing t;
+  try {
+    t = shared_once(s, mat, 0.3 * radius * std::sqrt(mat.density / mat.modulus), zhi - zlo, steps, &strain);
+  } catch (const InputError&) {
+    // As in section_shared: the engine's critical estimate refuses the README step; its own step, same step count.
+    t = shared_once(s, mat, 0.0, zhi - zlo, steps, &strain);
+  }
+  std::printf(
+      "RESULT engine=mesocrack model=%s particles=%d threads=%d steps=%d dt=%.4g wall_s=%.3f "
+      "particle_steps_per_s=%.5g\n",
+      opt.one_model.c_str(), s.size(), opt.one_threads, steps, t.dt, t.seconds, s.size() * steps / t.seconds);
+}
+
 inline void section_shared(const Options& opt, bool bonded, bool cpm = false) {
   Material mat;  // E_c = 30 GPa, ρ = 2600, kn/ks = 1, μ = 0.5, no dashpots
   mat.bonded = bonded && !cpm;

@@ -20,6 +20,9 @@ struct Options {
   std::string specimen_dir = MESOCRACK_SPECIMEN_DIR;
   int reps = 3;
   bool reps_given = false;
+  // --one SPECIMEN:MODEL:THREADS (benchmarks/peers/peers_bench.py): that run alone, once, as one RESULT line.
+  std::string one_specimen, one_model;
+  int one_threads = 0;
 };
 
 inline constexpr int kThreads[] = {1, 2};

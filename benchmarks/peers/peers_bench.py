@@ -1,0 +1,123 @@
+#!/usr/bin/python3
+"""The peers and mesocrack on the shared bonded specimen (benchmarks/specimens/README.md), timed in one session on
+this machine, interleaved and repeated, with the ratios and their spread (`make peers-bench`).
+
+Each round runs, for each specimen, every pairing one after the other: the peer, then mesocrack on the same
+specimen and model, so that a slower stretch of the machine falls on both. A ratio is taken within a round; the
+table gives its mean and its range over the rounds. A peer that is not installed is skipped with a line saying so
+(`--install` installs the Debian packages first: never a project dependency, never needed by `make test`).
+
+Pairings (like with like):
+  - parallel bonds against Yade's CohFrict (cohesive bonds with bending and twisting moments);
+  - CPM against Yade's CPM.
+Each engine runs the stepping loop alone, 2 000 steps after 10 of warm-up, on `--threads` threads.
+
+  benchmarks/peers/peers_bench.py [--install] [--specimens n10k,n50k] [--rounds 2] [--threads 1] [--build build]
+"""
+import argparse
+import datetime
+import os
+import platform
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent.parent
+PACKAGES = {"yade": "yade"}
+# pairing: (peer label, the peer's command maker, mesocrack's model)
+PAIRINGS = {
+    "parallel_vs_yade_cohfrict": ("Yade CohFrict", "yade", "cohfrict", "parallel"),
+    "cpm_vs_yade_cpm": ("Yade CPM", "yade", "cpm", "cpm"),
+}
+
+
+def result_line(text):
+    """The particle-steps per second of a run's RESULT line."""
+    for line in text.splitlines():
+        if line.startswith("RESULT"):
+            return float(re.search(r"particle_steps_per_s=([0-9.eE+-]+)", line).group(1))
+    raise RuntimeError("no RESULT line in:\n" + text[-2000:])
+
+
+def run(cmd, threads):
+    env = {**os.environ, "OMP_NUM_THREADS": str(threads), "OMP_WAIT_POLICY": "passive"}
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    if p.returncode != 0:
+        raise RuntimeError(f"{' '.join(map(str, cmd))}: exit {p.returncode}\n{p.stdout[-1500:]}\n{p.stderr[-1500:]}")
+    return result_line(p.stdout)
+
+
+def peer_command(engine, model, spheres, threads):
+    if engine == "yade":
+        return ["yade", "-n", f"-j{threads}", "-x", str(HERE / "yade_bonded.py"), str(spheres), model, "2000"]
+    raise ValueError(engine)
+
+
+def install(engines):
+    missing = [PACKAGES[e] for e in engines if not shutil.which(e)]
+    if not missing:
+        return
+    cmd = ["apt-get", "install", "-y", "--no-install-recommends"] + missing
+    if os.geteuid() != 0:
+        cmd = ["sudo"] + cmd
+    print("installing the peers:", " ".join(cmd), flush=True)
+    subprocess.run(cmd, check=True, env={**os.environ, "DEBIAN_FRONTEND": "noninteractive"})
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--install", action="store_true", help="apt-get install the peers that are missing")
+    ap.add_argument("--specimens", default="n10k")
+    ap.add_argument("--rounds", type=int, default=2)
+    ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--build", default=str(ROOT / "build"), help="the build folder (its benchmarks/throughput)")
+    ap.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "peers"))
+    a = ap.parse_args()
+    throughput = Path(a.build) / "benchmarks" / "throughput"
+    specimens = Path(a.build) / "specimens"
+    if not throughput.exists():
+        sys.exit(f"{throughput}: not found (build first: make demo)")
+    engines = sorted({p[1] for p in PAIRINGS.values()})
+    if a.install:
+        install(engines)
+    pairings = {}
+    for key, p in PAIRINGS.items():
+        if shutil.which(p[1]):
+            pairings[key] = p
+        else:
+            print(f"{p[0]}: skipped ({p[1]} is not installed; --install, or apt-get install {PACKAGES[p[1]]})")
+    figures = {}  # (specimen, pairing) -> [(peer, ours), ...]
+    for rnd in range(a.rounds):
+        for name in a.specimens.split(","):
+            spheres = specimens / f"{name}.spheres"
+            if not spheres.exists():
+                sys.exit(f"{spheres}: not found (the build unpacks the shared specimens there)")
+            for key, (label, engine, model, ours_model) in pairings.items():
+                peer = run(peer_command(engine, model, spheres, a.threads), a.threads)
+                ours = run([str(throughput), "--one", f"{name}:{ours_model}:{a.threads}", "--specimen-dir",
+                            str(specimens)], a.threads)
+                figures.setdefault((name, key), []).append((peer, ours))
+                print(f"round {rnd + 1}, {name}, {label}: {peer:.3g} particle-steps/s; mesocrack {ours_model}: "
+                      f"{ours:.3g}; ratio {ours / peer:.2f}", flush=True)
+    lines = [f"`benchmarks/peers/peers_bench.py --specimens {a.specimens} --rounds {a.rounds} --threads {a.threads}`, "
+             f"{datetime.date.today()}, {platform.node()}, {os.cpu_count()} cores; particle-steps per second of "
+             "the stepping loop, each pairing run peer then mesocrack, the rounds one after another.", "",
+             "| specimen | mesocrack against | peer (rounds) | mesocrack (rounds) | ratio: mean (range) |",
+             "|---|---|---|---|---|"]
+    for (name, key), runs in figures.items():
+        ratios = [o / p for p, o in runs]
+        lines.append(f"| {name} | {PAIRINGS[key][0]} | {', '.join(f'{p:.3g}' for p, _ in runs)} | "
+                     f"{', '.join(f'{o:.3g}' for _, o in runs)} | {statistics.mean(ratios):.2f} "
+                     f"({min(ratios):.2f}–{max(ratios):.2f}) |")
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / f"peers_{a.threads}thread.md").write_text("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    main()
