@@ -8,6 +8,7 @@ table gives its mean and its range over the rounds. A peer that is not installed
 (`--install` installs the Debian packages first: never a project dependency, never needed by `make test`).
 
 Pairings (like with like):
+  - parallel bonds against ESyS-Particle's RotBond (bonds with bending and twisting moments; one worker process);
   - parallel bonds against Yade's CohFrict (cohesive bonds with bending and twisting moments);
   - CPM against Yade's CPM.
 Each engine runs the stepping loop alone, 2 000 steps after 10 of warm-up, on `--threads` threads.
@@ -23,13 +24,18 @@ import shutil
 import statistics
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
-PACKAGES = {"yade": "yade"}
-# pairing: (peer label, the peer's command maker, mesocrack's model)
+sys.path.insert(0, str(HERE))
+from esys_geometry import write_geo  # noqa: E402
+
+PACKAGES = {"yade": "yade", "esysparticle": "esys-particle"}
+# pairing: (peer label, the peer's executable, its model, mesocrack's model)
 PAIRINGS = {
+    "parallel_vs_esys_rotbond": ("ESyS-Particle RotBond", "esysparticle", "rotbond", "parallel"),
     "parallel_vs_yade_cohfrict": ("Yade CohFrict", "yade", "cohfrict", "parallel"),
     "cpm_vs_yade_cpm": ("Yade CPM", "yade", "cpm", "cpm"),
 }
@@ -44,16 +50,25 @@ def result_line(text):
 
 
 def run(cmd, threads):
-    env = {**os.environ, "OMP_NUM_THREADS": str(threads), "OMP_WAIT_POLICY": "passive"}
+    env = {**os.environ, "OMP_NUM_THREADS": str(threads), "OMP_WAIT_POLICY": "passive",
+           "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1"}
     p = subprocess.run(cmd, capture_output=True, text=True, env=env)
     if p.returncode != 0:
         raise RuntimeError(f"{' '.join(map(str, cmd))}: exit {p.returncode}\n{p.stdout[-1500:]}\n{p.stderr[-1500:]}")
     return result_line(p.stdout)
 
 
-def peer_command(engine, model, spheres, threads):
+def peer_command(engine, model, spheres, threads, work):
     if engine == "yade":
         return ["yade", "-n", f"-j{threads}", "-x", str(HERE / "yade_bonded.py"), str(spheres), model, "2000"]
+    if engine == "esysparticle":
+        geo = work / f"{spheres.stem}.geo"
+        if not geo.exists():
+            write_geo(spheres, geo)
+        if threads != 1:
+            raise ValueError("ESyS-Particle is timed with one worker process here")
+        return ["mpirun", "--oversubscribe", "--mca", "mpi_yield_when_idle", "1", "-np", "2", "esysparticle",
+                str(HERE / "esys_rotbond.py"), str(geo), "2000"]
     raise ValueError(engine)
 
 
@@ -90,6 +105,10 @@ def main():
             pairings[key] = p
         else:
             print(f"{p[0]}: skipped ({p[1]} is not installed; --install, or apt-get install {PACKAGES[p[1]]})")
+    if a.threads != 1 and "parallel_vs_esys_rotbond" in pairings:
+        print("ESyS-Particle RotBond: skipped (timed with one worker process only)")
+        del pairings["parallel_vs_esys_rotbond"]
+    work = Path(tempfile.mkdtemp(prefix="peers_bench."))
     figures = {}  # (specimen, pairing) -> [(peer, ours), ...]
     for rnd in range(a.rounds):
         for name in a.specimens.split(","):
@@ -97,7 +116,7 @@ def main():
             if not spheres.exists():
                 sys.exit(f"{spheres}: not found (the build unpacks the shared specimens there)")
             for key, (label, engine, model, ours_model) in pairings.items():
-                peer = run(peer_command(engine, model, spheres, a.threads), a.threads)
+                peer = run(peer_command(engine, model, spheres, a.threads, work), a.threads)
                 ours = run([str(throughput), "--one", f"{name}:{ours_model}:{a.threads}", "--specimen-dir",
                             str(specimens)], a.threads)
                 figures.setdefault((name, key), []).append((peer, ours))

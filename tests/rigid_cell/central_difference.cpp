@@ -146,3 +146,32 @@ TEST_CASE("central_difference_step_above_the_critical_one_is_refused_naming_it")
   CHECK(safety.code == 2);
   CHECK_MESSAGE(contains(safety.err, "timestep.safety"), safety.err);
 }
+
+TEST_CASE("central_difference_run_resumed_halfway_gives_the_same_bits") {
+  const TempDir d;
+  // The bar of §9.5.1 made weak (f_t 0.5 MPa): the pulse reflected from its free end as tension cracks it from
+  // step 456 (137 µs) on, and is still cracking it when the run is split at step 480 (144 µs), so the facets'
+  // damage and D_max carry over as well as the cells' motion.
+  const std::vector<std::string> sets = {"--set", "rigid_cell.dynamics.scheme=central_difference",
+                                         "--set", "timestep.fixed=0.3 us",
+                                         "--set", "contacts[0].tensile_strength=0.5 MPa",
+                                         "--set", "contacts[0].fracture_energy=10 N/m",
+                                         "--set", "output.checkpoint_every=480"};
+  auto args = [&](std::vector<std::string> a, int steps) {
+    a.insert(a.end(), sets.begin(), sets.end());
+    a.insert(a.end(), {"--set", "run.steps=" + std::to_string(steps)});
+    return a;
+  };
+  const std::string scene = (kScenes / "stress_wave_bar_2d.toml").string();
+  const Result whole = mesocrack(args({"run", scene, "-o", "whole.h5"}, 600), d.dir);
+  REQUIRE_MESSAGE(whole.code == 0, whole.describe());
+  const Result first = mesocrack(args({"run", scene, "-o", "parts.h5"}, 480), d.dir);
+  REQUIRE_MESSAGE(first.code == 0, first.describe());
+  const Result rest = mesocrack(args({"run", scene, "--resume", "parts.h5"}, 600), d.dir);
+  REQUIRE_MESSAGE(rest.code == 0, rest.describe());
+  const auto damaged =
+      mc::H5File((d / "whole.h5").string(), mc::H5File::Mode::ReadOnly).read_doubles("/history/facets.damaged");
+  REQUIRE(damaged.at(480) > 0);  // cracking at the split, and going on after it
+  REQUIRE(damaged.back() > damaged.at(480));
+  check_same_run(d / "whole.h5", d / "parts.h5");
+}
