@@ -10,10 +10,12 @@ table gives its mean and its range over the rounds. A peer that is not installed
 Pairings (like with like):
   - parallel bonds against ESyS-Particle's RotBond (bonds with bending and twisting moments; one worker process);
   - parallel bonds against Yade's CohFrict (cohesive bonds with bending and twisting moments);
-  - CPM against Yade's CPM.
+  - CPM against Yade's CPM;
+  - unbonded linear contacts against LIGGGHTS's Hertz contacts with tangential history (it has no bonds).
 Each engine runs the stepping loop alone, 2 000 steps after 10 of warm-up, on `--threads` threads.
 
   benchmarks/peers/peers_bench.py [--install] [--specimens n10k,n50k] [--rounds 2] [--threads 1] [--build build]
+                                  [--pairings parallel_vs_esys_rotbond,...]
 """
 import argparse
 import datetime
@@ -30,22 +32,27 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
 sys.path.insert(0, str(HERE))
-from esys_geometry import write_geo  # noqa: E402
+from peer_inputs import write_geo, write_liggghts_data  # noqa: E402
 
-PACKAGES = {"yade": "yade", "esysparticle": "esys-particle"}
+PACKAGES = {"yade": "yade", "esysparticle": "esys-particle", "liggghts": "liggghts"}
 # pairing: (peer label, the peer's executable, its model, mesocrack's model)
 PAIRINGS = {
     "parallel_vs_esys_rotbond": ("ESyS-Particle RotBond", "esysparticle", "rotbond", "parallel"),
     "parallel_vs_yade_cohfrict": ("Yade CohFrict", "yade", "cohfrict", "parallel"),
     "cpm_vs_yade_cpm": ("Yade CPM", "yade", "cpm", "cpm"),
+    "unbonded_vs_liggghts_hertz": ("LIGGGHTS Hertz/history (no bonds)", "liggghts", "hertz", "unbonded"),
 }
 
 
 def result_line(text):
-    """The particle-steps per second of a run's RESULT line."""
+    """The particle-steps per second of a run's RESULT line, or of LIGGGHTS's last "Loop time" line."""
     for line in text.splitlines():
         if line.startswith("RESULT"):
             return float(re.search(r"particle_steps_per_s=([0-9.eE+-]+)", line).group(1))
+    loops = re.findall(r"Loop time of ([0-9.eE+-]+) on \d+ procs for (\d+) steps with (\d+) atoms", text)
+    if loops:
+        seconds, steps, atoms = loops[-1]
+        return int(atoms) * int(steps) / float(seconds)
     raise RuntimeError("no RESULT line in:\n" + text[-2000:])
 
 
@@ -69,6 +76,11 @@ def peer_command(engine, model, spheres, threads, work):
             raise ValueError("ESyS-Particle is timed with one worker process here")
         return ["mpirun", "--oversubscribe", "--mca", "mpi_yield_when_idle", "1", "-np", "2", "esysparticle",
                 str(HERE / "esys_rotbond.py"), str(geo), "2000"]
+    if engine == "liggghts":
+        data = work / f"{spheres.stem}.liggghts"
+        r_min = write_liggghts_data(spheres, data)
+        return ["mpirun", "--oversubscribe", "-np", str(threads), "liggghts", "-in", str(HERE / "liggghts_hertz.in"),
+                "-var", "data", str(data), "-var", "steps", "2000", "-var", "rmin", repr(r_min), "-log", "none"]
     raise ValueError(engine)
 
 
@@ -89,6 +101,7 @@ def main():
     ap.add_argument("--specimens", default="n10k")
     ap.add_argument("--rounds", type=int, default=2)
     ap.add_argument("--threads", type=int, default=1)
+    ap.add_argument("--pairings", default=",".join(PAIRINGS), help="which pairings, by key")
     ap.add_argument("--build", default=str(ROOT / "build"), help="the build folder (its benchmarks/throughput)")
     ap.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "peers"))
     a = ap.parse_args()
@@ -96,11 +109,14 @@ def main():
     specimens = Path(a.build) / "specimens"
     if not throughput.exists():
         sys.exit(f"{throughput}: not found (build first: make demo)")
-    engines = sorted({p[1] for p in PAIRINGS.values()})
+    engines = sorted({PAIRINGS[k][1] for k in a.pairings.split(",") if k in PAIRINGS})
     if a.install:
         install(engines)
     pairings = {}
-    for key, p in PAIRINGS.items():
+    for key in a.pairings.split(","):
+        if key not in PAIRINGS:
+            sys.exit(f"--pairings: '{key}' is not one of {', '.join(PAIRINGS)}")
+        p = PAIRINGS[key]
         if shutil.which(p[1]):
             pairings[key] = p
         else:
@@ -134,7 +150,8 @@ def main():
                      f"({min(ratios):.2f}–{max(ratios):.2f}) |")
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    (out / f"peers_{a.threads}thread.md").write_text("\n".join(lines) + "\n")
+    suffix = "" if a.pairings == ",".join(PAIRINGS) else "_" + a.pairings.replace(",", "_")
+    (out / f"peers_{a.threads}thread{suffix}.md").write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
 
 
