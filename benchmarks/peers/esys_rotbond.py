@@ -1,5 +1,6 @@
-# ESyS-Particle (Debian's 2.3.5) on the shared bonded specimen, for peers_bench.py, one worker process:
-#   mpirun -np 2 esysparticle esys_rotbond.py GEO STEPS        (ESyS runs a master beside its workers)
+# ESyS-Particle (Debian's 2.3.5) on the shared bonded specimen, for peers_bench.py, on WORKERS processes:
+#   mpirun -np WORKERS+1 esysparticle esys_rotbond.py GEO STEPS WORKERS   (a master beside the workers; the domain
+#   split along z)
 # GEO is the specimen with its bonds as ESyS geometry (peers_bench.py writes it: every pair closer than
 # 1.05 (r_i + r_j) a connection of tag 0). Rotational spheres; bonds carrying normal and shear force, bending and
 # twisting moment (RotBond, ESyS's parallel bond), made unbreakable: RotBond's rest length is r_i + r_j, so a bond
@@ -13,7 +14,7 @@ import time
 from esys.lsm import *
 from esys.lsm.util import BoundingBox, Vec3
 
-geo_path, steps = sys.argv[1], int(sys.argv[2])
+geo_path, steps, workers = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
 WARM_UP = 10
 E, DENSITY, STRAIN = 30e9, 2600.0, 1e-4
 
@@ -28,7 +29,7 @@ for line in lines[first:first + count]:
     z_lo, z_hi = min(z_lo, z - r), max(z_hi, z + r)
 r_min, r_max = min(radii), max(radii)
 
-sim = LsmMpi(numWorkerProcesses=1, mpiDimList=[1, 1, 1])
+sim = LsmMpi(numWorkerProcesses=workers, mpiDimList=[1, 1, workers])
 sim.initNeighbourSearch(particleType="RotSphere", gridSpacing=2.5 * r_max, verletDist=0.2 * r_min)
 dt = 0.3 * r_min * math.sqrt(DENSITY / E)
 sim.setTimeStepSize(dt)
@@ -60,6 +61,6 @@ for _ in range(steps):
     sim.runTimeStep()
 wall = time.time() - start
 n = sim.getNumParticles()
-print("RESULT engine=esys model=rotbond particles=%d workers=1 steps=%d wall_s=%.3f particle_steps_per_s=%.5g"
-      % (n, steps, wall, n * steps / wall))
+print("RESULT engine=esys model=rotbond particles=%d workers=%d steps=%d wall_s=%.3f particle_steps_per_s=%.5g"
+      % (n, workers, steps, wall, n * steps / wall))
 sim.exit()

@@ -8,7 +8,8 @@ table gives its mean and its range over the rounds. A peer that is not installed
 (`--install` installs the Debian packages first: never a project dependency, never needed by `make test`).
 
 Pairings (like with like):
-  - parallel bonds against ESyS-Particle's RotBond (bonds with bending and twisting moments; one worker process);
+  - parallel bonds against ESyS-Particle's RotBond (bonds with bending and twisting moments; a worker process per
+    thread, beside its master);
   - parallel bonds against Yade's CohFrict (cohesive bonds with bending and twisting moments);
   - CPM against Yade's CPM;
   - unbonded linear contacts against LIGGGHTS's Hertz contacts with tangential history (it has no bonds).
@@ -72,10 +73,8 @@ def peer_command(engine, model, spheres, threads, work):
         geo = work / f"{spheres.stem}.geo"
         if not geo.exists():
             write_geo(spheres, geo)
-        if threads != 1:
-            raise ValueError("ESyS-Particle is timed with one worker process here")
-        return ["mpirun", "--oversubscribe", "--mca", "mpi_yield_when_idle", "1", "-np", "2", "esysparticle",
-                str(HERE / "esys_rotbond.py"), str(geo), "2000"]
+        return ["mpirun", "--oversubscribe", "--mca", "mpi_yield_when_idle", "1", "-np", str(threads + 1),
+                "esysparticle", str(HERE / "esys_rotbond.py"), str(geo), "2000", str(threads)]
     if engine == "liggghts":
         data = work / f"{spheres.stem}.liggghts"
         r_min = write_liggghts_data(spheres, data)
@@ -121,9 +120,6 @@ def main():
             pairings[key] = p
         else:
             print(f"{p[0]}: skipped ({p[1]} is not installed; --install, or apt-get install {PACKAGES[p[1]]})")
-    if a.threads != 1 and "parallel_vs_esys_rotbond" in pairings:
-        print("ESyS-Particle RotBond: skipped (timed with one worker process only)")
-        del pairings["parallel_vs_esys_rotbond"]
     work = Path(tempfile.mkdtemp(prefix="peers_bench."))
     figures = {}  # (specimen, pairing) -> [(peer, ours), ...]
     for rnd in range(a.rounds):
