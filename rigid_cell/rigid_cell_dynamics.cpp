@@ -150,13 +150,11 @@ void RigidCellSystem<D>::dynamic_step() {
   impose_held_motion(time_ + setup_.load_step);
   // The supports' force: K u + M ü + C u̇ − f at the held degrees of freedom.
   const Eigen::VectorXd cells_u = solver_->cell_displacements(u_);
-  reactions_ = plates_->map().transpose() * model_->internal_forces(cells_u, damage_) + M * a_ - f_ext_;
-  if (d.mass_damping != 0) reactions_ += d.mass_damping * (M * v_);
-  if (d.stiffness_damping != 0) reactions_ += d.stiffness_damping * solver_->intact_forces(v_);
-  std::vector<bool> held(reactions_.size(), false);
-  for (int dof : prescribed_) held[dof] = true;
-  for (Eigen::Index dof = 0; dof < reactions_.size(); ++dof)
-    if (!held[dof]) reactions_[dof] = 0;
+  Eigen::VectorXd balance = plates_->map().transpose() * model_->internal_forces(cells_u, damage_) + M * a_ - f_ext_;
+  if (d.mass_damping != 0) balance += d.mass_damping * (M * v_);
+  if (d.stiffness_damping != 0) balance += d.stiffness_damping * solver_->intact_forces(v_);
+  reactions_.setZero();
+  for (int dof : prescribed_) reactions_[dof] = balance[dof];
 }
 
 // One explicit step (central_difference.hpp): the new displacements from the mid-step velocities, the damage of

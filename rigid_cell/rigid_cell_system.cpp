@@ -188,12 +188,8 @@ void RigidCellSystem<D>::build_gauges() {
 // The held degrees of freedom at loading time t: velocity × the smooth rise (9.1).
 template <int D>
 void RigidCellSystem<D>::prescribe(double t) {
-  for (int p = 0; p < plates_->plates(); ++p) {
-    const PlateSpec<D>& s = setup_.plates[p];
-    const double travel = smooth_rise_displacement(t, s.ramp_time);
-    for (int k = 0; k < kDofs; ++k)
-      if (s.held[k]) u_[plates_->plate_dof(p, k)] = s.velocity[k] * travel;
-  }
+  const Eigen::VectorXd held = held_motion(t).u;
+  for (int dof : prescribed_) u_[dof] = held[dof];
   f_ext_ = loads_at(t);
   if (!control_) return;
   // The drive's own part is found by the solve: it starts from zero there.
