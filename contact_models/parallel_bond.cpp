@@ -1,6 +1,8 @@
-// The contact sets of the parallel bond, compiled once here; parallel_bond.hpp announces them (extern template), so the
-// registry, the preprocessor, the tests and the benchmarks share this one instantiation.
+// The contact sets of the parallel bond, compiled once here with its eight-lane law (parallel_bond_lanes.hpp);
+// parallel_bond.hpp announces them (extern template), so the registry, the preprocessor, the tests and the benchmarks
+// share this one instantiation.
 #include "contact_models/parallel_bond.hpp"
+#include "contact_models/parallel_bond_lanes.hpp"
 
 namespace mc {
 

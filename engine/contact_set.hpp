@@ -15,6 +15,7 @@
 #include "engine/cell_grid.hpp"
 #include "engine/contact_geometry.hpp"
 #include "engine/contact_model.hpp"
+#include "engine/lanes.hpp"
 #include "engine/parallel.hpp"
 #include "engine/particles.hpp"
 #include "engine/random.hpp"
@@ -65,7 +66,7 @@ class ContactSetBase {
   // Forces into slots [offset, offset + size) and [wall_offset, wall_offset + wall size). Returns the
   // energy dissipated this step when `energy` is set, else zeros.
   virtual Dissipated forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy,
-                        Slots<D>& slots, std::size_t offset, std::size_t wall_offset) = 0;
+                            Slots<D>& slots, std::size_t offset, std::size_t wall_offset) = 0;
   virtual void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness& k, std::size_t offset,
                          std::size_t wall_offset) const = 0;
   virtual ContactStiffness nominal_stiffness(double r) const = 0;  // one contact with an identical particle
@@ -142,6 +143,12 @@ inline ContactGeometry<D> wall_geometry(const Particles<D>& p, const Wall<D>& w,
   g.dt = dt;
   return g;
 }
+
+// A model may also give its law for kLanes consecutive contacts at once (engine/lanes.hpp): a specialisation of
+// LaneLaw with a static force(params, particles, pairs, states, slots, first slot, dt) that returns false, having
+// written nothing, when any of them needs the one-contact law. Steps without energy tracing use it.
+template <class Model, int D>
+struct LaneLaw {};
 
 template <class Model, int D>
 requires ContactModel<Model, D>
@@ -316,7 +323,7 @@ class ContactSet final : public ContactSetBase<D> {
     for (int b = 0; b < block_count(n); ++b) {
       const std::size_t end = std::min(n, std::size_t(b + 1) * kBlock);
       Dissipated dissipated;
-      for (std::size_t c = std::size_t(b) * kBlock; c < end; ++c) {
+      auto one = [&](std::size_t c) {
         const auto [i, j] = pairs_[c];
         State& st = states_[c];
         const std::size_t slot = off + c;
@@ -336,7 +343,7 @@ class ContactSet final : public ContactSetBase<D> {
           s.f[slot].setZero();
           s.ma[slot].setZero();
           s.mb[slot].setZero();
-          continue;
+          return;
         }
         Vec<D> ca, cb;
         const auto g = ball_geometry(p, i, j, dt, ca, cb);
@@ -359,7 +366,14 @@ class ContactSet final : public ContactSetBase<D> {
           dissipated.bonds += r.fractured;
           dashpot_[c] = r.dashpot;
         }
+      };
+      std::size_t c = std::size_t(b) * kBlock;
+      if constexpr (!Energy && requires { LaneLaw<Model, D>::force; }) {
+        for (; c + kLanes <= end; c += kLanes)
+          if (!LaneLaw<Model, D>::force(prm, p, &pairs_[c], &states_[c], s, off + c, dt))
+            for (int l = 0; l < kLanes; ++l) one(c + l);
       }
+      for (; c < end; ++c) one(c);
       if constexpr (Energy) part[b] = dissipated;
     }
     for (auto& be : block_events_) {
@@ -380,7 +394,8 @@ class ContactSet final : public ContactSetBase<D> {
       const std::size_t slot = woff + c;
       Vec<D> cw, cb;
       const auto g = wall_geometry(p, walls[w], j, dt, cw, cb);
-      if (g.overlap > 0.5 * g.r_b && !passing_) [[unlikely]] passing_ = Pair{-1 - w, j};
+      if (g.overlap > 0.5 * g.r_b && !passing_) [[unlikely]]
+        passing_ = Pair{-1 - w, j};
       const auto r = Model::template force<D, Energy>(Model::template wall<D>(prm, walls[w].material, g.r_b, g.k_b), g,
                                                       wall_states_[c]);
       s.f[slot] = r.force;

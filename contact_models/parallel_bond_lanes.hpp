@@ -1,0 +1,117 @@
+// The parallel bond's force pass (parallel_bond.hpp) for kLanes 3D contacts at once (engine/lanes.hpp), used by the
+// contact set on steps without energy tracing. Every branch of the one-contact law that happens every step (pairs
+// apart, touching or not, slipping, bonded or not) is a per-lane choice; what is rare (a bond breaking, a contact
+// passing through, a plane tilting by more than 1e-4 rad) and what this kernel does not carry (dashpots, particle
+// stiffness factors) sends them back to the one-contact law before anything is written. The same
+// operations in the same order as ParallelBond::force: the same bits.
+#pragma once
+#include <cmath>
+#include <cstddef>
+
+#include "contact_models/parallel_bond.hpp"
+#include "engine/contact_set.hpp"
+#include "engine/lanes.hpp"
+
+namespace mc {
+
+template <>
+struct LaneLaw<ParallelBond, 3> {
+  using State = ParallelBond::State<3>;
+  static constexpr int kStride = sizeof(State) / sizeof(double);
+  static constexpr int kVec = 3;  // doubles per slot vector
+
+  // Contacts [c, c + kLanes) of `pairs` and `states`, slots from `slot`. False: nothing written, run them
+  // one at a time.
+  [[gnu::flatten]] static bool force(const ParallelBondParams& prm, const Particles<3>& p, const Pair* pairs,
+                                     State* states, Slots<3>& s, std::size_t slot, double dt) {
+    if (prm.contact.damping_ratio > 0) return false;
+    LaneIndex ia, ib;
+    lane_partners(pairs, ia, ib);
+    const Lane tensile = load_lanes<kStride>(&states[0].tensile);
+    const Lane shear = load_lanes<kStride>(&states[0].shear);
+    const LaneMask bonded = tensile > 0.0;
+
+    // Geometry, as ball_geometry (contact_set.hpp), Tang (3.1)–(3.6).
+    const Lane3 xa = gather(p.x, ia), xb = gather(p.x, ib);
+    const Lane ra = gather(p.radius, ia), rb = gather(p.radius, ib);
+    const Lane3 d = xb - xa;
+    const Lane reach = ra + rb;
+    const LaneMask apart = dot(d, d) >= reach * reach && !bonded;
+    const Lane dist = dot(d, d).sqrt();
+    const Lane3 n = d * (1.0 / dist);
+    const Lane overlap = reach - dist;
+    if ((!apart && overlap > 0.5 * ra.min(rb)).any()) return false;  // passing through: the guard's message
+    if ((!apart && (gather(p.stiffness, ia) != 1.0 || gather(p.stiffness, ib) != 1.0)).any()) return false;
+    const Lane3 ca = (ra - 0.5 * overlap) * n;
+    const Lane3 cb = ca - d;
+    const Lane3 wa = gather(p.w, ia), wb = gather(p.w, ib);
+    const Lane3 v_rel = (gather(p.v, ib) + cross(wb, cb)) - (gather(p.v, ia) + cross(wa, ca));
+    const Lane3 w_rel = wb - wa;
+    const Lane spin = 0.5 * dot(wa + wb, n);
+    const Lane angle = spin * dt, turn = 1.0 - 0.5 * angle * angle;
+
+    // Coefficients, as ParallelBond::pair with unit stiffness factors.
+    const Lane inv_sum = 1.0 / reach;
+    const Lane kn = prm.modulus * inv_sum, ks = kn * (1.0 / prm.kn_ks_ratio);  // Tang (3.38)
+    const Lane r = prm.radius_multiplier * ra.min(rb), inv_r = 1.0 / r;        // Tang (3.40)
+    const Lane kn_c = 4.0 * prm.contact.modulus * (ra * rb * inv_sum), ks_c = kn_c * (1.0 / prm.contact.kn_ks_ratio);
+    const Lane r4 = r * r * r * r, inv_r3 = inv_r * inv_r * inv_r;
+    const Lane kn_a = kn * M_PI * r * r, ks_a = ks * M_PI * r * r;  // Tang (3.37), (3.39)
+    const Lane kn_i = kn * 0.25 * M_PI * r4, ks_j = ks * 0.5 * M_PI * r4;
+    const Lane inv_a = inv_r * inv_r * M_1_PI, r_i = 4.0 * M_1_PI * inv_r3, r_j = 2.0 * M_1_PI * inv_r3;
+
+    // The grain contact with Coulomb slip (Linear::force), Tang (3.5), (3.9), (3.10), (3.36).
+    LaneMask tilted = LaneMask::Constant(false);
+    const LaneMask touching = !(overlap <= 0.0);
+    const Lane vn = dot(v_rel, n);
+    const Lane3 vs = v_rel - vn * n;
+    const Lane fn = kn_c * overlap;
+    const Lane3 fs_trial =
+        carry_shear(load_lanes3<kStride>(states[0].fs.data()), n, angle, turn, touching, tilted) - ks_c * vs * dt;
+    const Lane fs_max = prm.contact.friction * fn;
+    const Lane fs2 = dot(fs_trial, fs_trial);
+    const Lane3 fs_slid = fs_trial * (fs_max / fs2.sqrt());
+    const Lane3 fs = pick(touching, pick(fs2 > fs_max * fs_max, fs_slid, fs_trial), 0.0);
+    const Lane3 grain = pick(touching, fn * n + fs, 0.0);
+
+    // The bond, Tang (3.37), its stresses (3.41).
+    const Lane kdt = load_lanes<kStride>(&states[0].stiffness) * dt;
+    const Lane bfn = load_lanes<kStride>(&states[0].bond_fn) - kn_a * vn * kdt;
+    const Lane3 bfs =
+        carry_shear(load_lanes3<kStride>(states[0].bond_fs.data()), n, angle, turn, bonded, tilted) - ks_a * vs * kdt;
+    const Lane wn = dot(w_rel, n);
+    const Lane bmn = load_lanes<kStride>(&states[0].bond_mn) - ks_j * wn * kdt;
+    const Lane3 bms = carry_shear(load_lanes3<kStride>(states[0].bond_ms.data()), n, angle, turn, bonded, tilted) -
+                      kn_i * (w_rel - wn * n) * kdt;
+    const Lane need_t = tensile + bfn * inv_a, need_s = shear - bmn.abs() * r_j;
+    const LaneMask breaks = (need_t <= 0.0 || dot(bms, bms) * (r_i * r_i) >= need_t * need_t) ||
+                            (need_s <= 0.0 || dot(bfs, bfs) * (inv_a * inv_a) >= need_s * need_s);
+    if ((!apart && ((bonded && breaks) || tilted)).any()) return false;
+
+    const Lane3 force = pick(bonded, grain + (bfn * n + bfs), grain);
+    const Lane3 moment = pick(bonded, 0.0 + (bmn * n + bms), 0.0);  // ContactForce's zero moment, plus the bond's
+    const LaneMask kept = !apart;
+    // Apart and unbonded: no force, and the state of a pair never touched (ParallelBond::State{}).
+    auto keep = [&](double* field, const Lane& now, const LaneMask& changed, double apart_value) {
+      store_lanes<kStride>(field, pick(kept, pick(changed, now, load_lanes<kStride>(field)), apart_value));
+    };
+    auto keep3 = [&](double* field, const Lane3& now, const LaneMask& changed) {
+      keep(field, now.x, changed, 0.0), keep(field + 1, now.y, changed, 0.0), keep(field + 2, now.z, changed, 0.0);
+    };
+    keep3(states[0].fs.data(), fs, kept);
+    keep3(states[0].bond_fs.data(), bfs, bonded);
+    keep3(states[0].bond_ms.data(), bms, bonded);
+    keep(&states[0].bond_fn, bfn, bonded, 0.0);
+    keep(&states[0].bond_mn, bmn, bonded, 0.0);
+    keep(&states[0].tensile, tensile, kept, 0.0);
+    keep(&states[0].shear, shear, kept, 0.0);
+    keep(&states[0].stiffness, tensile, LaneMask::Constant(false), 1.0);
+    const Lane3 neg = Lane3{-force.x, -force.y, -force.z};
+    store_lanes3<kVec>(s.f[slot].data(), pick(kept, force, 0.0));
+    store_lanes3<kVec>(s.ma[slot].data(), pick(kept, cross(ca, neg) - moment, 0.0));
+    store_lanes3<kVec>(s.mb[slot].data(), pick(kept, cross(cb, force) + moment, 0.0));
+    return true;
+  }
+};
+
+}  // namespace mc
