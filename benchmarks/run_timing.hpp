@@ -45,23 +45,46 @@ inline std::size_t bytes(const std::vector<T>& v) {
 }
 
 struct Footprint {
-  std::size_t particles = 0, contacts = 0, slots = 0, gather = 0;
-  std::size_t total() const { return particles + contacts + slots + gather; }
+  std::size_t particles = 0, contacts = 0, slots = 0, gather = 0, timestep = 0;
+  std::size_t total() const { return particles + contacts + slots + gather + timestep; }
 };
 
 // From the container sizes: particle arrays (+ the positions kept at the last rebuild), the contact set's pairs
-// and histories, the slots (force and two moments + the pair of each slot), the gather lists.
+// and histories, the slots (force and two moments), the gather lists, the per-slot stiffnesses of the timestep.
 template <int D>
 Footprint footprint(const World<D>& w) {
   Footprint fp;
   const auto& p = w.particles;
   fp.particles = bytes(p.x) + bytes(p.v) + bytes(p.f) + bytes(p.w) + bytes(p.m) + bytes(p.q) + bytes(p.radius) +
-                 bytes(p.mass) + bytes(p.inertia) + bytes(p.phase) + bytes(p.fix) + bytes(p.f_applied) +
-                 bytes(p.m_applied) + p.x.size() * sizeof(Vec<D>);
+                 bytes(p.mass) + bytes(p.inertia) + bytes(p.phase) + bytes(p.stiffness) + bytes(p.fix) +
+                 bytes(p.f_applied) + bytes(p.m_applied) + p.x.size() * sizeof(Vec<D>);
   for (const auto& s : w.sets) fp.contacts += s->memory_bytes();
-  fp.slots = w.slot_count() * (sizeof(Vec<D>) + 2 * sizeof(Rot<D>) + sizeof(Pair));
+  fp.slots = w.slot_count() * (sizeof(Vec<D>) + 2 * sizeof(Rot<D>));
   fp.gather = w.gather_bytes();
+  fp.timestep = w.timestep_bytes();
   return fp;
+}
+
+// Bytes one step moves through memory, counted from the arrays it streams (read once, written once when it
+// changes them): per contact its pair, its state read and written, its slot written and read back by the
+// gather (the force by both partners, each moment by one); per particle its gather list, the state the law of
+// motion reads and writes, and the partners' positions, velocities, spins and radii the contacts read. Caches
+// only make the real traffic smaller; this is what a machine without them would move.
+template <int D>
+double streamed_bytes_per_step(const World<D>& w) {
+  const double n = w.particles.size();
+  double contacts = 0;
+  for (const auto& s : w.sets) contacts += static_cast<double>(s->memory_bytes()) * 2.0;  // read and write
+  const double slots = static_cast<double>(w.slot_count());
+  const double vec = sizeof(Vec<D>), rot = sizeof(Rot<D>);
+  const double slot_traffic = slots * (vec + 2 * rot) + slots * (2 * vec + 2 * rot);
+  const double gather = static_cast<double>(w.gather_bytes());
+  // Law of motion: reads x, v, w, q, mass, inertia, fix, x at rebuild; writes x, v, w, q, f, m.
+  const double motion = n * (2 * (3 * vec + sizeof(typename Dim<D>::Orientation)) + 2 * vec + 2 * rot +
+                             2 * sizeof(double) + sizeof(FixMask) + vec);
+  // The contacts' reads of the particles: position, velocity, spin, radius, stiffness factor.
+  const double partners = n * (2 * vec + rot + 2 * sizeof(double));
+  return contacts + slot_traffic + gather + motion + partners;
 }
 
 inline double cpu_now() {
@@ -89,11 +112,13 @@ struct Timing {
   std::int64_t rebuilds = 0;   // neighbour-list rebuilds inside the timed window
   double dt = 0, dt_critical = 0;
   Footprint fp;
+  double streamed = 0;  // bytes a step streams per particle (streamed_bytes_per_step)
 
   double particle_steps() const { return double(n) * steps / seconds; }
   double contact_steps() const { return contacts * steps / seconds; }
   double ns_per_particle_step() const { return seconds / (double(n) * steps) * 1e9; }
   double cpu_share() const { return cpu_seconds / seconds; }  // ≈ threads when nothing else competes
+  double bytes_per_second() const { return streamed * particle_steps(); }
   // CPU/wall for a table cell, flagged when the process got less than 80 % of the cores it asked for.
   std::string share(int threads) const {
     char b[48];
@@ -126,6 +151,7 @@ Timing time_steps(World<D>& w, int warmup, int steps) {
   t.dt = w.dt;
   t.dt_critical = w.dt_critical;
   t.fp = footprint(w);
+  t.streamed = streamed_bytes_per_step(w) / t.n;
   return t;
 }
 

@@ -3,15 +3,18 @@
 //  a) shared (throughput_shared.hpp): the specimen of benchmarks/specimens/README.md, on which Yade,
 //     ESyS-Particle and LAMMPS were timed; our figures beside theirs: unbonded linear contacts, parallel bonds
 //     beside them (the peers' 6-DOF bonds), and the Concrete Particle Model (beside Yade's CPM figures).
-//  b) scaling (throughput_scaling.hpp): dense random 2D and 3D assemblies from 1e3 to 1e6 particles; the cost
-//     per particle-step must stay flat (O(N)).
+//  b) scaling (throughput_scaling.hpp): dense random 2D and 3D assemblies from 1e3 to 1e6 particles, and a
+//     parallel-bonded 3D block from 1e4 to 1e7 with its memory and bandwidth; the cost per particle-step must stay
+//     flat (O(N)).
 //  c) effects (throughput_effects.hpp): the cost of each optional effect (gravity, local damping, contact
 //     dashpots, energy tracing) as a ratio to the same run without it.
+//  d) deposition (throughput_deposition.hpp): a poured flow with a fixed and an adaptive Verlet skin.
 //
 // Only the stepping loop is timed (std::chrono::steady_clock); each timing is repeated (default 3) on a fresh
 // world and the best is kept. Ratios are always taken within one run: the machine is shared and noisy.
 //
-//   throughput [--quick] [--only shared|bonded|cpm|scaling|effects] [--specimen-dir DIR] [--reps N]
+//   throughput [--quick] [--only shared|bonded|cpm|scaling|bonded-scaling|effects|deposition] [--specimen-dir DIR]
+//              [--reps N] [--max-bonded N]
 //   throughput --one n10k:parallel:1 [--specimen-dir DIR]   (one run, one RESULT line: benchmarks/peers/)
 #include <omp.h>
 #include <unistd.h>
@@ -23,6 +26,7 @@
 #include <string>
 
 #include "benchmarks/run_timing.hpp"
+#include "benchmarks/throughput_deposition.hpp"
 #include "benchmarks/throughput_effects.hpp"
 #include "benchmarks/throughput_scaling.hpp"
 #include "benchmarks/throughput_shared.hpp"
@@ -33,11 +37,12 @@ namespace {
 using namespace mc::bench;
 
 [[noreturn]] void usage(const std::string& why) {
-  std::fprintf(
-      stderr,
-      "%s\nusage: throughput [--quick] [--only shared|bonded|cpm|scaling|effects] [--specimen-dir DIR] [--reps N]\n"
-      "       throughput --one SPECIMEN:MODEL:THREADS [--specimen-dir DIR]\n",
-      why.c_str());
+  std::fprintf(stderr,
+               "%s\nusage: throughput [--quick] [--only shared|bonded|cpm|scaling|bonded-scaling|effects|deposition] "
+               "[--specimen-dir DIR]\n"
+               "                  [--reps N] [--max-bonded N]\n"
+               "       throughput --one SPECIMEN:MODEL:THREADS [--specimen-dir DIR]\n",
+               why.c_str());
   std::exit(2);
 }
 
@@ -53,9 +58,12 @@ Options parse(int argc, char** argv) {
       o.quick = true;
     } else if (a == "--only") {
       const std::string v = value();
-      if (v != "shared" && v != "bonded" && v != "cpm" && v != "scaling" && v != "effects")
-        usage("--only '" + v + "': allowed shared, bonded, cpm, scaling, effects");
-      o.shared = v == "shared" || v == "bonded" || v == "cpm", o.scaling = v == "scaling", o.effects = v == "effects";
+      if (v != "shared" && v != "bonded" && v != "cpm" && v != "scaling" && v != "bonded-scaling" && v != "effects" &&
+          v != "deposition")
+        usage("--only '" + v + "': allowed shared, bonded, cpm, scaling, bonded-scaling, effects, deposition");
+      o.shared = v == "shared" || v == "bonded" || v == "cpm", o.effects = v == "effects";
+      o.deposition = v == "deposition";
+      o.scaling = v == "scaling" || v == "bonded-scaling", o.unbonded_scaling = v == "scaling";
       o.unbonded = v == "shared", o.parallel = v != "cpm", o.cpm = v != "bonded";
     } else if (a == "--specimen-dir") {
       o.specimen_dir = value();
@@ -66,6 +74,12 @@ Options parse(int argc, char** argv) {
       if (*end || r < 1 || r > 100) usage("--reps '" + v + "': allowed an integer from 1 to 100");
       o.reps = static_cast<int>(r);
       o.reps_given = true;
+    } else if (a == "--max-bonded") {
+      const std::string v = value();
+      char* end = nullptr;
+      const long m = std::strtol(v.c_str(), &end, 10);
+      if (*end || m < 100000 || m > 100000000) usage("--max-bonded '" + v + "': allowed an integer from 1e5 to 1e8");
+      o.max_bonded = static_cast<int>(m);
     } else if (a == "--one") {
       const std::string v = value();
       const auto c1 = v.find(':'), c2 = v.rfind(':');
@@ -91,8 +105,11 @@ int main(int argc, char** argv) {
   // On a shared machine, threads that spin at the end of each parallel region (libgomp's default) lose whole time
   // slices whenever another process holds a core, and 2-thread runs become several times slower than 1-thread
   // runs. Unless the caller chose a policy, run with passive waiting: libgomp reads it at start-up, so re-execute.
+  // A --one run (benchmarks/peers/, on a quiet machine) times what `mesocrack run` does: libgomp's own policy.
+  bool one = false;
+  for (int i = 1; i < argc; ++i) one = one || std::string(argv[i]) == "--one";
   bool policy_set_here = false;
-  if (!std::getenv("OMP_WAIT_POLICY")) {
+  if (!one && !std::getenv("OMP_WAIT_POLICY")) {
     setenv("OMP_WAIT_POLICY", "passive", 1);
     setenv("MESOCRACK_BENCH_POLICY_SET", "1", 1);
     execv("/proc/self/exe", argv);  // returns only on failure: go on with the default policy
@@ -132,6 +149,7 @@ int main(int argc, char** argv) {
     if (opt.shared && opt.cpm) section([&] { section_shared(opt, true, true); });
     if (opt.scaling) section([&] { section_scaling(opt); });
     if (opt.effects) section([&] { section_effects(opt); });
+    if (opt.deposition) section([&] { section_deposition(opt); });
   } catch (const std::exception& e) {
     std::fprintf(stderr, "throughput: %s\n", e.what());
     return 1;

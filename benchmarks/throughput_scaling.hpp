@@ -1,5 +1,7 @@
 // Section b) of the throughput benchmark (benchmarks/throughput.cpp): dense random 2D and 3D assemblies from 1e3
-// to 1e6 particles; the cost per particle-step must stay flat (O(N)).
+// to 1e6 particles, and a parallel-bonded 3D block from 1e4 to 1e7; the cost per particle-step and the memory per
+// particle must stay flat (O(N)). The bonded rows also give the bytes a step streams and the fraction of the
+// machine's triad bandwidth the loop reaches.
 #pragma once
 #include <omp.h>
 
@@ -9,6 +11,7 @@
 
 #include "benchmarks/dense_assembly.hpp"
 #include "benchmarks/run_timing.hpp"
+#include "benchmarks/stream_triad.hpp"
 #include "benchmarks/throughput_world.hpp"
 #include "engine/parallel.hpp"
 
@@ -107,15 +110,94 @@ inline void print_scaling_relative(const std::vector<ScalingRow>& rows) {
   std::printf("\n");
 }
 
+struct BondedRow {
+  Timing t[2];
+  double bonds = 0;       // intact bonds per particle
+  double peak_bytes = 0;  // growth of the peak resident set while the worlds existed, per particle
+};
+
+// The 3D assembly of the unbonded rows, every pair with a gap ≤ 0.1 R_min bonded by parallel bonds that do not
+// break (the shared specimen's model); the particles near the faces held. One fresh world per thread count.
+inline BondedRow bonded_row(int target, bool quick) {
+  const Assembly<3> a = tile(cell_for_dim<3>(quick), kR0, target, false);
+  const int n = static_cast<int>(a.x.size());
+  const int steps = std::max(20, static_cast<int>((quick ? 2e6 : 2e7) / n));
+  Material mat;
+  mat.bonded = true;
+  const FixMask all = static_cast<FixMask>((1u << 6) - 1);
+  BondedRow row;
+  const long rss0 = status_kib("VmRSS");
+  reset_peak_rss();
+  for (int ti = 0; ti < 2; ++ti) {
+    omp_set_num_threads(kThreads[ti]);
+    progress("  bonded 3D N = %d, %d steps, %d thread(s) ...", n, steps, kThreads[ti]);
+    World<3> w = make_world<3>(a.x, a.r, mat);
+    for (int i = 0; i < n; ++i)
+      if (a.edge[i]) w.particles.fix[i] = all;
+    w.init();
+    row.bonds = static_cast<double>(w.install_bonds(0.1, 1)) / n;
+    row.t[ti] = time_steps(w, 5, steps);
+    progress(" %.2f s\n", row.t[ti].seconds);
+  }
+  row.peak_bytes = 1024.0 * static_cast<double>(status_kib("VmHWM") - rss0) / n;
+  return row;
+}
+
+inline void print_bonded_scaling(const std::vector<BondedRow>& rows, const double triad[2]) {
+  std::printf(
+      "\n### Parallel-bonded 3D block\n\nThe 3D assemblies above, every pair with a gap <= 0.1 R_min bonded by "
+      "parallel bonds beside the linear contacts (the shared specimen's model, unbreakable here), the particles "
+      "near the faces held; steps = max(20, 2e7/N) after 5 warm-up steps, one run per thread count. Memory: the "
+      "engine's containers (particles, contacts, slots, gather lists, timestep buffers) and the growth of the "
+      "process's peak resident set while the block's worlds existed (it includes the transient lists of the "
+      "neighbour search and bonding). Streamed: the bytes a step would move through memory without caches "
+      "(benchmarks/run_timing.hpp, streamed_bytes_per_step). Triad bandwidth of this machine, measured in this "
+      "run (STREAM's a = b + s c over 3 x 128 MiB): %.1f GB/s on 1 thread, %.1f GB/s on 2.\n\n",
+      triad[0] / 1e9, triad[1] / 1e9);
+  std::printf(
+      "| N | bonds / particle | containers, B / particle | peak resident growth, B / particle | "
+      "1 thread: ns / particle-step | 2 threads: ns / particle-step | speedup | streamed B / particle-step | "
+      "GB/s, 1 thread | of triad | GB/s, 2 threads | of triad |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const auto& r : rows) {
+    const Timing &a = r.t[0], &b = r.t[1];
+    std::printf("| %d | %s | %.0f | %.0f | %s | %s | %s | %.0f | %s | %s %% | %s | %s %% |\n", a.n,
+                fix(r.bonds, 2).c_str(), static_cast<double>(a.fp.total()) / a.n, r.peak_bytes,
+                fix(a.ns_per_particle_step(), 1).c_str(), fix(b.ns_per_particle_step(), 1).c_str(),
+                fix(a.seconds / b.seconds, 2).c_str(), a.streamed, fix(a.bytes_per_second() / 1e9, 1).c_str(),
+                fix(100 * a.bytes_per_second() / triad[0], 0).c_str(), fix(b.bytes_per_second() / 1e9, 1).c_str(),
+                fix(100 * b.bytes_per_second() / triad[1], 0).c_str());
+  }
+  std::printf("\nRelative to the smallest block (flat within 20 %%: O(N)):\n\n");
+  std::printf("| N | ns / particle-step, 1 thread | 2 threads | containers per particle |\n|---|---|---|---|\n");
+  for (const auto& r : rows)
+    std::printf("| %d | %s | %s | %s |\n", r.t[0].n,
+                fix(r.t[0].ns_per_particle_step() / rows[0].t[0].ns_per_particle_step(), 2).c_str(),
+                fix(r.t[1].ns_per_particle_step() / rows[0].t[1].ns_per_particle_step(), 2).c_str(),
+                fix(static_cast<double>(r.t[0].fp.total()) / r.t[0].n /
+                        (static_cast<double>(rows[0].t[0].fp.total()) / rows[0].t[0].n),
+                    2)
+                    .c_str());
+  std::printf("\n");
+}
+
 inline void section_scaling(const Options& opt) {
   std::vector<int> sizes = opt.quick ? std::vector<int>{1000, 10000} : std::vector<int>{1000, 10000, 100000, 1000000};
-  std::vector<ScalingRow> rows;
-  progress("scaling\n");
-  for (int n : sizes) rows.push_back(scaling_row<2>(n, opt.quick, opt));
-  for (int n : sizes) rows.push_back(scaling_row<3>(n, opt.quick, opt));
-  print_scaling_setup(opt);
-  print_scaling_table(rows);
-  print_scaling_relative(rows);
+  if (opt.unbonded_scaling) {
+    std::vector<ScalingRow> rows;
+    progress("scaling\n");
+    for (int n : sizes) rows.push_back(scaling_row<2>(n, opt.quick, opt));
+    for (int n : sizes) rows.push_back(scaling_row<3>(n, opt.quick, opt));
+    print_scaling_setup(opt);
+    print_scaling_table(rows);
+    print_scaling_relative(rows);
+  }
+  const std::vector<int> bonded_sizes =
+      opt.quick ? std::vector<int>{10000, 100000} : std::vector<int>{10000, 100000, 1000000, opt.max_bonded};
+  std::vector<BondedRow> bonded;
+  for (int n : bonded_sizes) bonded.push_back(bonded_row(n, opt.quick));
+  const double triad[2] = {triad_bytes_per_second(1), triad_bytes_per_second(2)};
+  print_bonded_scaling(bonded, triad);
 }
 
 }  // namespace mc::bench

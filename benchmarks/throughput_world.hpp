@@ -14,12 +14,14 @@ namespace mc::bench {
 
 struct Options {
   bool quick = false;
-  bool shared = true, scaling = true, effects = true;
+  bool shared = true, scaling = true, effects = true, deposition = true;
+  bool unbonded_scaling = true;      // the scaling section's unbonded 2D and 3D rows (--only bonded-scaling: without)
   bool unbonded = true;              // the shared specimen also without bonds (--only bonded: with bonds only)
   bool parallel = true, cpm = true;  // its parallel-bonded and CPM runs (--only bonded / cpm: that one alone)
   std::string specimen_dir = MESOCRACK_SPECIMEN_DIR;
   int reps = 3;
   bool reps_given = false;
+  int max_bonded = 10000000;  // the largest bonded block of the scaling section (--max-bonded)
   // --one SPECIMEN:MODEL:THREADS (benchmarks/peers/peers_bench.py): that run alone, once, as one RESULT line.
   std::string one_specimen, one_model;
   int one_threads = 0;

@@ -67,8 +67,10 @@ class ContactSetBase {
   // energy dissipated this step when `energy` is set, else zeros.
   virtual Dissipated forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy,
                             Slots<D>& slots, std::size_t offset, std::size_t wall_offset) = 0;
+  // Per-slot stiffnesses for the timestep. A pair that is neither persistent (bonded) nor within `margin` of
+  // touching counts nothing (kInf: every pair counts).
   virtual void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness& k, std::size_t offset,
-                         std::size_t wall_offset) const = 0;
+                         std::size_t wall_offset, double margin) const = 0;
   virtual ContactStiffness nominal_stiffness(double r) const = 0;  // one contact with an identical particle
   virtual double damping_ratio() const = 0;                        // of the model's dashpots (0: none)
   // Bonds the given pairs (sorted, all present in the list); returns how many were bonded. Models without
@@ -176,11 +178,16 @@ class ContactSet final : public ContactSetBase<D> {
   }
 
   void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness& k, std::size_t off,
-                 std::size_t woff) const override {
+                 std::size_t woff, double margin) const override {
     const int n = static_cast<int>(pairs_.size());
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
     for (int c = 0; c < n; ++c) {
       const auto [i, j] = pairs_[c];
+      const double reach = p.radius[i] + p.radius[j] + margin;
+      if ((p.x[j] - p.x[i]).squaredNorm() >= reach * reach && !Model::template persistent<D>(states_[c])) {
+        k.kt[off + c] = k.kra[off + c] = k.krb[off + c] = 0;
+        continue;
+      }
       Vec<D> ca, cb;
       const auto g = ball_geometry(p, i, j, 0.0, ca, cb);
       const auto st =
@@ -194,6 +201,10 @@ class ContactSet final : public ContactSetBase<D> {
       const auto [w, j] = wall_pairs_[c];
       Vec<D> cw, cb;
       const auto g = wall_geometry(p, walls[w], j, 0.0, cw, cb);
+      if (-g.overlap >= margin) {
+        k.kt[woff + c] = k.kra[woff + c] = k.krb[woff + c] = 0;
+        continue;
+      }
       const auto st = Model::template stiffness<D>(Model::template wall<D>(params_, walls[w].material, g.r_b, g.k_b), g,
                                                    wall_states_[c]);
       k.kt[woff + c] = st.normal + st.shear;

@@ -17,11 +17,12 @@ namespace mc {
 template <int D>
 void World<D>::init() {
   const int n = particles.size();
-  if (skin <= 0) {
-    double rmin = kInf;
-    for (double r : particles.radius) rmin = std::min(rmin, r);
-    skin = n > 0 ? 0.1 * rmin : 0.0;
-  }
+  double rmin = kInf;
+  for (double r : particles.radius) rmin = std::min(rmin, r);
+  if (skin <= 0) skin = n > 0 ? 0.1 * rmin : 0.0;
+  skin_floor_ = skin;
+  skin_ceiling_ = std::max(skin, n > 0 ? rmin : 0.0);
+  step_at_rebuild_ = step_count;
   moved_ = kInf;  // force a rebuild before the first force computation
   rebuild();
   refresh_timestep();
@@ -33,7 +34,16 @@ void World<D>::init() {
 }
 
 template <int D>
+void World<D>::adapt_skin() {
+  if (rebuild_interval <= 0 || step_count <= step_at_rebuild_ || !std::isfinite(moved_)) return;
+  const double per_step = moved_ / static_cast<double>(step_count - step_at_rebuild_);
+  skin = std::clamp(2.0 * per_step * rebuild_interval, skin_floor_, skin_ceiling_);
+}
+
+template <int D>
 void World<D>::rebuild() {
+  adapt_skin();
+  step_at_rebuild_ = step_count;
   const auto& p = particles;
   const int n = p.size();
   const int nsets = static_cast<int>(sets.size());
@@ -76,7 +86,6 @@ void World<D>::relink() {
     total += sets[s]->wall_pairs().size();
   }
   slots_.resize(total);
-  slot_pair_.resize(total);
   // Gather lists: each particle's slots where it is A, then those where it is B (split at gather_split_), each
   // in increasing slot order, so its sum is the same on any thread count and the gather needs no branch.
   std::vector<int> count_a(n, 0), count_b(n, 0);
@@ -95,17 +104,24 @@ void World<D>::relink() {
   for (int s = 0; s < nsets; ++s) {
     std::size_t slot = offset_[s];
     for (const Pair& pr : sets[s]->pairs()) {
-      slot_pair_[slot] = pr;
       gather_items_[fill_a[pr[0]]++] = static_cast<int>(slot);
       gather_items_[fill_b[pr[1]]++] = static_cast<int>(slot);
       ++slot;
     }
     for (const Pair& pr : sets[s]->wall_pairs()) {
-      slot_pair_[slot] = {-1 - pr[0], pr[1]};
       gather_items_[fill_b[pr[1]]++] = static_cast<int>(slot);
       ++slot;
     }
   }
+}
+
+template <int D>
+Pair World<D>::slot_pair(std::size_t slot) const {
+  std::size_t s = sets.size() - 1;
+  while (offset_[s] > slot) --s;
+  if (slot < wall_offset_[s]) return sets[s]->pairs()[slot - offset_[s]];
+  const Pair& wp = sets[s]->wall_pairs()[slot - wall_offset_[s]];
+  return {-1 - wp[0], wp[1]};
 }
 
 template <int D>
@@ -147,7 +163,11 @@ double World<D>::critical_timestep() {
   k.kt.resize(slots_.f.size());
   k.kra.resize(slots_.f.size());
   k.krb.resize(slots_.f.size());
-  for (std::size_t s = 0; s < sets.size(); ++s) sets[s]->stiffness(particles, walls, k, offset_[s], wall_offset_[s]);
+  // Every pair in the lists counts (contacts about to close); once the adaptive skin has grown, only those within
+  // the skin set at init, so that a wider skin does not shorten the step.
+  const double margin = skin > skin_floor_ ? skin_floor_ : kInf;
+  for (std::size_t s = 0; s < sets.size(); ++s)
+    sets[s]->stiffness(particles, walls, k, offset_[s], wall_offset_[s], margin);
   // The servo gain needs Σk_n of each wall's touching contacts; it is refreshed with the timestep.
   for (auto& wl : walls) wl.contact_kn = 0;
   for (std::size_t s = 0; s < sets.size(); ++s) {
@@ -205,7 +225,8 @@ void World<D>::compute_forces() {
   Dissipated e;
   for (std::size_t s = 0; s < sets.size(); ++s) {
     e += sets[s]->forces(particles, walls, dt, trace_energy, slots_, offset_[s], wall_offset_[s]);
-    if (const auto pr = sets[s]->passing_through()) [[unlikely]] passing_through(*pr);
+    if (const auto pr = sets[s]->passing_through()) [[unlikely]]
+      passing_through(*pr);
   }
   if (trace_energy) {
     energy.dissipated_contacts += e.contacts;
@@ -318,7 +339,8 @@ typename World<D>::Motion World<D>::move_particles() {
       Dim<D>::rotate(p.q[i], p.w[i], h);
       moved2 = std::max(moved2, (p.x[i] - x_at_rebuild_[i]).squaredNorm());
       // The stability guard's every-step part, one comparison per particle (written so that NaN fails it too).
-      if (!(dx.squaredNorm() <= 0.25 * p.radius[i] * p.radius[i])) [[unlikely]] too_far = std::min(too_far, i);
+      if (!(dx.squaredNorm() <= 0.25 * p.radius[i] * p.radius[i])) [[unlikely]]
+        too_far = std::min(too_far, i);
       if constexpr (Energy) {
         // Forces act at t, between the half-step velocities they change: their power is F·v(t), with
         // v(t) = ½(v(t−Δt/2) + v(t+Δt/2)), which is what central differences take out of ½ m v(t−Δt/2)·v(t+Δt/2).
@@ -396,7 +418,8 @@ void World<D>::step() {
     ((key == K ? (motion = move_particles<bool(K & 1), bool(K & 2), bool(K & 4), bool(K & 8)>(), 0) : 0), ...);
   }
   (std::make_integer_sequence<int, 16>{});
-  if (motion.too_far >= 0) [[unlikely]] moved_too_far(motion.too_far);
+  if (motion.too_far >= 0) [[unlikely]]
+    moved_too_far(motion.too_far);
   moved_ = motion.moved;
   move_walls();
   time += dt;

@@ -51,7 +51,12 @@ class World {
   std::vector<std::unique_ptr<ContactSetBase<D>>> sets;
   std::vector<std::vector<int>> model_of;  // [phase_a][phase_b] → index in sets; −1: no interaction
 
-  double skin = 0;           // Verlet skin [m]; 0 → 0.1 R_min at init
+  double skin = 0;  // Verlet skin [m]; 0 → 0.1 R_min at init. With an adaptive skin, the current one.
+  // Adaptive skin: rebuilds aimed this many steps apart. At each rebuild the skin becomes 2 × (the largest
+  // displacement per step since the last one) × this, between the skin set at init and R_min, so a flow that
+  // would rebuild every few steps gets a wider skin, and a quiet specimen keeps its own (Yade's collider adapts
+  // its Verlet distance likewise). 0: the skin stays as set (the default here; scenes default to 30).
+  int rebuild_interval = 0;
   double local_damping = 0;  // PFC local damping coefficient α
   std::optional<Vec<D>> gravity;
   bool applied_loads = false;
@@ -99,9 +104,13 @@ class World {
   // Each contact of particle p: fn(slot, force on p, vector from p's centre to the contact point).
   template <class F>
   void for_each_contact_of(int p, F&& fn) const;
-  // The partners of a slot: (i, j) for balls, (−1 − wall, j) for a ball–wall contact.
-  const Pair& slot_pair(std::size_t slot) const { return slot_pair_[slot]; }
-  std::size_t slot_count() const { return slot_pair_.size(); }
+  // The partners of a slot: (i, j) for balls, (−1 − wall, j) for a ball–wall contact. Looked up in the sets
+  // (a few per world), not stored: 8 bytes less per contact.
+  Pair slot_pair(std::size_t slot) const;
+  std::size_t slot_count() const { return slots_.f.size(); }
+  std::size_t timestep_bytes() const {  // the per-slot stiffnesses of the timestep estimate
+    return (stiffness_.kt.capacity() + stiffness_.kra.capacity() + stiffness_.krb.capacity()) * sizeof(double);
+  }
   std::size_t gather_bytes() const {
     return (gather_start_.capacity() + gather_split_.capacity() + gather_items_.capacity()) * sizeof(int);
   }
@@ -115,6 +124,7 @@ class World {
 
  private:
   void rebuild();
+  void adapt_skin();
   void relink();  // slots and gather lists from the sets' current pair lists
   void compute_forces();
   void log_cracks();
@@ -136,10 +146,11 @@ class World {
   SlotStiffness stiffness_;  // per-slot stiffness, reused by each timestep refresh
   std::vector<std::size_t> offset_, wall_offset_;
   std::vector<int> gather_start_, gather_split_, gather_items_;  // items: slots, A side first, then B side
-  std::vector<Pair> slot_pair_;
   std::vector<Vec<D>> x_at_rebuild_;
   std::vector<Vec<D>> wall_at_rebuild_;
-  double moved_ = kInf;  // max particle displacement since the last rebuild (+ walls)
+  double moved_ = kInf;                       // max particle displacement since the last rebuild (+ walls)
+  double skin_floor_ = 0, skin_ceiling_ = 0;  // the adaptive skin's bounds: the skin at init, R_min
+  std::int64_t step_at_rebuild_ = 0;
   double ke_half_ = 0;
   std::vector<std::int64_t> crack_counts_;  // [kind][mode][phase_a][phase_b], phase_a ≤ phase_b
 };
@@ -150,7 +161,7 @@ void World<D>::for_each_contact_of(int p, F&& fn) const {
   for (int k = gather_start_[p]; k < gather_start_[p + 1]; ++k) {
     const std::size_t slot = static_cast<std::size_t>(gather_items_[k]);
     const bool as_b = k >= gather_split_[p];
-    const auto [a, b] = slot_pair_[slot];
+    const auto [a, b] = slot_pair(slot);
     Vec<D> lever;
     if (a < 0) {
       const Vec<D> c = walls[-1 - a].closest(particles.x[p]);

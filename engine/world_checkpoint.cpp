@@ -69,11 +69,20 @@ void World<D>::save(Archive& a) const {
   // The last step's contact forces: the servo gain and the timestep refresh read them before the next force pass.
   a.put("slot_f", slots_.f);
   a.bytes["cracks"] = crack_bytes(cracks);
-  a.reals["scalars"] = {dt,     dt_critical, time, static_cast<double>(step_count), static_cast<double>(rebuilds),
-                        moved_, ke_half_,    skin};
+  a.reals["scalars"] = {dt,
+                        dt_critical,
+                        time,
+                        static_cast<double>(step_count),
+                        static_cast<double>(rebuilds),
+                        moved_,
+                        ke_half_,
+                        skin,
+                        skin_floor_,
+                        skin_ceiling_,
+                        static_cast<double>(step_at_rebuild_)};
   const EnergyTrace& e = energy;
-  a.reals["energy"] = {e.body_work, e.boundary_work, e.dissipated_contacts, e.dissipated_local,
-                       e.kinetic,   e.strain,        e.initial,             e.dissipated_bonds};
+  a.reals["energy"] = {e.body_work, e.boundary_work, e.dissipated_contacts, e.dissipated_local, e.kinetic,
+                       e.strain,    e.initial,       e.dissipated_bonds};
 }
 
 template <int D>
@@ -129,9 +138,14 @@ void World<D>::restore(const Archive& a) {
   step_count = static_cast<std::int64_t>(sc[3]);
   rebuilds = static_cast<std::int64_t>(sc[4]);
   moved_ = sc[5], ke_half_ = sc[6], skin = sc[7];
+  if (sc.size() != 11)
+    throw InputError("the checkpoint's scalar record has " + std::to_string(sc.size()) +
+                     " values, this version writes 11: resume it with the version that wrote it");
+  skin_floor_ = sc[8], skin_ceiling_ = sc[9], step_at_rebuild_ = static_cast<std::int64_t>(sc[10]);
   const auto& e = a.reals.at("energy");
-  if (e.size() != 8) throw InputError("the checkpoint's energy record has " + std::to_string(e.size()) +
-                                      " terms, this version writes 8: resume it with the version that wrote it");
+  if (e.size() != 8)
+    throw InputError("the checkpoint's energy record has " + std::to_string(e.size()) +
+                     " terms, this version writes 8: resume it with the version that wrote it");
   energy = EnergyTrace{};
   energy.body_work = e[0], energy.boundary_work = e[1], energy.dissipated_contacts = e[2];
   energy.dissipated_local = e[3], energy.kinetic = e[4], energy.strain = e[5], energy.initial = e[6];

@@ -211,6 +211,7 @@ void read_physics(const Table& root, Scene& s) {
               "for quasi-static runs without gravity (leave it at 1 or drop gravity)");
     s.energy = t->boolean("energy", false);
     s.skin = t->number("skin", Unit::Length, Range::positive(), 0.0);
+    s.rebuild_interval = static_cast<int>(t->integer("rebuild_interval", Range::closed(0, 1e9), 30));
     s.domain_lo = opt_vec(*t, "domain_lo", Unit::Length, d);
     s.domain_hi = opt_vec(*t, "domain_hi", Unit::Length, d);
     if (s.domain_lo.empty() != s.domain_hi.empty())

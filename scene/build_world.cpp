@@ -253,6 +253,7 @@ void set_physics(const Scene& s, World<D>& w) {
   w.trace_energy = s.energy;
   w.timestep = s.timestep;
   w.skin = s.skin;
+  w.rebuild_interval = s.rebuild_interval;
 }
 
 }  // namespace

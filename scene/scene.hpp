@@ -249,6 +249,7 @@ struct Scene {
   double local_damping = 0;
   double density_scaling = 1;  // inertial mass factor for quasi-static runs (PFC density scaling); 1: off
   double skin = 0;             // 0: 0.1 R_min
+  int rebuild_interval = 30;   // adaptive skin: steps aimed for between list rebuilds; 0: the skin stays fixed
   TimestepControl timestep;
   bool energy = false;
   std::vector<RegionSpec> regions;
