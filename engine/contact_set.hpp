@@ -334,7 +334,7 @@ class ContactSet final : public ContactSetBase<D> {
     for (int b = 0; b < block_count(n); ++b) {
       const std::size_t end = std::min(n, std::size_t(b + 1) * kBlock);
       Dissipated dissipated;
-      auto one = [&](std::size_t c) {
+      auto one = [&](std::size_t c) __attribute__((always_inline)) {
         const auto [i, j] = pairs_[c];
         State& st = states_[c];
         const std::size_t slot = off + c;
