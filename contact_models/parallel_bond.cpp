@@ -1,4 +1,4 @@
-// The contact sets of the parallel bond, compiled once here with its eight-lane law (parallel_bond_lanes.hpp);
+// The contact sets of the parallel bond, compiled once here with its law in lanes (parallel_bond_lanes.hpp);
 // parallel_bond.hpp announces them (extern template), so the registry, the preprocessor, the tests and the benchmarks
 // share this one instantiation.
 #include "contact_models/parallel_bond.hpp"

@@ -105,7 +105,7 @@ struct LaneLaw<ParallelBond, 3> {
     keep(&states[0].bond_mn, bmn, bonded, 0.0);
     keep(&states[0].tensile, tensile, kept, 0.0);
     keep(&states[0].shear, shear, kept, 0.0);
-    keep(&states[0].stiffness, tensile, LaneMask::Constant(false), 1.0);
+    store_lanes<kStride>(&states[0].stiffness, pick(kept, load_lanes<kStride>(&states[0].stiffness), 1.0));
     const Lane3 neg = Lane3{-force.x, -force.y, -force.z};
     store_lanes3<kVec>(s.f[slot].data(), pick(kept, force, 0.0));
     store_lanes3<kVec>(s.ma[slot].data(), pick(kept, cross(ca, neg) - moment, 0.0));

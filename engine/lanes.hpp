@@ -55,7 +55,7 @@ struct Lane3 {
   return {m.select(a.x, b), m.select(a.y, b), m.select(a.z, b)};
 }
 
-// The two partners of eight consecutive pairs.
+// The two partners of kLanes consecutive pairs.
 [[gnu::always_inline]] inline void lane_partners(const Pair* pairs, LaneIndex& a, LaneIndex& b) {
   for (int l = 0; l < kLanes; ++l) a[l] = pairs[l][0], b[l] = pairs[l][1];
 }
@@ -74,7 +74,7 @@ struct Lane3 {
   return g;
 }
 
-// A field of eight consecutive records of `Stride` doubles each (a contact state, a slot's vector): `at` points
+// A field of kLanes consecutive records of `Stride` doubles each (a contact state, a slot's vector): `at` points
 // at the field in the first record.
 template <int Stride>
 using LaneField = Eigen::Map<Lane, 0, Eigen::InnerStride<Stride>>;
@@ -97,7 +97,7 @@ template <int Stride>
   store_lanes<Stride>(at, v.x), store_lanes<Stride>(at + 1, v.y), store_lanes<Stride>(at + 2, v.z);
 }
 
-// carry_shear (contact_geometry.hpp) in eight lanes, `a` the spin angle and c = 1 − a²/2. The exact restore of a
+// carry_shear (contact_geometry.hpp) in lanes, `a` the spin angle and c = 1 − a²/2. The exact restore of a
 // plane tilted by more than 1e-4 rad is left to the one-contact law: such lanes, among the `active` ones, are
 // added to `tilted`.
 [[gnu::always_inline]] inline Lane3 carry_shear(const Lane3& fs, const Lane3& n, const Lane& a, const Lane& c,
