@@ -46,6 +46,14 @@ using namespace mc::bench;
   std::exit(2);
 }
 
+// An integer option's value, or the usage message naming the allowed range.
+long integer(const std::string& v, const std::string& option, long lo, long hi, const char* range) {
+  char* end = nullptr;
+  const long x = std::strtol(v.c_str(), &end, 10);
+  if (v.empty() || *end || x < lo || x > hi) usage(option + " '" + v + "': allowed an integer from " + range);
+  return x;
+}
+
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
@@ -68,18 +76,10 @@ Options parse(int argc, char** argv) {
     } else if (a == "--specimen-dir") {
       o.specimen_dir = value();
     } else if (a == "--reps") {
-      const std::string v = value();
-      char* end = nullptr;
-      const long r = std::strtol(v.c_str(), &end, 10);
-      if (*end || r < 1 || r > 100) usage("--reps '" + v + "': allowed an integer from 1 to 100");
-      o.reps = static_cast<int>(r);
+      o.reps = static_cast<int>(integer(value(), a, 1, 100, "1 to 100"));
       o.reps_given = true;
     } else if (a == "--max-bonded") {
-      const std::string v = value();
-      char* end = nullptr;
-      const long m = std::strtol(v.c_str(), &end, 10);
-      if (*end || m < 100000 || m > 100000000) usage("--max-bonded '" + v + "': allowed an integer from 1e5 to 1e8");
-      o.max_bonded = static_cast<int>(m);
+      o.max_bonded = static_cast<int>(integer(value(), a, 100000, 100000000, "1e5 to 1e8"));
     } else if (a == "--one") {
       const std::string v = value();
       const auto c1 = v.find(':'), c2 = v.rfind(':');
