@@ -45,12 +45,13 @@ inline std::size_t bytes(const std::vector<T>& v) {
 }
 
 struct Footprint {
-  std::size_t particles = 0, contacts = 0, slots = 0, gather = 0, timestep = 0;
-  std::size_t total() const { return particles + contacts + slots + gather + timestep; }
+  std::size_t particles = 0, contacts = 0, slots = 0, gather = 0;
+  std::size_t total() const { return particles + contacts + slots + gather; }
 };
 
 // From the container sizes: particle arrays (+ the positions kept at the last rebuild), the contact set's pairs
-// and histories, the slots (force and two moments), the gather lists, the per-slot stiffnesses of the timestep.
+// and histories, the slots (force and two moments), the gather lists (the timestep estimate borrows the slots: no
+// memory of its own).
 template <int D>
 Footprint footprint(const World<D>& w) {
   Footprint fp;
@@ -61,7 +62,6 @@ Footprint footprint(const World<D>& w) {
   for (const auto& s : w.sets) fp.contacts += s->memory_bytes();
   fp.slots = w.slot_count() * (sizeof(Vec<D>) + 2 * sizeof(Rot<D>));
   fp.gather = w.gather_bytes();
-  fp.timestep = w.timestep_bytes();
   return fp;
 }
 

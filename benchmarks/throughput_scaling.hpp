@@ -148,7 +148,7 @@ inline void print_bonded_scaling(const std::vector<BondedRow>& rows, const doubl
       "\n### Parallel-bonded 3D block\n\nThe 3D assemblies above, every pair with a gap <= 0.1 R_min bonded by "
       "parallel bonds beside the linear contacts (the shared specimen's model, unbreakable here), the particles "
       "near the faces held; steps = max(20, 2e7/N) after 5 warm-up steps, one run per thread count. Memory: the "
-      "engine's containers (particles, contacts, slots, gather lists, timestep buffers) and the growth of the "
+      "engine's containers (particles, contacts, slots, gather lists) and the growth of the "
       "process's peak resident set while the block's worlds existed (it includes the transient lists of the "
       "neighbour search and bonding). Streamed: the bytes a step would move through memory without caches "
       "(benchmarks/run_timing.hpp, streamed_bytes_per_step). Triad bandwidth of this machine, measured in this "

@@ -238,16 +238,15 @@ inline void print_shared_memory(const std::vector<SharedRun>& runs) {
   std::printf("Memory (peers, README: ESyS 44 MiB, Yade ~340 MiB with Python, for n10k):\n\n");
   std::printf(
       "| specimen | VmRSS before the worlds | peak resident (VmHWM) | engine containers (estimate) | "
-      "bytes / particle: particles | contacts (pairs + histories) | slots | gather lists | timestep buffers | "
+      "bytes / particle: particles | contacts (pairs + histories) | slots | gather lists | "
       "total |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& r : runs) {
     const Footprint& fp = r.t[1].fp;
     const double n = r.n;
-    std::printf("| %s | %.1f MiB | %.1f MiB%s | %.1f MiB | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f |\n", r.name.c_str(),
+    std::printf("| %s | %.1f MiB | %.1f MiB%s | %.1f MiB | %.0f | %.0f | %.0f | %.0f | %.0f |\n", r.name.c_str(),
                 r.rss_before_kib / 1024.0, r.hwm_kib / 1024.0, r.hwm_reset ? "" : " (peak of the whole process)",
-                fp.total() / 1048576.0, fp.particles / n, fp.contacts / n, fp.slots / n, fp.gather / n, fp.timestep / n,
-                fp.total() / n);
+                fp.total() / 1048576.0, fp.particles / n, fp.contacts / n, fp.slots / n, fp.gather / n, fp.total() / n);
   }
   std::printf(
       "\n(VmHWM is reset before each specimen, so it is the peak while that specimen's worlds existed, "

@@ -48,8 +48,15 @@ struct Dissipated {
 };
 
 // Stiffness of each slot for the timestep estimate: translational, and rotational about A's and B's centres.
+// The estimate runs between force passes and borrows the slots' own numbers for them (a force and a moment hold
+// at least three in 2D and 3D), so it costs no memory per contact; World::critical_timestep says when they are
+// given back.
+template <int D>
 struct SlotStiffness {
-  std::vector<double> kt, kra, krb;
+  Slots<D>& s;
+  double& kt(std::size_t slot) { return s.f[slot][0]; }
+  double& kra(std::size_t slot) { return s.f[slot][1]; }
+  double& krb(std::size_t slot) { return s.ma[slot][0]; }
 };
 
 template <int D>
@@ -69,8 +76,8 @@ class ContactSetBase {
                             Slots<D>& slots, std::size_t offset, std::size_t wall_offset) = 0;
   // Per-slot stiffnesses for the timestep. A pair that is neither persistent (bonded) nor within `margin` of
   // touching counts nothing (kInf: every pair counts).
-  virtual void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness& k, std::size_t offset,
-                         std::size_t wall_offset, double margin) const = 0;
+  virtual void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness<D>& k,
+                         std::size_t offset, std::size_t wall_offset, double margin) const = 0;
   virtual ContactStiffness nominal_stiffness(double r) const = 0;  // one contact with an identical particle
   virtual double damping_ratio() const = 0;                        // of the model's dashpots (0: none)
   // Bonds the given pairs (sorted, all present in the list); returns how many were bonded. Models without
@@ -177,7 +184,7 @@ class ContactSet final : public ContactSetBase<D> {
     return energy ? forces_impl<true>(p, walls, dt, s, off, woff) : forces_impl<false>(p, walls, dt, s, off, woff);
   }
 
-  void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness& k, std::size_t off,
+  void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness<D>& k, std::size_t off,
                  std::size_t woff, double margin) const override {
     const int n = static_cast<int>(pairs_.size());
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
@@ -185,16 +192,16 @@ class ContactSet final : public ContactSetBase<D> {
       const auto [i, j] = pairs_[c];
       const double reach = p.radius[i] + p.radius[j] + margin;
       if ((p.x[j] - p.x[i]).squaredNorm() >= reach * reach && !Model::template persistent<D>(states_[c])) {
-        k.kt[off + c] = k.kra[off + c] = k.krb[off + c] = 0;
+        k.kt(off + c) = k.kra(off + c) = k.krb(off + c) = 0;
         continue;
       }
       Vec<D> ca, cb;
       const auto g = ball_geometry(p, i, j, 0.0, ca, cb);
       const auto st =
           Model::template stiffness<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g, states_[c]);
-      k.kt[off + c] = st.normal + st.shear;
-      k.kra[off + c] = st.shear * ca.squaredNorm() + st.rotational;
-      k.krb[off + c] = st.shear * cb.squaredNorm() + st.rotational;
+      k.kt(off + c) = st.normal + st.shear;
+      k.kra(off + c) = st.shear * ca.squaredNorm() + st.rotational;
+      k.krb(off + c) = st.shear * cb.squaredNorm() + st.rotational;
     }
     const int nw = static_cast<int>(wall_pairs_.size());
     for (int c = 0; c < nw; ++c) {
@@ -202,14 +209,14 @@ class ContactSet final : public ContactSetBase<D> {
       Vec<D> cw, cb;
       const auto g = wall_geometry(p, walls[w], j, 0.0, cw, cb);
       if (-g.overlap >= margin) {
-        k.kt[woff + c] = k.kra[woff + c] = k.krb[woff + c] = 0;
+        k.kt(woff + c) = k.kra(woff + c) = k.krb(woff + c) = 0;
         continue;
       }
       const auto st = Model::template stiffness<D>(Model::template wall<D>(params_, walls[w].material, g.r_b, g.k_b), g,
                                                    wall_states_[c]);
-      k.kt[woff + c] = st.normal + st.shear;
-      k.kra[woff + c] = 0;
-      k.krb[woff + c] = st.shear * cb.squaredNorm() + st.rotational;
+      k.kt(woff + c) = st.normal + st.shear;
+      k.kra(woff + c) = 0;
+      k.krb(woff + c) = st.shear * cb.squaredNorm() + st.rotational;
     }
   }
 

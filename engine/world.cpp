@@ -25,7 +25,7 @@ void World<D>::init() {
   step_at_rebuild_ = step_count;
   moved_ = kInf;  // force a rebuild before the first force computation
   rebuild();
-  refresh_timestep();
+  refresh_timestep(false);
   // Until the first step, the kinetic energy is that of the initial velocities.
   ke_half_ = 0;
   for (int i = 0; i < n; ++i)
@@ -151,31 +151,30 @@ std::size_t World<D>::install_bonds(double tolerance, std::uint64_t seed) {
     n += sets[s]->install_bonds(particles, bond[s], seed);
   }
   relink();
-  refresh_timestep();
+  refresh_timestep(false);
   return n;
 }
 
 template <int D>
-double World<D>::critical_timestep() {
+double World<D>::critical_timestep(bool forces_follow) {
   const int n = particles.size();
-  // Every slot is written by its set below, so the buffers are only resized, never cleared.
-  SlotStiffness& k = stiffness_;
-  k.kt.resize(slots_.f.size());
-  k.kra.resize(slots_.f.size());
-  k.krb.resize(slots_.f.size());
+  // The servo gain needs Σk_n of each wall's touching contacts (those with a force in the last pass), refreshed
+  // with the timestep: which ones touch is read before the slots are borrowed.
+  std::vector<std::uint8_t> wall_touching;
+  for (std::size_t s = 0; s < sets.size(); ++s)
+    for (std::size_t c = 0; c < sets[s]->wall_pairs().size(); ++c)
+      wall_touching.push_back(slots_.f[wall_offset_[s] + c].squaredNorm() > 0);
+  SlotStiffness<D> k{slots_};
   // Every pair in the lists counts (contacts about to close); once the adaptive skin has grown, only those within
   // the skin set at init, so that a wider skin does not shorten the step.
   const double margin = skin > skin_floor_ ? skin_floor_ : kInf;
   for (std::size_t s = 0; s < sets.size(); ++s)
     sets[s]->stiffness(particles, walls, k, offset_[s], wall_offset_[s], margin);
-  // The servo gain needs Σk_n of each wall's touching contacts; it is refreshed with the timestep.
   for (auto& wl : walls) wl.contact_kn = 0;
-  for (std::size_t s = 0; s < sets.size(); ++s) {
+  for (std::size_t s = 0, at = 0; s < sets.size(); ++s) {
     const auto& wp = sets[s]->wall_pairs();
-    for (std::size_t c = 0; c < wp.size(); ++c) {
-      const std::size_t slot = wall_offset_[s] + c;
-      if (slots_.f[slot].squaredNorm() > 0) walls[wp[c][0]].contact_kn += k.kt[slot];
-    }
+    for (std::size_t c = 0; c < wp.size(); ++c)
+      if (wall_touching[at++]) walls[wp[c][0]].contact_kn += k.kt(wall_offset_[s] + c);
   }
   double tmin = kInf;
 #pragma omp parallel for schedule(static) reduction(min : tmin) if (n > kParallelMin)
@@ -183,8 +182,8 @@ double World<D>::critical_timestep() {
     double kt = 0, kr = 0;
     for (int c = gather_start_[i]; c < gather_start_[i + 1]; ++c) {
       const std::size_t slot = static_cast<std::size_t>(gather_items_[c]);
-      kt += k.kt[slot];
-      kr += c >= gather_split_[i] ? k.krb[slot] : k.kra[slot];
+      kt += k.kt(slot);
+      kr += c >= gather_split_[i] ? k.krb(slot) : k.kra(slot);
     }
     if (kt == 0) {  // no neighbour yet: as if it touched an identical particle
       const int s = model_of[particles.phase[i]][particles.phase[i]];
@@ -197,6 +196,7 @@ double World<D>::critical_timestep() {
     if (kr > 0) t = std::min(t, std::sqrt(particles.inertia[i] / kr));  // Tang (3.23)
     tmin = std::min(tmin, t);
   }
+  if (!forces_follow) slots_.resize(slots_.f.size());  // given back as a relink leaves them: zero
   // Dashpots lower the limit of central differences from 2/ω to (2/ω)(√(1 + ζ²) − ζ) (Belytschko et al.).
   double zeta = 0;
   for (const auto& s : sets) zeta = std::max(zeta, s->damping_ratio());
@@ -204,8 +204,8 @@ double World<D>::critical_timestep() {
 }
 
 template <int D>
-void World<D>::refresh_timestep() {
-  dt_critical = critical_timestep();
+void World<D>::refresh_timestep(bool forces_follow) {
+  dt_critical = critical_timestep(forces_follow);
   if (timestep.fixed > 0) {
     if (timestep.fixed > dt_critical) {
       std::ostringstream m;
@@ -404,9 +404,9 @@ template <int D>
 void World<D>::step() {
   if (moved_ > 0.5 * skin) {
     rebuild();
-    refresh_timestep();
+    refresh_timestep(true);
   } else if (timestep.every > 0 && step_count % timestep.every == 0) {
-    refresh_timestep();
+    refresh_timestep(true);
   }
   compute_forces();
   for (const DrivenGroup<D>& g : driven) g.drive(particles, time);

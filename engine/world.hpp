@@ -77,8 +77,6 @@ class World {
   // without bonds ignore it); strengths drawn per pair from `seed`. A model with an interaction radius R_I
   // (cpm) bonds its pairs with centre distance ≤ R_I (R_A + R_B) instead. Call after init(). Returns the count.
   std::size_t install_bonds(double tolerance, std::uint64_t seed);
-  // Critical timestep from the current stiffnesses, Tang (3.22)–(3.24), without the safety factor.
-  double critical_timestep();
   void update_energy();  // kinetic and strain energy at the current time into `energy`
   // Stability guard. Every step (in step()): a particle that moves more than half its radius in one step or goes
   // non-finite, and two particles (or a particle and a wall) overlapping by more than half the smaller radius,
@@ -108,9 +106,6 @@ class World {
   // (a few per world), not stored: 8 bytes less per contact.
   Pair slot_pair(std::size_t slot) const;
   std::size_t slot_count() const { return slots_.f.size(); }
-  std::size_t timestep_bytes() const {  // the per-slot stiffnesses of the timestep estimate
-    return (stiffness_.kt.capacity() + stiffness_.kra.capacity() + stiffness_.krb.capacity()) * sizeof(double);
-  }
   std::size_t gather_bytes() const {
     return (gather_start_.capacity() + gather_split_.capacity() + gather_items_.capacity()) * sizeof(int);
   }
@@ -140,10 +135,13 @@ class World {
   void check_energy() const;
   void check_opening_control() const;
   void move_walls();
-  void refresh_timestep();
+  // dt_critical and dt from the current stiffnesses. The estimate borrows the slots (SlotStiffness): when no
+  // force pass follows (`forces_follow` false), they are zeroed afterwards, as a relink leaves them.
+  void refresh_timestep(bool forces_follow);
+  // Critical timestep from the current stiffnesses, Tang (3.22)–(3.24), without the safety factor.
+  double critical_timestep(bool forces_follow);
 
   Slots<D> slots_;
-  SlotStiffness stiffness_;  // per-slot stiffness, reused by each timestep refresh
   std::vector<std::size_t> offset_, wall_offset_;
   std::vector<int> gather_start_, gather_split_, gather_items_;  // items: slots, A side first, then B side
   std::vector<Vec<D>> x_at_rebuild_;
