@@ -18,6 +18,7 @@
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
 #include "studies/calibration.hpp"
+#include "studies/ranks.hpp"
 #include "studies/realizations.hpp"
 #include "studies/runner.hpp"
 #include "studies/summary.hpp"
@@ -69,6 +70,7 @@ int realizations(const std::string& scene_file, const std::string& output, const
     throw mc::InputError("run --realizations: give the output file with -o OUT.h5 (realization k writes OUT_rk.h5)");
   if (threads > 0) omp_set_num_threads(threads);
   const mc::RealizationSet set = mc::run_realizations(scene_file, sets, n, output, stderr);
+  if (!set.complete) return 0;  // another rank of an MPI launch: rank 0 writes the statistics
   const std::string json = mc::realizations_json(set);
   const std::filesystem::path p(output);
   const std::string file = (p.parent_path() / (p.stem().string() + "_realizations.json")).string();
@@ -90,7 +92,11 @@ int calibrate(const std::string& scene_file, const std::string& output, const st
   opt.tolerance = tolerance;
   opt.max_iterations = max_iterations;
   opt.compression_scene = compression;
-  const mc::CalibrationResult r = mc::calibrate(scene_file, sets, target, opt, stderr);
+  // Under mpirun every rank iterates alike on the shared runs' numbers (studies/ranks.hpp); rank 0 reports.
+  const bool root = mc::Ranks::world().root();
+  std::FILE* log = root ? stderr : std::fopen("/dev/null", "w");
+  const mc::CalibrationResult r = mc::calibrate(scene_file, sets, target, opt, log ? log : stderr);
+  if (!root) return r.converged ? 0 : 5;
   std::fprintf(stderr, "%s after %d iterations; calibrated scene -> %s\n", r.converged ? "converged" : "NOT converged",
                r.iterations, output.c_str());
   for (const auto& o : r.overrides) std::printf("%s\n", o.c_str());
@@ -193,6 +199,12 @@ int main(int argc, char** argv) {
     setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
     execv("/proc/self/exe", argv);  // returns only on failure: then go on with the default policy
   }
+  mc::Ranks::start(&argc, &argv);
+  // A rank of an MPI launch that fails ends the launch: the others would wait for its share forever.
+  auto failed = [](int code) {
+    if (mc::Ranks::world().size() > 1) mc::Ranks::world().abort(code);
+    return code;
+  };
   CLI::App app{"mesocrack: meso-scale discrete element modelling of concrete fracture"};
   const CLI::Validator threads_check = whole_number(1, kAnyCount, "OpenMP threads; leave --threads out for all cores");
   app.require_subcommand(1);
@@ -263,16 +275,16 @@ int main(int argc, char** argv) {
     if (*report_cmd) return report(target);
   } catch (const mc::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
-    return 2;
+    return failed(2);
   } catch (const mc::IoError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
-    return 3;
+    return failed(3);
   } catch (const mc::InstabilityError& e) {
     std::fprintf(stderr, "\nerror: %s\n", e.what());
-    return 4;
+    return failed(4);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
+    return failed(1);
   }
   return 0;
 }

@@ -9,6 +9,7 @@
 #include "engine/errors.hpp"
 #include "scene/toml_reader.hpp"
 #include "studies/calibration_run.hpp"
+#include "studies/ranks.hpp"
 
 namespace mc {
 
@@ -90,8 +91,10 @@ int contacts_entry(const TomlDoc& doc, const std::string& model) {
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     if (contacts[i].string("model", "") != model) continue;
     if (found >= 0)
-      contacts[i].fail("model", "calibrate works on one " + model + " phase pair; this scene has several [[contacts]] "
-                                "with model = \"" + model + "\" (calibrate each material in its own scene)");
+      contacts[i].fail("model", "calibrate works on one " + model +
+                                    " phase pair; this scene has several [[contacts]] "
+                                    "with model = \"" +
+                                    model + "\" (calibrate each material in its own scene)");
     found = static_cast<int>(i);
   }
   return found;
@@ -109,6 +112,7 @@ std::string run_file(const std::string& output, int iteration, const std::string
 }
 
 void write_scene(const std::string& scene_file, const std::vector<std::string>& overrides, const std::string& output) {
+  if (!Ranks::world().root()) return;  // every rank of an MPI launch holds the same scene: rank 0 writes it
   const std::string text = TomlDoc::load(scene_file, overrides).text();
   const std::string tmp = output + ".tmp";
   {

@@ -14,6 +14,7 @@
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
 #include "studies/calibration_run.hpp"
+#include "studies/ranks.hpp"
 #include "studies/runner.hpp"
 
 namespace mc::calibration {
@@ -106,8 +107,7 @@ double modulus_shape(int dimension, double ratio) {
 // One run of the calibration: what it used, what it gave, how long it took.
 struct Trial {
   UniaxialResult result;
-  RunResult run;
-  std::string file;
+  double wall_seconds = 0;
 };
 
 // A slope dy/dx measured between successive points: update() records a point and, when it lies more than
@@ -263,17 +263,21 @@ class Calibration {
                               elastic_stop_, 0.0}};
     RunOptions ro;
     ro.output = run_file(it);
-    Trial t{{}, run_scene(scene, ro), ro.output};
-    t.result = uniaxial_result(ro.output);
+    // One run: on rank 0 of an MPI launch, the others waiting for its numbers (Ranks::share).
+    const Trial t = share_values<Trial>(Ranks::world(), 1, [&](int) {
+      const RunResult run = run_scene(scene, ro);
+      const Trial t{uniaxial_result(ro.output), run.wall_seconds};
+      const UniaxialResult& u = t.result;
+      if (!std::isfinite(u.modulus) || !std::isfinite(u.poisson) || (!elastic_ && !std::isfinite(u.ucs)))
+        throw InputError(ro.output + ": the uniaxial test gave no E, ν or strength (" + run.status +
+                         "); check that the scene loads the specimen to its peak");
+      if (!elastic_ && gf_target() && !std::isfinite(u.fracture_energy))
+        throw InputError(ro.output + ": the tension test gave no G_f (" + run.status +
+                         "): it needs the stress to fall to 0.2 f_t after the peak; let the run go on that far (e.g. "
+                         "[[run.stop]] post_peak_fraction = 0.15 on uniaxial.stress)");
+      return t;
+    })[0];
     log_line(it, t);
-    const UniaxialResult& u = t.result;
-    if (!std::isfinite(u.modulus) || !std::isfinite(u.poisson) || (!elastic_ && !std::isfinite(u.ucs)))
-      throw InputError(t.file + ": the uniaxial test gave no E, ν or strength (" + t.run.status +
-                       "); check that the scene loads the specimen to its peak");
-    if (!elastic_ && gf_target() && !std::isfinite(u.fracture_energy))
-      throw InputError(t.file + ": the tension test gave no G_f (" + t.run.status +
-                       "): it needs the stress to fall to 0.2 f_t after the peak; let the run go on that far (e.g. "
-                       "[[run.stop]] post_peak_fraction = 0.15 on uniaxial.stress)");
     return t;
   }
 
@@ -295,7 +299,7 @@ class Calibration {
     if (entry_.softening) std::fprintf(log_, " %9.4g", knobs_.ductility);
     std::fprintf(log_, " | %9.4g %7.4g %9s", u.modulus * 1e-9, u.poisson, peak);
     if (tension_) std::fprintf(log_, " %9s", gf);
-    std::fprintf(log_, " | %.1f\n", t.run.wall_seconds);
+    std::fprintf(log_, " | %.1f\n", t.wall_seconds);
     std::fflush(log_);
   }
 

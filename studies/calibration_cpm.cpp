@@ -15,6 +15,7 @@
 #include "engine/errors.hpp"
 #include "scene/scene.hpp"
 #include "studies/calibration_run.hpp"
+#include "studies/ranks.hpp"
 #include "studies/runner.hpp"
 #include "studies/stored_run.hpp"
 
@@ -38,6 +39,12 @@ CpmKnobs read_knobs(const Table& t) {
   return k;
 }
 
+// One run of an iteration: what its uniaxial test measured, and its wall time.
+struct Ran {
+  UniaxialResult result;
+  double wall = 0;
+};
+
 // What one iteration measured: the tension test (E, ν, f_t) and, when f_c is a target, the compression test.
 struct Measured {
   UniaxialResult tension;
@@ -54,7 +61,8 @@ class CpmCalibration {
     knobs_ = read_knobs(t);
     if (knobs_.ratio == 0)
       t.fail("kt_kn_ratio", "is 0: calibrate holds c_T0/(k_T ε_0) (Šmilauer, calibration step 1), which needs k_T > 0");
-    cohesion_ratio_ = t.number("cohesion", Unit::Pressure, Range::positive()) / (knobs_.ratio * knobs_.kn * knobs_.eps0);
+    cohesion_ratio_ =
+        t.number("cohesion", Unit::Pressure, Range::positive()) / (knobs_.ratio * knobs_.kn * knobs_.eps0);
     const Scene base = read_scene(doc, scene_file);
     const auto* u = base.analysis<UniaxialAnalysis>();
     if (!u || !u->tension)
@@ -124,8 +132,9 @@ class CpmCalibration {
                        ": the CPM gives ν = (1 − k_T/k_N)/(4 + k_T/k_N) < 0.25 (k_T > 0; Šmilauer, \"Geometry and "
                        "elastic parameters\"); allowed: 0 < nu < 0.25");
     if (fc_target() && options_.compression_scene.empty())
-      throw InputError("--target fc: give the compression test with --compression SCENE.toml (the same specimen and "
-                       "cpm entry strained the other way, e.g. scenes/cpm_uniax_compression.toml)");
+      throw InputError(
+          "--target fc: give the compression test with --compression SCENE.toml (the same specimen and "
+          "cpm entry strained the other way, e.g. scenes/cpm_uniax_compression.toml)");
     if (!fc_target() && !options_.compression_scene.empty())
       throw InputError("--compression: only with an fc target (the compression test measures f_c)");
   }
@@ -185,22 +194,27 @@ class CpmCalibration {
   // The tension test with damage off, stopped at elastic_stop_ (Šmilauer: ConcreteMat.neverDamage).
   Measured elastic_trial(int it) const {
     const std::string out = run_file(options_.output, it);
-    Measured m;
-    m.wall = run(scene_file_, overrides_, entry_, true, out).wall_seconds;
-    m.tension = result_of(out, false);
-    return m;
+    const auto ran = share_values<Ran>(Ranks::world(), 1, [&](int) {
+      const double wall = run(scene_file_, overrides_, entry_, true, out).wall_seconds;
+      return Ran{result_of(out, false), wall};
+    });
+    return Measured{ran[0].result, kNaN, ran[0].wall};
   }
 
+  // The tension test and, with an f_c target, the compression test: independent runs, on two ranks of an MPI
+  // launch at once.
   Measured full_trial(int it) const {
-    const std::string out = run_file(options_.output, it);
-    Measured m;
-    m.wall = run(scene_file_, overrides_, entry_, false, out).wall_seconds;
-    m.tension = result_of(out, true);
-    if (fc_target()) {
-      const std::string c = run_file(options_.output, it, "_compression");
-      m.wall += run(options_.compression_scene, overrides_, compression_entry_, false, c).wall_seconds;
-      m.fc = result_of(c, true).ucs;
-    }
+    const std::string out = run_file(options_.output, it), c = run_file(options_.output, it, "_compression");
+    const auto ran = share_values<Ran>(Ranks::world(), fc_target() ? 2 : 1, [&](int k) {
+      if (k == 0) {
+        const double wall = run(scene_file_, overrides_, entry_, false, out).wall_seconds;
+        return Ran{result_of(out, true), wall};
+      }
+      const double wall = run(options_.compression_scene, overrides_, compression_entry_, false, c).wall_seconds;
+      return Ran{result_of(c, true), wall};
+    });
+    Measured m{ran[0].result, kNaN, ran[0].wall};
+    if (fc_target()) m.fc = ran[1].result.ucs, m.wall += ran[1].wall;
     return m;
   }
 
@@ -228,7 +242,9 @@ class CpmCalibration {
     std::fflush(log_);
   }
 
-  bool within(double value, double target) const { return std::isnan(target) || rel(value, target) <= options_.tolerance; }
+  bool within(double value, double target) const {
+    return std::isnan(target) || rel(value, target) <= options_.tolerance;
+  }
   bool elastic_ok(const UniaxialResult& u) const {
     return within(u.modulus, target_.modulus) && within(u.poisson, target_.poisson);
   }
@@ -244,7 +260,8 @@ class CpmCalibration {
       if (want >= 0.25 || want <= 0)
         throw InputError("calibrate: ν = " + std::to_string(target_.poisson) +
                          " is out of reach for this packing: k_T/k_N = " + std::to_string(knobs_.ratio) +
-                         " gave ν = " + std::to_string(u.poisson) + ", and k_T/k_N in (0, 1] cannot move it far "
+                         " gave ν = " + std::to_string(u.poisson) +
+                         ", and k_T/k_N in (0, 1] cannot move it far "
                          "enough");
       set_ratio(cc::kt_kn_from_poisson(want));
     }

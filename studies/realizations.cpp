@@ -8,6 +8,7 @@
 #include "scene/json.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
+#include "studies/ranks.hpp"
 #include "studies/runner.hpp"
 
 namespace mc {
@@ -47,25 +48,39 @@ RealizationSet run_realizations(const std::string& scene_file, const std::vector
   const std::string json = (p.parent_path() / (p.stem().string() + "_realizations.json")).string();
   outputs.insert(outputs.end(), {json, json + ".tmp"});
   refuse_inputs_as_outputs(base, outputs);
-  RealizationSet set;
-  std::fprintf(log, "%4s %12s %10s %8s %10s %10s %9s\n", "k", "seed", "E [GPa]", "nu", "UCS [MPa]", "init/UCS",
-               "wall [s]");
-  for (int k = 0; k < n; ++k) {
+  // Under mpirun each rank runs its share (Ranks::share) with its own threads: each run is the serial command's
+  // run for its seed, so rank 0's statistics are the serial ones, bit for bit.
+  const Ranks& ranks = Ranks::world();
+  struct Record {
+    UniaxialResult result;
+    double wall_seconds;
+  };
+  if (ranks.root())
+    std::fprintf(log, "%4s %12s %10s %8s %10s %10s %9s\n", "k", "seed", "E [GPa]", "nu", "UCS [MPa]", "init/UCS",
+                 "wall [s]");
+  auto seed_of = [&](int k) { return base.seed + static_cast<std::uint64_t>(k); };
+  const auto records = share_values<Record>(ranks, n, [&](int k) {
     std::vector<std::string> o = overrides;
-    const std::uint64_t seed = base.seed + static_cast<std::uint64_t>(k);
-    o.push_back("seed=" + std::to_string(seed));
+    o.push_back("seed=" + std::to_string(seed_of(k)));
     const Scene scene = read_scene(TomlDoc::load(scene_file, o), scene_file);
     RunOptions opt;
     opt.output = realization_file(output, k);
     const RunResult r = run_scene(scene, opt);
-    const UniaxialResult u = uniaxial_result(opt.output);
-    set.seeds.push_back(seed);
-    set.files.push_back(opt.output);
-    set.results.push_back(u);
-    set.wall_seconds.push_back(r.wall_seconds);
-    std::fprintf(log, "%4d %12llu %10.4g %8.4g %10.4g %10.3g %9.1f\n", k, static_cast<unsigned long long>(seed),
+    const Record rec{uniaxial_result(opt.output), r.wall_seconds};
+    const UniaxialResult& u = rec.result;
+    std::fprintf(log, "%4d %12llu %10.4g %8.4g %10.4g %10.3g %9.1f\n", k, static_cast<unsigned long long>(seed_of(k)),
                  u.modulus * 1e-9, u.poisson, u.ucs * 1e-6, u.initiation_stress / u.ucs, r.wall_seconds);
     std::fflush(log);
+    return rec;
+  });
+  RealizationSet set;
+  set.complete = ranks.root();
+  for (int k = 0; k < n; ++k) {
+    const Record& rec = records[k];
+    set.seeds.push_back(seed_of(k));
+    set.files.push_back(realization_file(output, k));
+    set.results.push_back(rec.result);
+    set.wall_seconds.push_back(rec.wall_seconds);
   }
   return set;
 }

@@ -97,15 +97,18 @@ struct Result {
 
 class Child {
  public:
-  // Starts `mesocrack args...` in `cwd`. extra_env: "NAME=value" entries added to the environment.
-  Child(const std::vector<std::string>& args, const fs::path& cwd, const std::vector<std::string>& extra_env = {}) {
+  // Starts `mesocrack args...` in `cwd`. extra_env: "NAME=value" entries added to the environment; launcher: a
+  // command that starts mesocrack (mpirun -np 2), its full path first.
+  Child(const std::vector<std::string>& args, const fs::path& cwd, const std::vector<std::string>& extra_env = {},
+        const std::vector<std::string>& launcher = {}) {
     static int serial = 0;
     const fs::path io = cwd / ".io";
     fs::create_directories(io);
     out_ = io / ("out" + std::to_string(serial));
     err_ = io / ("err" + std::to_string(serial++));
     // Everything the child needs is prepared before fork: after it, only async-signal-safe calls.
-    std::vector<std::string> argv_s{kCli};
+    std::vector<std::string> argv_s = launcher;
+    argv_s.push_back(kCli);
     argv_s.insert(argv_s.end(), args.begin(), args.end());
     std::vector<std::string> env_s;
     for (char** e = environ; *e; ++e) {

@@ -1,0 +1,88 @@
+#include "studies/ranks.hpp"
+
+#include <cstdlib>
+#include <cstring>
+
+#ifdef MESOCRACK_MPI
+#include <mpi.h>
+#endif
+
+namespace mc {
+
+namespace {
+Ranks& the_ranks() {
+  static Ranks r;
+  return r;
+}
+#ifdef MESOCRACK_MPI
+// Open MPI's launcher and the PMI/PMIx ones of Slurm set these in every process they start.
+bool launched_by_mpirun() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE"})
+    if (std::getenv(v)) return true;
+  return false;
+}
+void finalize() {
+  int done = 0;
+  MPI_Finalized(&done);
+  if (!done) MPI_Finalize();
+}
+#endif
+}  // namespace
+
+void Ranks::start(int* argc, char*** argv) {
+#ifdef MESOCRACK_MPI
+  Ranks& r = the_ranks();
+  if (r.joined_ || !launched_by_mpirun()) return;
+  int provided = 0;
+  MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);  // MPI calls from the main thread only
+  MPI_Comm_rank(MPI_COMM_WORLD, &r.rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &r.size_);
+  r.joined_ = true;
+  std::atexit(finalize);
+#else
+  (void)argc, (void)argv;
+#endif
+}
+
+const Ranks& Ranks::world() { return the_ranks(); }
+
+std::vector<std::vector<std::uint8_t>> Ranks::share(int n, const Job& job) const {
+  std::vector<std::vector<std::uint8_t>> out(n);
+  // This rank's jobs as (k, byte count, bytes) records.
+  std::vector<std::uint8_t> mine;
+  for (int k = 0; k < n; ++k) {
+    if (!owns(k)) continue;
+    out[k] = job(k);
+    const std::uint64_t head[2] = {static_cast<std::uint64_t>(k), out[k].size()};
+    const auto* h = reinterpret_cast<const std::uint8_t*>(head);
+    mine.insert(mine.end(), h, h + sizeof head);
+    mine.insert(mine.end(), out[k].begin(), out[k].end());
+  }
+  if (!joined_ || size_ == 1) return out;
+#ifdef MESOCRACK_MPI
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(size_), offsets(size_);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  int total = 0;
+  for (int r = 0; r < size_; ++r) offsets[r] = total, total += counts[r];
+  std::vector<std::uint8_t> all(total);
+  MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, MPI_COMM_WORLD);
+  for (std::size_t at = 0; at < all.size();) {
+    std::uint64_t head[2];
+    std::memcpy(head, all.data() + at, sizeof head);
+    at += sizeof head;
+    out[head[0]].assign(all.begin() + at, all.begin() + at + head[1]);
+    at += head[1];
+  }
+#endif
+  return out;
+}
+
+void Ranks::abort(int code) const {
+#ifdef MESOCRACK_MPI
+  if (joined_ && size_ > 1) MPI_Abort(MPI_COMM_WORLD, code);
+#endif
+  std::exit(code);
+}
+
+}  // namespace mc

@@ -1,0 +1,49 @@
+// The processes of one MPI launch (mpirun -np N mesocrack ...): this one's rank and their count, for the
+// commands that spread independent runs over them (run --realizations). A build without MPI (MESOCRACK_MPI off),
+// or a command started without a launcher, is one rank and never touches MPI.
+#pragma once
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <type_traits>
+#include <vector>
+
+namespace mc {
+
+class Ranks {
+ public:
+  // Joins the launch when the process was started by mpirun (MPI_Init); otherwise one rank. Call once, first.
+  static void start(int* argc, char*** argv);
+  static const Ranks& world();
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool root() const { return rank_ == 0; }
+  // Job k of n belongs to rank k mod size: neighbouring seeds go to different ranks.
+  bool owns(int k) const { return k % size_ == rank_; }
+  // Runs job(k) for each k < n that this rank owns, and gives every rank every job's bytes, in k order: the ranks
+  // go on from the same numbers (one rank: the jobs in turn).
+  using Job = std::function<std::vector<std::uint8_t>(int k)>;
+  std::vector<std::vector<std::uint8_t>> share(int n, const Job& job) const;
+  // Ends the whole launch with this exit code (a rank that failed: the others would wait for it forever).
+  [[noreturn]] void abort(int code) const;
+
+ private:
+  int rank_ = 0, size_ = 1;
+  bool joined_ = false;
+};
+
+// Ranks::share for jobs whose result is one plain value (numbers, flags): job(k) returns a T.
+template <class T, class F>
+std::vector<T> share_values(const Ranks& ranks, int n, F&& job) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const auto bytes = ranks.share(n, [&](int k) {
+    const T value = job(k);
+    const auto* b = reinterpret_cast<const std::uint8_t*>(&value);
+    return std::vector<std::uint8_t>(b, b + sizeof value);
+  });
+  std::vector<T> out(n);
+  for (int k = 0; k < n; ++k) std::memcpy(static_cast<void*>(&out[k]), bytes[k].data(), sizeof(T));
+  return out;
+}
+
+}  // namespace mc
