@@ -277,8 +277,9 @@ inline void one_shared(const Options& opt) {
   }
   std::printf(
       "RESULT engine=mesocrack model=%s particles=%d threads=%d steps=%d dt=%.4g wall_s=%.3f "
-      "particle_steps_per_s=%.5g\n",
-      opt.one_model.c_str(), s.size(), opt.one_threads, steps, t.dt, t.seconds, s.size() * steps / t.seconds);
+      "particle_steps_per_s=%.5g contacts=%.0f candidates=%.0f\n",
+      opt.one_model.c_str(), s.size(), opt.one_threads, steps, t.dt, t.seconds, s.size() * steps / t.seconds,
+      t.contacts, t.candidates);
 }
 
 inline void section_shared(const Options& opt, bool bonded, bool cpm = false) {
