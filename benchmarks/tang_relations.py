@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from uniaxial_accuracy import (MEAN, geometry_2d, geometry_3d, mean_cv, run_appending,  # noqa: E402
+from uniaxial_accuracy import (MEAN, geometry_2d, geometry_3d, mean_cv, ranks_done, result_files, run_appending,  # noqa: E402
                                study_arguments)
 
 # Table 5.1: the reference point of every sweep.
@@ -265,8 +265,8 @@ def main():
     (out / "runs").mkdir(parents=True, exist_ok=True)
     csv_path = out / "results.csv"
     done = {}
-    if csv_path.exists():
-        with open(csv_path) as f:
+    for path in result_files(csv_path):
+        with open(path) as f:
             for r in csv.DictReader(f):
                 for k in FIELDS[2:]:
                     r[k] = float(r[k]) if r.get(k) not in (None, "", "None") else None
@@ -279,6 +279,7 @@ def main():
         run_appending(a.mesocrack, out, a.jobs, csv_path, FIELDS, [
             (key, dim, ov, key, {"key": key, "dim": dim, "seed": seed, **params, "Ec": params["modulus"]})
             for key, dim, params, seed, ov in todo], done)
+        ranks_done(csv_path)
     analyse(list(done.values()), out, lrs)
 
 

@@ -19,6 +19,12 @@ versus L/R).
   benchmarks/uniaxial_accuracy.py                 # quick sets (about an hour of CPU; --jobs 2 halves the wait)
   benchmarks/uniaxial_accuracy.py --full          # Tang's full ranges (2D L/R to 240, 3D to 77): many hours
   benchmarks/uniaxial_accuracy.py --only rate --dims 2
+
+On many cores or machines, any study of benchmarks/ that builds on this module's loops (run_appending,
+append_rows) spreads its runs over the ranks of an Open MPI launch, run k on rank k mod N, then tabulates in a
+plain run that merges the ranks' rows:
+  mpirun -np 8 python3 benchmarks/uniaxial_accuracy.py --only resolution --jobs 1
+  python3 benchmarks/uniaxial_accuracy.py --only resolution --analyse
 """
 import argparse
 import concurrent.futures as cf
@@ -33,6 +39,67 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+
+
+def launch_rank():
+    """(rank, size) of this script in an Open MPI launch (mpirun -np N python3 ...), else (0, 1). The ranks never
+    talk: each runs its share of the plan and appends its rows to its own results.rankR.csv. The launcher's
+    variables are then taken out of the environment, so that the mesocrack runs this script starts are plain
+    runs, not ranks of its launch."""
+    rank, size = int(os.environ.get("OMPI_COMM_WORLD_RANK", 0)), int(os.environ.get("OMPI_COMM_WORLD_SIZE", 1))
+    for k in [k for k in os.environ if k.startswith(("OMPI_", "PMIX_", "PMI_"))]:
+        del os.environ[k]
+    return rank, size
+
+
+RANK, RANKS = launch_rank()
+
+
+def rows_file(csv_path):
+    """Where this process appends its rows: results.csv, or in a launch of several ranks its own file."""
+    return csv_path if RANKS == 1 else csv_path.with_name(f"{csv_path.stem}.rank{RANK}{csv_path.suffix}")
+
+
+def merge_rank_rows(csv_path):
+    """Outside a launch: the rows the ranks of earlier launches appended to results.rankR.csv join
+    results.csv (then the rank files go). Within one: nothing (the rank files are read beside it)."""
+    if RANKS > 1:
+        return
+    for part in sorted(csv_path.parent.glob(f"{csv_path.stem}.rank*{csv_path.suffix}")):
+        with open(part) as f:
+            reader = csv.DictReader(f)
+            rows = list(reader)
+        if rows:
+            new = not csv_path.exists()
+            with open(csv_path, "a", newline="") as f:
+                w = csv.DictWriter(f, fieldnames=reader.fieldnames)
+                if new:
+                    w.writeheader()
+                w.writerows(rows)
+        part.unlink()
+
+
+def result_files(csv_path):
+    """The files a study's rows are in: results.csv (with the rank files merged into it), and within a launch
+    of several ranks also the rank files."""
+    merge_rank_rows(csv_path)
+    files = [csv_path] if csv_path.exists() else []
+    if RANKS > 1:
+        files += sorted(csv_path.parent.glob(f"{csv_path.stem}.rank*{csv_path.suffix}"))
+    return files
+
+
+def mine(items):
+    """This rank's share of a study's runs: item k on rank k mod N (the same plan on every rank)."""
+    return list(items)[RANK::RANKS]
+
+
+def ranks_done(csv_path):
+    """In a launch of several ranks, the end of a rank's share: the tables come from a plain run."""
+    if RANKS > 1:
+        print(f"rank {RANK} of {RANKS}: its runs are in {rows_file(csv_path)}; run the study again without mpirun "
+              f"(--analyse) to merge the ranks' rows and tabulate them", flush=True)
+        sys.exit(0)
 RATIO = 1.66                          # R_max / R_min, Table 5.1
 MEAN = (1 + RATIO) / 2                # R_mean / R_min
 
@@ -164,13 +231,14 @@ def run_appending(exe, out, jobs, csv_path, fields, todo, done):
     """Runs todo's (run key, dim, overrides, done key, known columns) at `jobs` at once, appending each row to
     csv_path as its run ends (the rest of its columns from run_one) and to `done`, so an interrupted study goes
     on where it stopped."""
-    new = not csv_path.exists()
-    with open(csv_path, "a", newline="") as f, cf.ThreadPoolExecutor(jobs) as pool:
+    path = rows_file(csv_path)
+    new = not path.exists()
+    with open(path, "a", newline="") as f, cf.ThreadPoolExecutor(jobs) as pool:
         w = csv.DictWriter(f, fieldnames=fields)
         if new:
             w.writeheader()
         futs = {pool.submit(run_one, exe, out, key, dim, ov): (key, done_key, known)
-                for key, dim, ov, done_key, known in todo}
+                for key, dim, ov, done_key, known in mine(todo)}
         for fut in cf.as_completed(futs):
             key, done_key, known = futs[fut]
             res = fut.result()
@@ -186,12 +254,13 @@ def append_rows(csv_path, fields, jobs, items, one, line):
     """Runs one(item) for every item, `jobs` at once, and appends the row (a dict of `fields`) each returns to
     csv_path as it ends, printing line(row): a study's loop, so that an interrupted study goes on where it
     stopped (its driver skips the rows already there)."""
-    new = not csv_path.exists()
-    with open(csv_path, "a", newline="") as f, cf.ThreadPoolExecutor(jobs) as pool:
+    path = rows_file(csv_path)
+    new = not path.exists()
+    with open(path, "a", newline="") as f, cf.ThreadPoolExecutor(jobs) as pool:
         w = csv.DictWriter(f, fieldnames=fields)
         if new:
             w.writeheader()
-        for fut in cf.as_completed([pool.submit(one, t) for t in items]):
+        for fut in cf.as_completed([pool.submit(one, t) for t in mine(items)]):
             r = fut.result()
             w.writerow(r)
             f.flush()
@@ -201,8 +270,8 @@ def append_rows(csv_path, fields, jobs, items, one, line):
 def read_rows(csv_path, fields, texts):
     """The rows of a study's results.csv: the `texts` columns as strings, the others as floats (None if empty)."""
     rows = []
-    if csv_path.exists():
-        with open(csv_path) as f:
+    for path in result_files(csv_path):
+        with open(path) as f:
             for r in csv.DictReader(f):
                 rows.append({k: (r[k] if k in texts else float(r[k]) if r[k] not in ("", "None") else None)
                              for k in fields})
@@ -224,6 +293,7 @@ def study_main(ap, fields, texts, key, plan, known, run_all, analyse):
         todo = [t for t in plan(a) if key(known(t)) not in done]
         print(f"{len(todo)} runs to do ({len(done)} already in {csv_path})", flush=True)
         run_all(a.mesocrack, out, a.jobs, todo, csv_path)
+        ranks_done(csv_path)
     analyse(read_rows(csv_path, fields, texts), out)
 
 
@@ -389,12 +459,12 @@ def main():
     csv_path = out / "results.csv"
     fields = ["study", "dim", "label", "x", "seed", "E", "E_platens", "E_inside", "nu", "ucs", "init_ratio", "particles", "steps", "cpu_s", "wall_s"]
     done = {}
-    if csv_path.exists():
-        with open(csv_path) as f:
+    for path in result_files(csv_path):
+        with open(path) as f:
             reader = csv.DictReader(f)
             # an older file (fewer columns) can be analysed, not appended to
             if not a.analyse and reader.fieldnames != fields:
-                sys.exit(f"{csv_path}: its columns {reader.fieldnames} are not this script's {fields}; give another --out")
+                sys.exit(f"{path}: its columns {reader.fieldnames} are not this script's {fields}; give another --out")
             for r in reader:
                 for k in fields[3:]:
                     r[k] = float(r[k]) if r.get(k) not in (None, "", "None") else None
@@ -409,6 +479,7 @@ def main():
             (f"{study}_{dim}d_{label.replace(' ', '').replace('/', '')}_s{seed}", dim, ov, (study, dim, label, seed),
              {"study": study, "dim": dim, "label": label, "x": x, "seed": seed})
             for study, dim, label, x, seed, ov in todo], done)
+        ranks_done(csv_path)
     analyse(list(done.values()), out)
 
 
