@@ -126,3 +126,28 @@ TEST_CASE("cpm: the shear return lands on the logarithmic yield surface in compr
   (void)e3, (void)w3;
   CHECK(st3 == doctest::Approx(p.cohesion - sn3 * p.tan_friction).epsilon(1e-9));
 }
+
+// The force law takes the logarithmic yield radius only when the trial shear stress passes a lower bound of it
+// (Cpm::may_yield, ln(1 + x) ≥ x/(1 + x)). The bound must never pass over a stress the yield radius as computed
+// would return: over compressions from 1e-9 to 1e3 times c_T0 Y_0, damages 0–0.99 and trial stresses from 1e-6
+// below to 1e-6 above the radius, may_yield is true wherever st > r_pl. Up to x = −σ_N/(c_T0 Y_0) = 1 the bound
+// is at least x/(1 + x) / ln(1 + x) ≥ 0.72 of the radius, so a stress of half the radius skips the logarithm.
+TEST_CASE("cpm: the lower bound that skips the logarithmic yield radius never skips a yielding contact") {
+  const CpmParams p = test::cpm_params();
+  const auto c = Cpm::pair<3>(p, test::kCpmR, test::kCpmR);
+  const double scale = p.cohesion * p.yield_log_speed;
+  int skipped = 0, near = 0, checked = 0;
+  for (double x = 1e-9; x < 1e3; x *= 1.37)
+    for (double omega : {0.0, 0.3, 0.9, 0.99}) {
+      const double sn = -x * scale, r_pl = Cpm::yield_radius(c, sn, omega);
+      for (double f : {1 - 1e-6, 1 - 1e-12, 1.0, 1 + 1e-12, 1 + 1e-6}) {
+        const double st2 = (f * r_pl) * (f * r_pl);
+        ++checked;
+        if (st2 > r_pl * r_pl) CHECK_MESSAGE(Cpm::may_yield(c, sn, omega, st2), "x ", x, " omega ", omega, " f ", f);
+      }
+      if (x <= 1) ++near, skipped += !Cpm::may_yield(c, sn, omega, 0.25 * r_pl * r_pl);
+    }
+  CHECK(checked > 1000);
+  CHECK(near > 100);
+  CHECK(skipped == near);
+}
