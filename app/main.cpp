@@ -94,8 +94,9 @@ int calibrate(const std::string& scene_file, const std::string& output, const st
   opt.compression_scene = compression;
   // Under mpirun every rank iterates alike on the shared runs' numbers (studies/ranks.hpp); rank 0 reports.
   const bool root = mc::Ranks::world().root();
-  std::FILE* log = root ? stderr : std::fopen("/dev/null", "w");
-  const mc::CalibrationResult r = mc::calibrate(scene_file, sets, target, opt, log ? log : stderr);
+  std::FILE* quiet = root ? nullptr : std::fopen("/dev/null", "w");
+  const mc::CalibrationResult r = mc::calibrate(scene_file, sets, target, opt, quiet ? quiet : stderr);
+  if (quiet) std::fclose(quiet);
   if (!root) return r.converged ? 0 : 5;
   std::fprintf(stderr, "%s after %d iterations; calibrated scene -> %s\n", r.converged ? "converged" : "NOT converged",
                r.iterations, output.c_str());

@@ -211,6 +211,7 @@ void World<D>::refresh_timestep(bool forces_follow) {
       std::ostringstream m;
       m << "the fixed timestep " << timestep.fixed << " s is above the critical timestep " << dt_critical
         << " s estimated from the current stiffnesses (Tang 3.24) at step " << step_count;
+      slots_.resize(slots_.f.size());  // no force pass follows: the borrowed slots hold stiffnesses, not forces
       throw TimestepError(m.str());
     }
     dt = timestep.fixed;
