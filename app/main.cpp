@@ -70,7 +70,7 @@ int realizations(const std::string& scene_file, const std::string& output, const
     throw mc::InputError("run --realizations: give the output file with -o OUT.h5 (realization k writes OUT_rk.h5)");
   if (threads > 0) omp_set_num_threads(threads);
   const mc::RealizationSet set = mc::run_realizations(scene_file, sets, n, output, stderr);
-  if (!set.complete) return 0;  // another rank of an MPI launch: rank 0 writes the statistics
+  if (!mc::Ranks::world().root()) return 0;  // another rank of an MPI launch: rank 0 writes the statistics
   const std::string json = mc::realizations_json(set);
   const std::filesystem::path p(output);
   const std::string file = (p.parent_path() / (p.stem().string() + "_realizations.json")).string();

@@ -28,6 +28,7 @@ plain run that merges the ranks' rows:
 """
 import argparse
 import concurrent.futures as cf
+import contextlib
 import csv
 import json
 import math
@@ -60,21 +61,33 @@ def rows_file(csv_path):
     return csv_path if RANKS == 1 else csv_path.with_name(f"{csv_path.stem}.rank{RANK}{csv_path.suffix}")
 
 
+@contextlib.contextmanager
+def appending(path, fields):
+    """A csv.DictWriter appending to `path`, which gets the header if it is new."""
+    new = not path.exists()
+    with open(path, "a", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields)
+        if new:
+            w.writeheader()
+        yield w, f
+
+
+def rank_files(csv_path):
+    """The rows files of the ranks of launches: results.rankR.csv beside results.csv."""
+    return sorted(csv_path.parent.glob(f"{csv_path.stem}.rank*{csv_path.suffix}"))
+
+
 def merge_rank_rows(csv_path):
     """Outside a launch: the rows the ranks of earlier launches appended to results.rankR.csv join
     results.csv (then the rank files go). Within one: nothing (the rank files are read beside it)."""
     if RANKS > 1:
         return
-    for part in sorted(csv_path.parent.glob(f"{csv_path.stem}.rank*{csv_path.suffix}")):
+    for part in rank_files(csv_path):
         with open(part) as f:
             reader = csv.DictReader(f)
             rows = list(reader)
         if rows:
-            new = not csv_path.exists()
-            with open(csv_path, "a", newline="") as f:
-                w = csv.DictWriter(f, fieldnames=reader.fieldnames)
-                if new:
-                    w.writeheader()
+            with appending(csv_path, reader.fieldnames) as (w, _):
                 w.writerows(rows)
         part.unlink()
 
@@ -85,7 +98,7 @@ def result_files(csv_path):
     merge_rank_rows(csv_path)
     files = [csv_path] if csv_path.exists() else []
     if RANKS > 1:
-        files += sorted(csv_path.parent.glob(f"{csv_path.stem}.rank*{csv_path.suffix}"))
+        files += rank_files(csv_path)
     return files
 
 
@@ -231,12 +244,7 @@ def run_appending(exe, out, jobs, csv_path, fields, todo, done):
     """Runs todo's (run key, dim, overrides, done key, known columns) at `jobs` at once, appending each row to
     csv_path as its run ends (the rest of its columns from run_one) and to `done`, so an interrupted study goes
     on where it stopped."""
-    path = rows_file(csv_path)
-    new = not path.exists()
-    with open(path, "a", newline="") as f, cf.ThreadPoolExecutor(jobs) as pool:
-        w = csv.DictWriter(f, fieldnames=fields)
-        if new:
-            w.writeheader()
+    with appending(rows_file(csv_path), fields) as (w, f), cf.ThreadPoolExecutor(jobs) as pool:
         futs = {pool.submit(run_one, exe, out, key, dim, ov): (key, done_key, known)
                 for key, dim, ov, done_key, known in mine(todo)}
         for fut in cf.as_completed(futs):
@@ -254,12 +262,7 @@ def append_rows(csv_path, fields, jobs, items, one, line):
     """Runs one(item) for every item, `jobs` at once, and appends the row (a dict of `fields`) each returns to
     csv_path as it ends, printing line(row): a study's loop, so that an interrupted study goes on where it
     stopped (its driver skips the rows already there)."""
-    path = rows_file(csv_path)
-    new = not path.exists()
-    with open(path, "a", newline="") as f, cf.ThreadPoolExecutor(jobs) as pool:
-        w = csv.DictWriter(f, fieldnames=fields)
-        if new:
-            w.writeheader()
+    with appending(rows_file(csv_path), fields) as (w, f), cf.ThreadPoolExecutor(jobs) as pool:
         for fut in cf.as_completed([pool.submit(one, t) for t in mine(items)]):
             r = fut.result()
             w.writerow(r)

@@ -49,7 +49,7 @@ struct Dissipated {
 
 // Stiffness of each slot for the timestep estimate: translational, and rotational about A's and B's centres.
 // The estimate runs between force passes and borrows the slots' own numbers for them (a force and a moment hold
-// at least three in 2D and 3D), so it costs no memory per contact; World::critical_timestep says when they are
+// at least three in 2D and 3D), so it costs no memory per contact; World::refresh_timestep says when they are
 // given back.
 template <int D>
 struct SlotStiffness {

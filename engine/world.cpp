@@ -156,7 +156,7 @@ std::size_t World<D>::install_bonds(double tolerance, std::uint64_t seed) {
 }
 
 template <int D>
-double World<D>::critical_timestep(bool forces_follow) {
+double World<D>::critical_timestep() {
   const int n = particles.size();
   // The servo gain needs Σk_n of each wall's touching contacts (those with a force in the last pass), refreshed
   // with the timestep: which ones touch is read before the slots are borrowed.
@@ -196,7 +196,6 @@ double World<D>::critical_timestep(bool forces_follow) {
     if (kr > 0) t = std::min(t, std::sqrt(particles.inertia[i] / kr));  // Tang (3.23)
     tmin = std::min(tmin, t);
   }
-  if (!forces_follow) slots_.resize(slots_.f.size());  // given back as a relink leaves them: zero
   // Dashpots lower the limit of central differences from 2/ω to (2/ω)(√(1 + ζ²) − ζ) (Belytschko et al.).
   double zeta = 0;
   for (const auto& s : sets) zeta = std::max(zeta, s->damping_ratio());
@@ -205,13 +204,16 @@ double World<D>::critical_timestep(bool forces_follow) {
 
 template <int D>
 void World<D>::refresh_timestep(bool forces_follow) {
-  dt_critical = critical_timestep(forces_follow);
+  dt_critical = critical_timestep();
+  // The estimate borrowed the slots: unless a force pass overwrites them next, they are given back zeroed, as a
+  // relink leaves them (so is a refused step's: they hold stiffnesses, not forces).
+  const bool refused = timestep.fixed > 0 && timestep.fixed > dt_critical;
+  if (!forces_follow || refused) slots_.resize(slots_.f.size());
   if (timestep.fixed > 0) {
-    if (timestep.fixed > dt_critical) {
+    if (refused) {
       std::ostringstream m;
       m << "the fixed timestep " << timestep.fixed << " s is above the critical timestep " << dt_critical
         << " s estimated from the current stiffnesses (Tang 3.24) at step " << step_count;
-      slots_.resize(slots_.f.size());  // no force pass follows: the borrowed slots hold stiffnesses, not forces
       throw TimestepError(m.str());
     }
     dt = timestep.fixed;

@@ -138,8 +138,9 @@ class World {
   // dt_critical and dt from the current stiffnesses. The estimate borrows the slots (SlotStiffness): when no
   // force pass follows (`forces_follow` false), they are zeroed afterwards, as a relink leaves them.
   void refresh_timestep(bool forces_follow);
-  // Critical timestep from the current stiffnesses, Tang (3.22)–(3.24), without the safety factor.
-  double critical_timestep(bool forces_follow);
+  // Critical timestep from the current stiffnesses, Tang (3.22)–(3.24), without the safety factor. It leaves
+  // the slots holding the stiffnesses (SlotStiffness); refresh_timestep gives them back.
+  double critical_timestep();
 
   Slots<D> slots_;
   std::vector<std::size_t> offset_, wall_offset_;

@@ -266,8 +266,8 @@ class Calibration {
     // One run: on rank 0 of an MPI launch, the others waiting for its numbers (Ranks::share).
     const Trial t = share_values<Trial>(Ranks::world(), 1, [&](int) {
       const RunResult run = run_scene(scene, ro);
-      const Trial t{uniaxial_result(ro.output), run.wall_seconds};
-      const UniaxialResult& u = t.result;
+      const Trial ran{uniaxial_result(ro.output), run.wall_seconds};
+      const UniaxialResult& u = ran.result;
       if (!std::isfinite(u.modulus) || !std::isfinite(u.poisson) || (!elastic_ && !std::isfinite(u.ucs)))
         throw InputError(ro.output + ": the uniaxial test gave no E, ν or strength (" + run.status +
                          "); check that the scene loads the specimen to its peak");
@@ -275,7 +275,7 @@ class Calibration {
         throw InputError(ro.output + ": the tension test gave no G_f (" + run.status +
                          "): it needs the stress to fall to 0.2 f_t after the peak; let the run go on that far (e.g. "
                          "[[run.stop]] post_peak_fraction = 0.15 on uniaxial.stress)");
-      return t;
+      return ran;
     })[0];
     log_line(it, t);
     return t;

@@ -74,7 +74,6 @@ RealizationSet run_realizations(const std::string& scene_file, const std::vector
     return rec;
   });
   RealizationSet set;
-  set.complete = ranks.root();
   for (int k = 0; k < n; ++k) {
     const Record& rec = records[k];
     set.seeds.push_back(seed_of(k));

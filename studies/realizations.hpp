@@ -19,14 +19,13 @@ struct RealizationSet {
   std::vector<std::string> files;  // one output file per realization
   std::vector<UniaxialResult> results;
   std::vector<double> wall_seconds;
-  bool complete = true;  // false on the ranks other than 0 of an MPI launch: rank 0 alone reports the set
 };
 
 // "out/u.h5" → "out/u_r3.h5"
 std::string realization_file(const std::string& output, int k);
 
 // Runs N realizations of a scene with a [uniaxial] analysis, printing one line per realization to `log`. Under
-// mpirun the realizations are spread over the ranks (studies/ranks.hpp) and rank 0 returns the whole set.
+// mpirun the realizations are spread over the ranks (studies/ranks.hpp); every rank returns the whole set.
 RealizationSet run_realizations(const std::string& scene_file, const std::vector<std::string>& overrides, int n,
                                 const std::string& output, std::FILE* log);
 

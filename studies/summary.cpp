@@ -79,7 +79,8 @@ std::string summary_json(const std::string& output_file) {
     o << (i ? "," : "") << "\n    " << json_quote(s.name) << ": " << json_number(reduce(s.reduce, t, h.at(s.of)));
   }
   o << (scene.summaries.empty() ? "}" : "\n  }");
-  for (const auto& a : scene.analyses) o << ",\n  " << json_quote(a->name()) << ": " << a->summary_json(RunRecord{h, run.cracks});
+  for (const auto& a : scene.analyses)
+    o << ",\n  " << json_quote(a->name()) << ": " << a->summary_json(RunRecord{h, run.cracks});
   o << ",\n  \"final\": {";
   bool first = true;
   for (const auto& [name, y] : h) {
