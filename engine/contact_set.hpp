@@ -98,6 +98,20 @@ class ContactSetBase {
   // The whole history as bytes (checkpoints): pairs, wall pairs and states.
   virtual std::vector<std::uint8_t> save() const = 0;
   virtual void load(const std::vector<std::uint8_t>& bytes) = 0;
+
+  // A specimen split across processes (engine/world_split.cpp). Whether ball pair c must stay in the lists
+  // whatever the distance (an intact bond).
+  virtual bool persistent(std::size_t c) const = 0;
+  // The size of one pair's history as history() gives it, and that history: its state and its last dashpot
+  // force (zero unless energy is traced).
+  virtual std::size_t history_size() const = 0;
+  virtual void history(std::size_t c, bool wall, std::vector<std::uint8_t>& out) const = 0;
+  // The particles are renumbered (to[old] = new index, −1: no longer held). Pairs that lose a particle, and pairs
+  // of two ghosts (another process computes them), leave; ball–wall pairs stay only with a particle of its own.
+  virtual void renumber(const std::vector<int>& to, const std::vector<std::uint8_t>& ghost) = 0;
+  // Pairs that arrive with their histories (history_size() bytes each, in the pairs' order); a pair already
+  // present keeps its own, which is the same.
+  virtual void add(const std::vector<Pair>& pairs, const std::vector<std::uint8_t>& histories, bool wall) = 0;
 };
 
 template <int D>
@@ -321,6 +335,62 @@ class ContactSet final : public ContactSetBase<D> {
     get(in, at, wall_dashpot_);
   }
 
+  bool persistent(std::size_t c) const override { return Model::template persistent<D>(states_[c]); }
+  std::size_t history_size() const override { return sizeof(State) + sizeof(Vec<D>); }
+  void history(std::size_t c, bool wall, std::vector<std::uint8_t>& out) const override {
+    const State& st = wall ? wall_states_[c] : states_[c];
+    const auto* b = reinterpret_cast<const std::uint8_t*>(&st);
+    out.insert(out.end(), b, b + sizeof(State));
+    const auto& dp = wall ? wall_dashpot_ : dashpot_;
+    const Vec<D> d = c < dp.size() ? dp[c] : Vec<D>::Zero();
+    const auto* e = reinterpret_cast<const std::uint8_t*>(d.data());
+    out.insert(out.end(), e, e + sizeof(Vec<D>));
+  }
+  void renumber(const std::vector<int>& to, const std::vector<std::uint8_t>& ghost) override {
+    auto keep_ball = [&](const Pair& pr, Pair& out) {
+      out = {to[pr[0]], to[pr[1]]};
+      return out[0] >= 0 && out[1] >= 0 && !(ghost[out[0]] && ghost[out[1]]);
+    };
+    auto keep_wall = [&](const Pair& pr, Pair& out) {
+      out = {pr[0], to[pr[1]]};
+      return out[1] >= 0 && !ghost[out[1]];
+    };
+    renumber_list(pairs_, states_, dashpot_, keep_ball);
+    renumber_list(wall_pairs_, wall_states_, wall_dashpot_, keep_wall);
+  }
+  void add(const std::vector<Pair>& pairs, const std::vector<std::uint8_t>& histories, bool wall) override {
+    auto& own = wall ? wall_pairs_ : pairs_;
+    auto& states = wall ? wall_states_ : states_;
+    auto& dashpot = wall ? wall_dashpot_ : dashpot_;
+    const bool traced = !dashpot.empty();
+    const std::size_t size = history_size();
+    std::vector<Pair> np;
+    std::vector<State> ns;
+    std::vector<Vec<D>> nd;
+    std::size_t a = 0, b = 0;
+    while (a < own.size() || b < pairs.size()) {
+      if (b == pairs.size() || (a < own.size() && own[a] <= pairs[b])) {
+        if (b < pairs.size() && own[a] == pairs[b]) ++b;
+        np.push_back(own[a]), ns.push_back(states[a]);
+        if (traced) nd.push_back(dashpot[a]);
+        ++a;
+      } else {
+        State st;
+        std::memcpy(static_cast<void*>(&st), histories.data() + b * size, sizeof(State));
+        np.push_back(pairs[b]), ns.push_back(st);
+        if (traced) {
+          Vec<D> d;
+          std::memcpy(d.data(), histories.data() + b * size + sizeof(State), sizeof(Vec<D>));
+          nd.push_back(d);
+        }
+        ++b;
+      }
+    }
+    own.swap(np);
+    states.swap(ns);
+    dashpot.swap(nd);
+  }
+
  private:
   template <bool Energy>
   Dissipated forces_impl(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, Slots<D>& s,
@@ -459,6 +529,26 @@ class ContactSet final : public ContactSetBase<D> {
     pairs.swap(np);
     states.swap(ns);
     dashpot.swap(nd);
+  }
+
+  // Keeps the pairs that keep(pair, renumbered) accepts, renumbered; the order stays sorted, as the
+  // renumbering keeps the particles' order.
+  template <class Keep>
+  static void renumber_list(std::vector<Pair>& pairs, std::vector<State>& states, std::vector<Vec<D>>& dashpot,
+                            Keep&& keep) {
+    const bool traced = !dashpot.empty();
+    std::size_t out = 0;
+    for (std::size_t c = 0; c < pairs.size(); ++c) {
+      Pair renumbered;
+      if (!keep(pairs[c], renumbered)) continue;
+      pairs[out] = renumbered;
+      states[out] = states[c];
+      if (traced) dashpot[out] = dashpot[c];
+      ++out;
+    }
+    pairs.resize(out);
+    states.resize(out);
+    if (traced) dashpot.resize(out);
   }
 
   template <class T>

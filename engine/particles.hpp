@@ -24,8 +24,12 @@ struct Particles {
   std::vector<FixMask> fix;
   std::vector<Vec<D>> f_applied;  // declared external loads (empty unless the scene applies any)
   std::vector<R> m_applied;
+  // A specimen split across processes (World::split): 1 for a ghost, another process's particle held here for the
+  // contacts of this one's; empty when the world is whole.
+  std::vector<std::uint8_t> ghost;
 
   int size() const { return static_cast<int>(x.size()); }
+  bool is_ghost(int i) const { return !ghost.empty() && ghost[i]; }
 
   // density in kg/m³; in 2D the disc has unit thickness, so mass = ρ π R² · 1 m.
   int add(const Vec<D>& pos, double r, double density, int ph) {

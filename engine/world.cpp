@@ -44,21 +44,23 @@ template <int D>
 void World<D>::rebuild() {
   adapt_skin();
   step_at_rebuild_ = step_count;
+  if (split_) redistribute();
   const auto& p = particles;
   const int n = p.size();
   const int nsets = static_cast<int>(sets.size());
-  // Ball–ball candidates, each sent to the set of its phase pair.
+  // Ball–ball candidates, each sent to the set of its phase pair (a split world's: those with a particle of its own).
   std::vector<std::vector<Pair>> per_set(nsets);
   for (const Pair& pr : candidate_pairs<D>(p.x, p.radius, skin)) {
     const int s = model_of[p.phase[pr[0]]][p.phase[pr[1]]];
-    if (s >= 0) per_set[s].push_back(pr);
+    if (s >= 0 && !(p.is_ghost(pr[0]) && p.is_ghost(pr[1]))) per_set[s].push_back(pr);
   }
   // Ball–wall candidates go to the set of the ball's own phase.
   std::vector<std::vector<Pair>> per_set_wall(nsets);
   for (int w = 0; w < static_cast<int>(walls.size()); ++w)
     for (int j = 0; j < n; ++j) {
       const int s = model_of[p.phase[j]][p.phase[j]];
-      if (s >= 0 && (p.x[j] - walls[w].closest(p.x[j])).norm() < p.radius[j] + skin) per_set_wall[s].push_back({w, j});
+      if (s >= 0 && !p.is_ghost(j) && (p.x[j] - walls[w].closest(p.x[j])).norm() < p.radius[j] + skin)
+        per_set_wall[s].push_back({w, j});
     }
   for (int s = 0; s < nsets; ++s) {
     sets[s]->set_pairs(per_set[s]);
@@ -126,6 +128,7 @@ Pair World<D>::slot_pair(std::size_t slot) const {
 
 template <int D>
 std::size_t World<D>::install_bonds(double tolerance, std::uint64_t seed) {
+  if (split_) throw std::logic_error("World::install_bonds: bond the whole world before splitting it");
   const auto& p = particles;
   const int nsets = static_cast<int>(sets.size());
   std::vector<std::vector<Pair>> bond(nsets);
@@ -179,6 +182,7 @@ double World<D>::critical_timestep() {
   double tmin = kInf;
 #pragma omp parallel for schedule(static) reduction(min : tmin) if (n > kParallelMin)
   for (int i = 0; i < n; ++i) {
+    if (particles.is_ghost(i)) continue;  // its own process counts it
     double kt = 0, kr = 0;
     for (int c = gather_start_[i]; c < gather_start_[i + 1]; ++c) {
       const std::size_t slot = static_cast<std::size_t>(gather_items_[c]);
@@ -196,6 +200,7 @@ double World<D>::critical_timestep() {
     if (kr > 0) t = std::min(t, std::sqrt(particles.inertia[i] / kr));  // Tang (3.23)
     tmin = std::min(tmin, t);
   }
+  if (split_) tmin = agreed_min(tmin);
   // Dashpots lower the limit of central differences from 2/ω to (2/ω)(√(1 + ζ²) − ζ) (Belytschko et al.).
   double zeta = 0;
   for (const auto& s : sets) zeta = std::max(zeta, s->damping_ratio());
@@ -228,8 +233,19 @@ void World<D>::compute_forces() {
   Dissipated e;
   for (std::size_t s = 0; s < sets.size(); ++s) {
     e += sets[s]->forces(particles, walls, dt, trace_energy, slots_, offset_[s], wall_offset_[s]);
-    if (const auto pr = sets[s]->passing_through()) [[unlikely]]
-      passing_through(*pr);
+    if (const auto pr = sets[s]->passing_through()) [[unlikely]] {
+      if (!split_) passing_through(*pr);
+      // A split world fails at the end of the step, on every process together (agree_on_step).
+      if (split_->passing.empty()) {
+        const auto [a, b] = *pr;
+        split_->passing_key = {static_cast<std::int64_t>(s), a < 0 ? a : global_index(a), global_index(b)};
+        try {
+          passing_through(*pr);
+        } catch (const InstabilityError& err) {
+          split_->passing = err.what();
+        }
+      }
+    }
   }
   if (trace_energy) {
     energy.dissipated_contacts += e.contacts;
@@ -244,14 +260,34 @@ void World<D>::log_cracks() {
   if (crack_counts_.size() != std::size_t(2 * 3 * np * np)) crack_counts_.assign(2 * 3 * np * np, 0);
   for (std::size_t s = 0; s < sets.size(); ++s) {
     for (const PairEvent<D>& e : sets[s]->events()) {
-      const int pa = particles.phase[e.a], pb = particles.phase[e.b];
+      if (particles.is_ghost(e.a)) continue;  // logged by A's own process
       // The step being taken (step_count counts completed steps) and the time of its force evaluation.
-      cracks.push_back({step_count + 1, time, e.a, e.b, e.position, e.normal, e.event.mode, e.event.kind,
-                        static_cast<int>(s), pa, pb});
-      const int lo = std::min(pa, pb), hi = std::max(pa, pb);
-      ++crack_counts_[((int(e.event.kind) * 3 + int(e.event.mode)) * np + lo) * np + hi];
+      const Crack<D> c{step_count + 1,
+                       time,
+                       static_cast<int>(global_index(e.a)),
+                       static_cast<int>(global_index(e.b)),
+                       e.position,
+                       e.normal,
+                       e.event.mode,
+                       e.event.kind,
+                       static_cast<int>(s),
+                       particles.phase[e.a],
+                       particles.phase[e.b]};
+      // A split world's join the log at the end of the step, merged in this order (agree_on_step).
+      if (split_)
+        split_->cracks.push_back(c);
+      else
+        count_crack(c);
     }
   }
+}
+
+template <int D>
+void World<D>::count_crack(const Crack<D>& c) {
+  const int np = static_cast<int>(model_of.size());
+  cracks.push_back(c);
+  const int lo = std::min(c.phase_a, c.phase_b), hi = std::max(c.phase_a, c.phase_b);
+  ++crack_counts_[((int(c.kind) * 3 + int(c.mode)) * np + lo) * np + hi];
 }
 
 template <int D>
@@ -289,10 +325,12 @@ typename World<D>::Motion World<D>::move_particles() {
       held(Energy ? blocks : 0, 0.0);
   double moved2 = 0;
   int too_far = n;  // the first particle that moved more than half its radius in this step, or went non-finite
+  const std::uint8_t* ghost = p.ghost.empty() ? nullptr : p.ghost.data();  // moved by their own processes
 #pragma omp parallel for schedule(static) reduction(max : moved2) reduction(min : too_far) if (n > kParallelMin)
   for (int b = 0; b < blocks; ++b) {
     const int end = std::min(n, (b + 1) * kBlock);
     for (int i = b * kBlock; i < end; ++i) {
+      if (ghost && ghost[i]) continue;
       Vec<D> f = Vec<D>::Zero();
       Rot<D> m = Rot<D>::Zero();
       for (int c = gather_start_[i]; c < gather_split_[i]; ++c) {  // as A: −F
@@ -421,9 +459,14 @@ void World<D>::step() {
     ((key == K ? (motion = move_particles<bool(K & 1), bool(K & 2), bool(K & 4), bool(K & 8)>(), 0) : 0), ...);
   }
   (std::make_integer_sequence<int, 16>{});
-  if (motion.too_far >= 0) [[unlikely]]
-    moved_too_far(motion.too_far);
-  moved_ = motion.moved;
+  if (split_) {
+    share_motion();
+    agree_on_step(motion);
+  } else {
+    if (motion.too_far >= 0) [[unlikely]]
+      moved_too_far(motion.too_far);
+    moved_ = motion.moved;
+  }
   move_walls();
   time += dt;
   ++step_count;

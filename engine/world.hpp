@@ -11,7 +11,9 @@
 
 #include "engine/archive.hpp"
 #include "engine/contact_set.hpp"
+#include "engine/decomposition.hpp"
 #include "engine/driven_group.hpp"
+#include "engine/exchange.hpp"
 #include "engine/opening_gauge.hpp"
 #include "engine/particles.hpp"
 #include "engine/wall.hpp"
@@ -87,7 +89,7 @@ class World {
   // The specimen's particle ids, used to name particles in messages (empty: their indices).
   std::vector<std::int64_t> ids;
   std::string particle_name(int i) const {
-    return "particle " + std::to_string(ids.empty() ? std::int64_t(i) : ids[i]);
+    return "particle " + std::to_string(ids.empty() ? global_index(i) : ids[i]);
   }
 
   // The crack log: every bond break and first yield since the start, in step order then pair order.
@@ -113,6 +115,20 @@ class World {
   // The complete dynamic state (checkpoints): restoring it and stepping on gives the same bits as never stopping.
   void save(Archive& a) const;
   void restore(const Archive& a);
+
+  // Splits the specimen across the processes of `exchange` by recursive coordinate bisection of the current
+  // positions: this process keeps the particles of its region, and as ghosts the others' that its contacts reach.
+  // Every contact is computed on each process that holds one of its particles, and each particle sums its own
+  // contacts in the serial order, so any number of processes gives the bits of the whole world. Call on every
+  // process with the same world, after init() and install_bonds(). Walls, gauges and energy tracing are refused
+  // (std::logic_error) until they are shared too.
+  void split(const Exchange& exchange);
+  bool is_split() const { return split_.has_value(); }
+  // The particle's index in the whole world (its own index when the world is whole).
+  std::int64_t global_index(int i) const { return split_ ? split_->global[i] : i; }
+  // The particles this process holds, its own and ghosts, and its own alone.
+  int held_count() const { return particles.size(); }
+  int own_count() const;
 
   std::size_t wall_slot_offset(int set) const { return wall_offset_[set]; }
   std::size_t slot_offset(int set) const { return offset_[set]; }
@@ -141,6 +157,40 @@ class World {
   // Critical timestep from the current stiffnesses, Tang (3.22)–(3.24), without the safety factor. It leaves
   // the slots holding the stiffnesses (SlotStiffness); refresh_timestep gives them back.
   double critical_timestep();
+
+  // A specimen split across processes (engine/world_split.cpp).
+  struct SplitState {
+    const Exchange* exchange = nullptr;
+    Decomposition<D> regions;
+    double reach = 0;                               // 2 R_max of the whole specimen: the ghost layer is this + skin
+    std::vector<std::int64_t> global;               // held particle → index in the whole world, increasing
+    std::vector<std::vector<int>> send, fill;       // per rank: own particles whose motion goes there, ghosts it fills
+    std::vector<std::vector<std::int64_t>> driven;  // the driven groups' members, whole-world indices
+    std::vector<Crack<D>> cracks;                   // this step's breaks of pairs whose A is its own, not yet merged
+    std::array<std::int64_t, 3> passing_key{};      // this step's first pair passing through: set, A, B (whole world)
+    std::string passing;                            // and the message that names it (empty: none)
+  };
+  std::optional<SplitState> split_;
+  void redistribute();  // particles to their regions' processes with their pairs; ghosts refreshed
+  std::vector<std::vector<int>> wanted_ghosts() const;
+  void send_ghosts();
+  void share_motion();  // the own particles' new motion to the processes that hold them as ghosts
+  void agree_on_step(const Motion& motion);
+  double agreed_min(double x) const;
+  // Where a held particle comes from when the held set changes: the held arrays (local ≥ 0), or a record at byte
+  // `at` of what rank `rank` sent.
+  struct Source {
+    std::int64_t global;
+    int local, rank;
+    std::size_t at;
+    bool ghost;
+  };
+  // The held particles become `sources` (in whole-world order); pairs are renumbered, those that lose a
+  // particle or hold only ghosts leave. Returns the new index of each whole-world index held (lookup by search).
+  void hold(const std::vector<Source>& sources, const std::vector<Bytes>& received);
+  int held_index(std::int64_t global) const;  // −1: not held
+  void own_driven_members();
+  void count_crack(const Crack<D>& c);
 
   Slots<D> slots_;
   std::vector<std::size_t> offset_, wall_offset_;

@@ -78,6 +78,56 @@ std::vector<std::vector<std::uint8_t>> Ranks::share(int n, const Job& job) const
   return out;
 }
 
+std::vector<Bytes> RanksExchange::all_to_all(const std::vector<Bytes>& out) const {
+  const int n = size();
+  if (n == 1) return {out[0]};
+  std::vector<Bytes> in(n);
+#ifdef MESOCRACK_MPI
+  std::vector<int> send_count(n), send_at(n), receive_count(n), receive_at(n);
+  Bytes sending;
+  for (int r = 0; r < n; ++r) {
+    send_at[r] = static_cast<int>(sending.size());
+    send_count[r] = static_cast<int>(out[r].size());
+    sending.insert(sending.end(), out[r].begin(), out[r].end());
+  }
+  MPI_Alltoall(send_count.data(), 1, MPI_INT, receive_count.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  int total = 0;
+  for (int r = 0; r < n; ++r) receive_at[r] = total, total += receive_count[r];
+  Bytes receiving(total);
+  MPI_Alltoallv(sending.data(), send_count.data(), send_at.data(), MPI_BYTE, receiving.data(), receive_count.data(),
+                receive_at.data(), MPI_BYTE, MPI_COMM_WORLD);
+  for (int r = 0; r < n; ++r)
+    in[r].assign(receiving.begin() + receive_at[r], receiving.begin() + receive_at[r] + receive_count[r]);
+#endif
+  return in;
+}
+
+std::vector<Bytes> RanksExchange::all_gather(const Bytes& mine) const {
+  const int n = size();
+  if (n == 1) return {mine};
+  std::vector<Bytes> all(n);
+#ifdef MESOCRACK_MPI
+  const int count = static_cast<int>(mine.size());
+  std::vector<int> counts(n), at(n);
+  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  int total = 0;
+  for (int r = 0; r < n; ++r) at[r] = total, total += counts[r];
+  Bytes joined(total);
+  MPI_Allgatherv(mine.data(), count, MPI_BYTE, joined.data(), counts.data(), at.data(), MPI_BYTE, MPI_COMM_WORLD);
+  for (int r = 0; r < n; ++r) all[r].assign(joined.begin() + at[r], joined.begin() + at[r] + counts[r]);
+#endif
+  return all;
+}
+
+void RanksExchange::max(std::vector<double>& values) const {
+#ifdef MESOCRACK_MPI
+  if (size() > 1)
+    MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+#else
+  (void)values;
+#endif
+}
+
 void Ranks::abort(int code) const {
 #ifdef MESOCRACK_MPI
   if (joined_ && size_ > 1) MPI_Abort(MPI_COMM_WORLD, code);

@@ -8,6 +8,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "engine/exchange.hpp"
+
 namespace mc {
 
 class Ranks {
@@ -30,6 +32,20 @@ class Ranks {
  private:
   int rank_ = 0, size_ = 1;
   bool joined_ = false;
+};
+
+// The launch's processes as the engine's Exchange: one specimen split across them (World::split).
+class RanksExchange final : public Exchange {
+ public:
+  explicit RanksExchange(const Ranks& ranks) : ranks_(ranks) {}
+  int rank() const override { return ranks_.rank(); }
+  int size() const override { return ranks_.size(); }
+  std::vector<Bytes> all_to_all(const std::vector<Bytes>& out) const override;
+  std::vector<Bytes> all_gather(const Bytes& mine) const override;
+  void max(std::vector<double>& values) const override;
+
+ private:
+  const Ranks& ranks_;
 };
 
 // Ranks::share for jobs whose result is one plain value (numbers, flags): job(k) returns a T.

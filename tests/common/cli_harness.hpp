@@ -98,9 +98,9 @@ struct Result {
 class Child {
  public:
   // Starts `mesocrack args...` in `cwd`. extra_env: "NAME=value" entries added to the environment; launcher: a
-  // command that starts mesocrack (mpirun -np 2), its full path first.
+  // command that starts mesocrack (mpirun -np 2), its full path first; program: another program than mesocrack.
   Child(const std::vector<std::string>& args, const fs::path& cwd, const std::vector<std::string>& extra_env = {},
-        const std::vector<std::string>& launcher = {}) {
+        const std::vector<std::string>& launcher = {}, const std::string& program = kCli) {
     static int serial = 0;
     const fs::path io = cwd / ".io";
     fs::create_directories(io);
@@ -108,7 +108,7 @@ class Child {
     err_ = io / ("err" + std::to_string(serial++));
     // Everything the child needs is prepared before fork: after it, only async-signal-safe calls.
     std::vector<std::string> argv_s = launcher;
-    argv_s.push_back(kCli);
+    argv_s.push_back(program);
     argv_s.insert(argv_s.end(), args.begin(), args.end());
     std::vector<std::string> env_s;
     for (char** e = environ; *e; ++e) {

@@ -1,0 +1,119 @@
+// One bonded 3D block split across the ranks of an MPI launch (World::split), timed: the cost per particle-step of
+// the whole machine, the share of each rank's wall time spent exchanging (ghost motion, migration, the step's
+// agreement), and each rank's own and ghost particles. Launched once per layout, e.g.
+//   mpirun -np 2 build/benchmarks/split_scaling --threads 1      (2 ranks × 1 thread)
+//   build/benchmarks/split_scaling --threads 2                   (1 rank × 2 threads: the whole world, not split)
+// It prints one row of the table in README ("One specimen across ranks"). The block is the bonded-scaling one of
+// `throughput` (parallel bonds that do not break, the particles near the faces held).
+#include <omp.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "benchmarks/dense_assembly.hpp"
+#include "benchmarks/run_timing.hpp"
+#include "benchmarks/throughput_world.hpp"
+#include "studies/ranks.hpp"
+
+using namespace mc;
+using namespace mc::bench;
+
+namespace {
+
+// The launch's exchange, with the wall time spent in it.
+class TimedExchange final : public Exchange {
+ public:
+  explicit TimedExchange(const Exchange& inner) : inner_(inner) {}
+  int rank() const override { return inner_.rank(); }
+  int size() const override { return inner_.size(); }
+  std::vector<Bytes> all_to_all(const std::vector<Bytes>& out) const override {
+    const auto t0 = Clock::now();
+    auto in = inner_.all_to_all(out);
+    for (const auto& b : out) sent += static_cast<double>(b.size());
+    seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    ++calls;
+    return in;
+  }
+  std::vector<Bytes> all_gather(const Bytes& mine) const override {
+    const auto t0 = Clock::now();
+    auto all = inner_.all_gather(mine);
+    seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    ++calls;
+    return all;
+  }
+  void max(std::vector<double>& v) const override {
+    const auto t0 = Clock::now();
+    inner_.max(v);
+    seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    ++calls;
+  }
+  mutable double seconds = 0, sent = 0;
+  mutable long calls = 0;
+
+ private:
+  const Exchange& inner_;
+};
+
+int option(int argc, char** argv, const std::string& name, int fallback) {
+  for (int k = 1; k + 1 < argc; ++k)
+    if (argv[k] == name) return std::atoi(argv[k + 1]);
+  return fallback;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Ranks::start(&argc, &argv);
+  const Ranks& ranks = Ranks::world();
+  const int target = option(argc, argv, "--particles", 1000000);
+  const int threads = option(argc, argv, "--threads", 1);
+  const int steps = option(argc, argv, "--steps", 200);
+  omp_set_num_threads(threads);
+  const Assembly<3> a = tile(cell_for_dim<3>(false), kR0, target, false);
+  const int n = static_cast<int>(a.x.size());
+  Material mat;
+  mat.bonded = true;
+  World<3> w = make_world<3>(a.x, a.r, mat);
+  for (int i = 0; i < n; ++i)
+    if (a.edge[i]) w.particles.fix[i] = 0x3f;
+  w.init();
+  const std::size_t bonds = w.install_bonds(0.1, 1);
+  const RanksExchange launch(ranks);
+  const TimedExchange exchange(launch);
+  if (ranks.size() > 1) w.split(exchange);
+  for (int s = 0; s < 5; ++s) w.step();
+  exchange.seconds = exchange.sent = 0;
+  exchange.calls = 0;
+  const std::int64_t rebuilds = w.rebuilds;
+  const auto t0 = Clock::now();
+  for (int s = 0; s < steps; ++s) w.step();
+  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  // Every rank's figures to the root: own, held, wall, exchange seconds, bytes sent per step.
+  const std::vector<double> mine{double(w.own_count()), double(w.held_count()), wall, exchange.seconds,
+                                 exchange.sent / steps};
+  Bytes b;
+  for (double x : mine) put_bytes(b, x);
+  const auto all = launch.all_gather(b);
+  if (!ranks.root()) return 0;
+  double slowest = 0, share_max = 0, ghost_max = 0, sent_max = 0;
+  std::string own;
+  for (const Bytes& r : all) {
+    std::size_t at = 0;
+    const double o = take_bytes<double>(r, at), h = take_bytes<double>(r, at), t = take_bytes<double>(r, at),
+                 c = take_bytes<double>(r, at), s = take_bytes<double>(r, at);
+    slowest = std::max(slowest, t);
+    share_max = std::max(share_max, c / t);
+    ghost_max = std::max(ghost_max, (h - o) / o);
+    sent_max = std::max(sent_max, s);
+    own += (own.empty() ? "" : " / ") + std::to_string(static_cast<long>(o));
+  }
+  std::printf("| %d × %d | %d | %.0f | %.1f | %.3f | %.1f %% | %s | %.1f %% | %.0f | %lld |\n", ranks.size(), threads,
+              n, 1e9 * slowest / (static_cast<double>(n) * steps) * ranks.size() * threads,
+              1e9 * slowest / (static_cast<double>(n) * steps), slowest / steps * 1e3, 100 * share_max, own.c_str(),
+              100 * ghost_max, sent_max / 1024, static_cast<long long>(w.rebuilds - rebuilds));
+  std::fprintf(stderr, "%zu bonds, %d steps\n", bonds, steps);
+  return 0;
+}

@@ -1,0 +1,444 @@
+// One specimen split across processes (World::split). Each process owns the particles of its region and holds,
+// as ghosts, the others' that its contacts reach: every particle within the ghost layer (2 R_max + skin) of its
+// region, and the far partners of its intact bonds. A contact is computed on each process that holds one of its
+// particles, so no force ever travels back, and each own particle sums its contacts in the whole world's order
+// (held particles keep their whole-world order, so the pair lists keep it too): the bits are the serial ones.
+// Particles change hands at neighbour-list rebuilds, each with the histories of its pairs.
+#include <algorithm>
+#include <numeric>
+#include <stdexcept>
+#include <tuple>
+
+#include "engine/errors.hpp"
+#include "engine/world.hpp"
+
+namespace mc {
+
+namespace {
+
+// The per-particle arrays a record carries, in its order.
+template <int D>
+auto fields(Particles<D>& p) {
+  return std::tie(p.x, p.v, p.f, p.w, p.m, p.q, p.radius, p.mass, p.inertia, p.phase, p.stiffness, p.fix);
+}
+
+template <int D>
+void put_record(Bytes& out, std::int64_t global, Particles<D>& p, std::vector<std::int64_t>& ids, bool applied, int i) {
+  put_bytes(out, global);
+  std::apply([&](auto&... v) { (put_bytes(out, v[i]), ...); }, fields(p));
+  if (applied) put_bytes(out, p.f_applied[i]), put_bytes(out, p.m_applied[i]);
+  if (!ids.empty()) put_bytes(out, ids[i]);
+}
+
+template <int D>
+std::size_t record_size(Particles<D>& p, bool applied, bool with_ids) {
+  std::size_t n = sizeof(std::int64_t);
+  std::apply([&](auto&... v) { ((n += sizeof(typename std::decay_t<decltype(v)>::value_type)), ...); }, fields(p));
+  if (applied) n += sizeof(Vec<D>) + sizeof(Rot<D>);
+  if (with_ids) n += sizeof(std::int64_t);
+  return n;
+}
+
+// Reads the records of a message: how many, then each one's global index and the offset of its data.
+struct RecordList {
+  std::vector<std::pair<std::int64_t, std::size_t>> items;  // global index, byte offset of the record
+  std::size_t end = 0;                                      // the byte after the last record
+};
+inline RecordList read_records(const Bytes& in, std::size_t at, std::size_t size) {
+  RecordList r;
+  const auto n = take_bytes<std::uint64_t>(in, at);
+  for (std::uint64_t k = 0; k < n; ++k) {
+    std::size_t peek = at;
+    r.items.push_back({take_bytes<std::int64_t>(in, peek), at});
+    at += size;
+  }
+  r.end = at;
+  return r;
+}
+
+}  // namespace
+
+template <int D>
+int World<D>::own_count() const {
+  int n = 0;
+  for (int i = 0; i < particles.size(); ++i) n += !particles.is_ghost(i);
+  return n;
+}
+
+template <int D>
+int World<D>::held_index(std::int64_t global) const {
+  const auto& g = split_->global;
+  const auto it = std::lower_bound(g.begin(), g.end(), global);
+  return it != g.end() && *it == global ? static_cast<int>(it - g.begin()) : -1;
+}
+
+template <int D>
+void World<D>::hold(const std::vector<Source>& sources, const std::vector<Bytes>& received) {
+  auto& p = particles;
+  const bool applied = applied_loads, with_ids = !ids.empty();
+  Particles<D> np;
+  std::vector<std::int64_t> nids, nglobal;
+  std::vector<Vec<D>> nx_rebuild;
+  for (const Source& s : sources) {
+    nglobal.push_back(s.global);
+    np.ghost.push_back(s.ghost);
+    if (s.local >= 0) {
+      const int i = s.local;
+      std::apply([&](auto&... dst) { std::apply([&](auto&... src) { (dst.push_back(src[i]), ...); }, fields(p)); },
+                 fields(np));
+      if (applied) np.f_applied.push_back(p.f_applied[i]), np.m_applied.push_back(p.m_applied[i]);
+      if (with_ids) nids.push_back(ids[i]);
+      nx_rebuild.push_back(x_at_rebuild_[i]);
+    } else {
+      const Bytes& in = received[s.rank];
+      std::size_t at = s.at + sizeof(std::int64_t);
+      std::apply(
+          [&](auto&... dst) {
+            ((dst.push_back(take_bytes<typename std::decay_t<decltype(dst)>::value_type>(in, at))), ...);
+          },
+          fields(np));
+      if (applied) {
+        np.f_applied.push_back(take_bytes<Vec<D>>(in, at));
+        np.m_applied.push_back(take_bytes<Rot<D>>(in, at));
+      }
+      if (with_ids) nids.push_back(take_bytes<std::int64_t>(in, at));
+      nx_rebuild.push_back(np.x.back());
+    }
+  }
+  // A pair keeps its particles whatever copy of them is held now (a ghost's comes afresh from its owner).
+  std::vector<int> to(p.size(), -1);
+  for (int i = 0; i < p.size(); ++i) {
+    const auto it = std::lower_bound(nglobal.begin(), nglobal.end(), split_->global[i]);
+    if (it != nglobal.end() && *it == split_->global[i]) to[i] = static_cast<int>(it - nglobal.begin());
+  }
+  p = std::move(np);
+  ids = std::move(nids);
+  x_at_rebuild_ = std::move(nx_rebuild);
+  split_->global = std::move(nglobal);
+  for (auto& s : sets) s->renumber(to, p.ghost);
+}
+
+template <int D>
+void World<D>::own_driven_members() {
+  for (std::size_t g = 0; g < driven.size(); ++g) {
+    driven[g].members.clear();
+    for (std::int64_t m : split_->driven[g]) {
+      const int i = held_index(m);
+      if (i >= 0 && !particles.is_ghost(i)) driven[g].members.push_back(i);
+    }
+  }
+}
+
+template <int D>
+void World<D>::split(const Exchange& exchange) {
+  if (split_) throw std::logic_error("World::split: the world is split already");
+  if (!walls.empty() || !gauges.empty() || trace_energy)
+    throw std::logic_error(
+        "World::split: walls, opening gauges and energy tracing are not shared between processes yet");
+  const int n = particles.size();
+  SplitState st;
+  st.exchange = &exchange;
+  st.regions = Decomposition<D>::bisect(particles.x, exchange.size());
+  st.reach = 2 * particles.max_radius();
+  st.global.resize(n);
+  std::iota(st.global.begin(), st.global.end(), std::int64_t(0));
+  for (const auto& g : driven) st.driven.emplace_back(g.members.begin(), g.members.end());
+  st.send.resize(exchange.size());
+  st.fill.resize(exchange.size());
+  split_ = std::move(st);
+  // Every process holds the whole world: its own particles are those of its region, the rest are ghosts until
+  // the owners say which ones it needs.
+  std::vector<Source> all;
+  for (int i = 0; i < n; ++i) all.push_back({i, i, -1, 0, split_->regions.owner(particles.x[i]) != exchange.rank()});
+  hold(all, {});
+  send_ghosts();
+  relink();
+}
+
+// The own particles other processes need as ghosts, per rank: those within the ghost layer of its region, and
+// the partners of intact bonds with a particle it owns.
+template <int D>
+std::vector<std::vector<int>> World<D>::wanted_ghosts() const {
+  const auto& p = particles;
+  const auto& regions = split_->regions;
+  const int me = split_->exchange->rank(), ranks = split_->exchange->size();
+  // The layer is widened by a relative 1e-9: a pair just within reach must never miss its ghost to rounding.
+  const double layer = (split_->reach + skin) * (1 + 1e-9);
+  std::vector<std::vector<int>> wanted(ranks);
+  for (int i = 0; i < p.size(); ++i) {
+    if (p.is_ghost(i)) continue;
+    for (int r = 0; r < ranks; ++r)
+      if (r != me && regions.near(r, p.x[i], layer)) wanted[r].push_back(i);
+  }
+  for (const auto& s : sets) {
+    const auto& pairs = s->pairs();
+    for (std::size_t c = 0; c < pairs.size(); ++c) {
+      if (!s->persistent(c)) continue;
+      for (int e = 0; e < 2; ++e) {
+        const int mine = pairs[c][e], other = pairs[c][1 - e];
+        if (p.is_ghost(mine)) continue;
+        const int r = regions.owner(p.x[other]);
+        if (r != me) wanted[r].push_back(mine);
+      }
+    }
+  }
+  for (auto& w : wanted) {
+    std::sort(w.begin(), w.end());
+    w.erase(std::unique(w.begin(), w.end()), w.end());
+  }
+  return wanted;
+}
+
+// Sends each process the ghosts it needs and keeps, of what is held, the own particles and the ghosts received.
+template <int D>
+void World<D>::send_ghosts() {
+  auto& p = particles;
+  const Exchange& ex = *split_->exchange;
+  const int ranks = ex.size();
+  const auto wanted = wanted_ghosts();
+  std::vector<Bytes> out(ranks);
+  std::vector<std::vector<std::int64_t>> sent(ranks);
+  for (int r = 0; r < ranks; ++r) {
+    put_bytes(out[r], static_cast<std::uint64_t>(wanted[r].size()));
+    for (int i : wanted[r]) {
+      put_record(out[r], split_->global[i], p, ids, applied_loads, i);
+      sent[r].push_back(split_->global[i]);
+    }
+  }
+  const std::vector<Bytes> in = ex.all_to_all(out);
+  const std::size_t size = record_size(p, applied_loads, !ids.empty());
+  std::vector<Source> keep;
+  for (int i = 0; i < p.size(); ++i)
+    if (!p.is_ghost(i)) keep.push_back({split_->global[i], i, -1, 0, false});
+  for (int r = 0; r < ranks; ++r)
+    for (const auto& [global, at] : read_records(in[r], 0, size).items) keep.push_back({global, -1, r, at, true});
+  std::sort(keep.begin(), keep.end(), [](const Source& a, const Source& b) { return a.global < b.global; });
+  hold(keep, in);
+  for (int r = 0; r < ranks; ++r) {
+    split_->send[r].clear();
+    for (std::int64_t g : sent[r]) split_->send[r].push_back(held_index(g));
+    split_->fill[r].clear();
+  }
+  for (int i = 0; i < p.size(); ++i)
+    if (p.is_ghost(i)) split_->fill[split_->regions.owner(p.x[i])].push_back(i);
+  own_driven_members();
+}
+
+// At a rebuild: each own particle that left its region goes to its new owner, with the histories of its pairs
+// and the particles at their other ends; then the ghosts are sent afresh.
+template <int D>
+void World<D>::redistribute() {
+  auto& p = particles;
+  const Exchange& ex = *split_->exchange;
+  const int me = ex.rank(), ranks = ex.size();
+  const auto& regions = split_->regions;
+  std::vector<int> owner(p.size());
+  for (int i = 0; i < p.size(); ++i) owner[i] = regions.owner(p.x[i]);
+  // Per destination: the particles (leaving ones and their pairs' other ends, once each) and the pair records.
+  std::vector<std::vector<int>> carried(ranks);
+  std::vector<Bytes> pair_records(ranks);
+  std::vector<std::uint64_t> pair_count(ranks, 0);
+  for (int i = 0; i < p.size(); ++i)
+    if (!p.is_ghost(i) && owner[i] != me) carried[owner[i]].push_back(i);
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    const auto& pairs = sets[s]->pairs();
+    for (std::size_t c = 0; c < pairs.size(); ++c) {
+      const auto [a, b] = pairs[c];
+      for (int e = 0; e < 2; ++e) {
+        const int i = pairs[c][e];
+        const int r = owner[i];
+        if (p.is_ghost(i) || r == me) continue;
+        if (e == 1 && !p.is_ghost(a) && owner[a] == r) continue;  // sent already with A
+        put_bytes(pair_records[r], static_cast<std::int32_t>(s));
+        put_bytes(pair_records[r], split_->global[a]);
+        put_bytes(pair_records[r], split_->global[b]);
+        sets[s]->history(c, false, pair_records[r]);
+        ++pair_count[r];
+        carried[r].push_back(pairs[c][1 - e]);
+      }
+    }
+  }
+  std::vector<Bytes> out(ranks);
+  for (int r = 0; r < ranks; ++r) {
+    auto& list = carried[r];
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    put_bytes(out[r], static_cast<std::uint64_t>(list.size()));
+    for (int i : list) put_record(out[r], split_->global[i], p, ids, applied_loads, i);
+    put_bytes(out[r], pair_count[r]);
+    out[r].insert(out[r].end(), pair_records[r].begin(), pair_records[r].end());
+  }
+  const std::vector<Bytes> in = ex.all_to_all(out);
+  // Hold what was held and what arrived; own now: whatever lies in this region.
+  const std::size_t size = record_size(p, applied_loads, !ids.empty());
+  std::vector<Source> all;
+  for (int i = 0; i < p.size(); ++i) all.push_back({split_->global[i], i, -1, 0, owner[i] != me});
+  std::vector<std::size_t> pairs_at(ranks);
+  for (int r = 0; r < ranks; ++r) {
+    const RecordList list = read_records(in[r], 0, size);
+    pairs_at[r] = list.end;
+    for (const auto& [global, at] : list.items) {
+      std::size_t peek = at + sizeof(std::int64_t);
+      const auto x = take_bytes<Vec<D>>(in[r], peek);
+      all.push_back({global, -1, r, at, regions.owner(x) != me});
+    }
+  }
+  // Sorted by whole-world index; a particle both held and received keeps the held copy (the same numbers).
+  std::stable_sort(all.begin(), all.end(), [](const Source& a, const Source& b) { return a.global < b.global; });
+  all.erase(std::unique(all.begin(), all.end(), [](const Source& a, const Source& b) { return a.global == b.global; }),
+            all.end());
+  hold(all, in);
+  // The pairs that arrived, with their histories, per set in pair order.
+  struct Arrived {
+    Pair pair;
+    int rank;
+    std::size_t at;  // its history's offset in what the rank sent
+  };
+  std::vector<std::vector<Arrived>> arrived(sets.size());
+  for (int r = 0; r < ranks; ++r) {
+    std::size_t at = pairs_at[r];
+    const auto n = take_bytes<std::uint64_t>(in[r], at);
+    for (std::uint64_t k = 0; k < n; ++k) {
+      const auto s = take_bytes<std::int32_t>(in[r], at);
+      const int a = held_index(take_bytes<std::int64_t>(in[r], at));
+      const int b = held_index(take_bytes<std::int64_t>(in[r], at));
+      if (a < 0 || b < 0) throw std::logic_error("World::redistribute: a pair arrived without its particles");
+      arrived[s].push_back({{a, b}, r, at});
+      at += sets[s]->history_size();
+    }
+  }
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    auto& list = arrived[s];
+    if (list.empty()) continue;
+    // A pair may arrive from two processes (its particles left both): the copies are the same.
+    std::stable_sort(list.begin(), list.end(), [](const Arrived& x, const Arrived& y) { return x.pair < y.pair; });
+    list.erase(
+        std::unique(list.begin(), list.end(), [](const Arrived& x, const Arrived& y) { return x.pair == y.pair; }),
+        list.end());
+    std::vector<Pair> pairs;
+    Bytes histories;
+    const std::size_t size = sets[s]->history_size();
+    for (const Arrived& a : list) {
+      pairs.push_back(a.pair);
+      histories.insert(histories.end(), in[a.rank].begin() + a.at, in[a.rank].begin() + a.at + size);
+    }
+    sets[s]->add(pairs, histories, false);
+  }
+  send_ghosts();
+}
+
+// After the law of motion: the own particles' new positions, velocities and orientations to the processes that
+// hold them as ghosts.
+template <int D>
+void World<D>::share_motion() {
+  auto& p = particles;
+  const Exchange& ex = *split_->exchange;
+  std::vector<Bytes> out(ex.size());
+  for (int r = 0; r < ex.size(); ++r)
+    for (int i : split_->send[r]) {
+      put_bytes(out[r], p.x[i]);
+      put_bytes(out[r], p.v[i]);
+      put_bytes(out[r], p.w[i]);
+      put_bytes(out[r], p.q[i]);
+    }
+  const std::vector<Bytes> in = ex.all_to_all(out);
+  for (int r = 0; r < ex.size(); ++r) {
+    std::size_t at = 0;
+    for (int i : split_->fill[r]) {
+      p.x[i] = take_bytes<Vec<D>>(in[r], at);
+      p.v[i] = take_bytes<Vec<D>>(in[r], at);
+      p.w[i] = take_bytes<Rot<D>>(in[r], at);
+      p.q[i] = take_bytes<typename Dim<D>::Orientation>(in[r], at);
+    }
+  }
+}
+
+template <int D>
+double World<D>::agreed_min(double x) const {
+  std::vector<double> v{-x};
+  split_->exchange->max(v);
+  return -v[0];
+}
+
+// The end of a step on every process alike: the largest displacement since the rebuild, and whether any
+// process found a particle moving too far, a pair passing through, or bonds breaking. A failure is thrown on
+// every process with the message of the one that found it (the first in the whole world's order); the breaks
+// join the crack log in the serial order (set, then pair).
+template <int D>
+void World<D>::agree_on_step(const Motion& motion) {
+  const Exchange& ex = *split_->exchange;
+  const double too_far = motion.too_far >= 0 ? -static_cast<double>(global_index(motion.too_far)) : -kInf;
+  std::vector<double> v{motion.moved, too_far, split_->passing.empty() ? 0.0 : 1.0, split_->cracks.empty() ? 0.0 : 1.0};
+  ex.max(v);
+  moved_ = v[0];
+  auto fail = [&](const std::string& mine, bool ordered_by_key) {
+    Bytes b;
+    if (!mine.empty()) {
+      for (std::int64_t k : split_->passing_key) put_bytes(b, k);
+      b.insert(b.end(), mine.begin(), mine.end());
+    }
+    const auto all = ex.all_gather(b);
+    const Bytes* first = nullptr;
+    for (const Bytes& m : all) {
+      if (m.empty()) continue;
+      if (!first ||
+          (ordered_by_key && std::lexicographical_compare(reinterpret_cast<const std::int64_t*>(m.data()),
+                                                          reinterpret_cast<const std::int64_t*>(m.data()) + 3,
+                                                          reinterpret_cast<const std::int64_t*>(first->data()),
+                                                          reinterpret_cast<const std::int64_t*>(first->data()) + 3)))
+        first = &m;
+    }
+    throw InstabilityError(std::string(first->begin() + 3 * sizeof(std::int64_t), first->end()));
+  };
+  if (v[2] > 0) fail(split_->passing, true);
+  if (v[1] > -kInf) {
+    std::string mine;
+    if (motion.too_far >= 0 && too_far == v[1]) {
+      try {
+        moved_too_far(motion.too_far);
+      } catch (const InstabilityError& e) {
+        mine = e.what();
+      }
+    }
+    fail(mine, false);
+  }
+  if (v[3] > 0) {
+    Bytes b;
+    for (const Crack<D>& c : split_->cracks) put_bytes(b, c);
+    std::vector<Crack<D>> merged;
+    for (const Bytes& m : ex.all_gather(b)) {
+      std::size_t at = 0;
+      while (at < m.size()) merged.push_back(take_bytes<Crack<D>>(m, at));
+    }
+    std::sort(merged.begin(), merged.end(), [](const Crack<D>& x, const Crack<D>& y) {
+      return std::tie(x.set, x.a, x.b) < std::tie(y.set, y.a, y.b);
+    });
+    for (const Crack<D>& c : merged) count_crack(c);
+  }
+  split_->cracks.clear();
+}
+
+template int World<2>::own_count() const;
+template int World<2>::held_index(std::int64_t) const;
+template void World<2>::hold(const std::vector<Source>&, const std::vector<Bytes>&);
+template void World<2>::own_driven_members();
+template void World<2>::split(const Exchange&);
+template std::vector<std::vector<int>> World<2>::wanted_ghosts() const;
+template void World<2>::send_ghosts();
+template void World<2>::redistribute();
+template void World<2>::share_motion();
+template double World<2>::agreed_min(double) const;
+template void World<2>::agree_on_step(const Motion&);
+template int World<3>::own_count() const;
+template int World<3>::held_index(std::int64_t) const;
+template void World<3>::hold(const std::vector<Source>&, const std::vector<Bytes>&);
+template void World<3>::own_driven_members();
+template void World<3>::split(const Exchange&);
+template std::vector<std::vector<int>> World<3>::wanted_ghosts() const;
+template void World<3>::send_ghosts();
+template void World<3>::redistribute();
+template void World<3>::share_motion();
+template double World<3>::agreed_min(double) const;
+template void World<3>::agree_on_step(const Motion&);
+
+}  // namespace mc
