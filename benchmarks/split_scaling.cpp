@@ -37,6 +37,14 @@ class TimedExchange final : public Exchange {
     ++calls;
     return in;
   }
+  std::vector<Bytes> swap(const std::vector<Bytes>& out, const std::vector<std::size_t>& in_sizes) const override {
+    const auto t0 = Clock::now();
+    auto in = inner_.swap(out, in_sizes);
+    for (const auto& b : out) sent += static_cast<double>(b.size());
+    seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    ++calls;
+    return in;
+  }
   std::vector<Bytes> all_gather(const Bytes& mine) const override {
     const auto t0 = Clock::now();
     auto all = inner_.all_gather(mine);
@@ -47,6 +55,12 @@ class TimedExchange final : public Exchange {
   void max(std::vector<double>& v) const override {
     const auto t0 = Clock::now();
     inner_.max(v);
+    seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    ++calls;
+  }
+  void sum(std::vector<std::int64_t>& v) const override {
+    const auto t0 = Clock::now();
+    inner_.sum(v);
     seconds += std::chrono::duration<double>(Clock::now() - t0).count();
     ++calls;
   }

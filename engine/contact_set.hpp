@@ -15,6 +15,7 @@
 #include "engine/cell_grid.hpp"
 #include "engine/contact_geometry.hpp"
 #include "engine/contact_model.hpp"
+#include "engine/exact_sum.hpp"
 #include "engine/lanes.hpp"
 #include "engine/parallel.hpp"
 #include "engine/particles.hpp"
@@ -36,10 +37,11 @@ struct Slots {
   }
 };
 
-// Energy dissipated by one pass over the contacts [J] (energy tracing only).
+// Energy dissipated by one pass over the contacts [J] (energy tracing only), summed exactly: the same bits however
+// the contacts are split between threads or processes.
 struct Dissipated {
-  double contacts = 0;  // friction slip (Tang 3.77), plastic flow, dashpots, viscosity
-  double bonds = 0;     // bond breakage, softening and damage: the work of fracture
+  ExactSum contacts;  // friction slip (Tang 3.77), plastic flow, dashpots, viscosity
+  ExactSum bonds;     // bond breakage, softening and damage: the work of fracture
   Dissipated& operator+=(const Dissipated& o) {
     contacts += o.contacts;
     bonds += o.bonds;
@@ -86,7 +88,8 @@ class ContactSetBase {
   // R_I > 0: the model bonds the pairs with centre distance ≤ R_I (R_A + R_B) (the CPM interaction radius)
   // instead of those within the gap tolerance; 0: the gap tolerance applies.
   virtual double interaction_radius() const = 0;
-  virtual double strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const = 0;
+  // Of the pairs whose A is held as its own (all but a split world's ghosts: each pair counts once).
+  virtual ExactSum strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const = 0;
   // Bonds that broke or first yielded in the last forces() call, in pair order (the same on any thread count).
   virtual const std::vector<PairEvent<D>>& events() const = 0;
   // The first contact, in pair order, that the last forces() call found overlapping by more than half the smaller
@@ -291,26 +294,27 @@ class ContactSet final : public ContactSetBase<D> {
       return 0.0;
   }
 
-  double strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const override {
-    std::vector<double> part(block_count(pairs_.size()), 0.0);
+  ExactSum strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const override {
+    std::vector<ExactSum> part(block_count(pairs_.size()));
 #pragma omp parallel for schedule(static) if (pairs_.size() > std::size_t(kParallelMin))
     for (int b = 0; b < static_cast<int>(part.size()); ++b) {
       const std::size_t end = std::min(pairs_.size(), std::size_t(b + 1) * kBlock);
       for (std::size_t c = std::size_t(b) * kBlock; c < end; ++c) {
+        if (p.is_ghost(pairs_[c][0])) continue;
         Vec<D> ca, cb;
         const auto g = ball_geometry(p, pairs_[c][0], pairs_[c][1], 0.0, ca, cb);
-        part[b] += Model::template strain_energy<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g,
-                                                    states_[c]);
+        part[b].add(Model::template strain_energy<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g,
+                                                     states_[c]));
       }
     }
-    double e = 0;
-    for (double x : part) e += x;
+    ExactSum e;
+    for (const ExactSum& x : part) e += x;
     for (std::size_t c = 0; c < wall_pairs_.size(); ++c) {
       const auto [w, j] = wall_pairs_[c];
       Vec<D> cw, cb;
       const auto g = wall_geometry(p, walls[w], j, 0.0, cw, cb);
-      e += Model::template strain_energy<D>(Model::template wall<D>(params_, walls[w].material, g.r_b, g.k_b), g,
-                                            wall_states_[c]);
+      e.add(Model::template strain_energy<D>(Model::template wall<D>(params_, walls[w].material, g.r_b, g.k_b), g,
+                                             wall_states_[c]));
     }
     return e;
   }
@@ -407,6 +411,8 @@ class ContactSet final : public ContactSetBase<D> {
     events_.clear();
     block_passing_.assign(block_count(n), kNone);
     passing_.reset();
+    // A split world's pair is computed on both its particles' processes; its energy counts on A's.
+    auto counted = [&p](int a) { return !p.is_ghost(a); };
 #pragma omp parallel for schedule(static) if (n > std::size_t(kParallelMin))
     for (int b = 0; b < block_count(n); ++b) {
       const std::size_t end = std::min(n, std::size_t(b + 1) * kBlock);
@@ -419,11 +425,13 @@ class ContactSet final : public ContactSetBase<D> {
         const double reach = p.radius[i] + p.radius[j];
         if (d.squaredNorm() >= reach * reach && !Model::template persistent<D>(st)) {
           if constexpr (Energy) {
-            dissipated.contacts += Model::template released_energy<D>(
-                Model::template pair<D>(prm, p.radius[i], p.radius[j], p.stiffness[i], p.stiffness[j]), st);
+            if (counted(i))
+              dissipated.contacts.add(Model::template released_energy<D>(
+                  Model::template pair<D>(prm, p.radius[i], p.radius[j], p.stiffness[i], p.stiffness[j]), st));
             if (dashpot_[c].squaredNorm() > 0) {  // the last step's dashpot force acted as the pair parted
               Vec<D> ca, cb;
-              dissipated.contacts -= 0.5 * dashpot_[c].dot(ball_geometry(p, i, j, dt, ca, cb).v_rel) * dt;
+              if (counted(i))
+                dissipated.contacts.add(-0.5 * dashpot_[c].dot(ball_geometry(p, i, j, dt, ca, cb).v_rel) * dt);
               dashpot_[c].setZero();
             }
           }
@@ -450,8 +458,10 @@ class ContactSet final : public ContactSetBase<D> {
         if constexpr (Energy) {
           // Central differences balance ½ m v(t−½)·v(t+½) against ½ F(t)·(v(t−½) + v(t+½)) Δt: half of a
           // dashpot force's work is booked now, half at the next step with the velocity it produced.
-          dissipated.contacts += r.dissipated - 0.5 * (dashpot_[c] + r.dashpot).dot(g.v_rel) * dt;
-          dissipated.bonds += r.fractured;
+          if (counted(i)) {
+            dissipated.contacts.add(r.dissipated - 0.5 * (dashpot_[c] + r.dashpot).dot(g.v_rel) * dt);
+            dissipated.bonds.add(r.fractured);
+          }
           dashpot_[c] = r.dashpot;
         }
       };
@@ -490,8 +500,8 @@ class ContactSet final : public ContactSetBase<D> {
       s.ma[slot] = Dim<D>::cross(cw, Vec<D>(-r.force)) - r.moment;  // on the wall, about its origin
       s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
       if constexpr (Energy) {
-        e.contacts += r.dissipated - 0.5 * (wall_dashpot_[c] + r.dashpot).dot(g.v_rel) * dt;
-        e.bonds += r.fractured;
+        e.contacts.add(r.dissipated - 0.5 * (wall_dashpot_[c] + r.dashpot).dot(g.v_rel) * dt);
+        e.bonds.add(r.fractured);
         wall_dashpot_[c] = r.dashpot;
       }
     }

@@ -19,6 +19,7 @@ class ExactSum {
 
   void add(double x) {
     const auto bits = std::bit_cast<std::uint64_t>(x);
+    if ((bits << 1) == 0) return;  // ±0: most contacts dissipate nothing in most steps
     const int exponent = static_cast<int>((bits >> 52) & 0x7ff);
     if (exponent == 0x7ff) {  // infinities and NaN: summed apart (their sum does not depend on the order either)
       special_ += x;
@@ -31,11 +32,11 @@ class ExactSum {
     const int k = shift >> 5;
     const auto lo = static_cast<std::int64_t>(wide & 0xffffffffu),
                mid = static_cast<std::int64_t>((wide >> 32) & 0xffffffffu), hi = static_cast<std::int64_t>(wide >> 64);
-    if (bits >> 63) {
-      limb_[k] -= lo, limb_[k + 1] -= mid, limb_[k + 2] -= hi;
-    } else {
-      limb_[k] += lo, limb_[k + 1] += mid, limb_[k + 2] += hi;
-    }
+    // Negated without a branch (the signs of the terms come in no pattern): (v ^ s) − s is −v when s = −1.
+    const std::int64_t sign = -static_cast<std::int64_t>(bits >> 63);
+    limb_[k] += (lo ^ sign) - sign;
+    limb_[k + 1] += (mid ^ sign) - sign;
+    limb_[k + 2] += (hi ^ sign) - sign;
     // Each limb takes under 2^32 per term: carried before 2^30 terms can overflow its 63 bits.
     if (++terms_ == (std::int64_t(1) << 30)) carry();
   }

@@ -173,12 +173,14 @@ double World<D>::critical_timestep() {
   const double margin = skin > skin_floor_ ? skin_floor_ : kInf;
   for (std::size_t s = 0; s < sets.size(); ++s)
     sets[s]->stiffness(particles, walls, k, offset_[s], wall_offset_[s], margin);
-  for (auto& wl : walls) wl.contact_kn = 0;
+  std::vector<ExactSum> kn(walls.size());
   for (std::size_t s = 0, at = 0; s < sets.size(); ++s) {
     const auto& wp = sets[s]->wall_pairs();
     for (std::size_t c = 0; c < wp.size(); ++c)
-      if (wall_touching[at++]) walls[wp[c][0]].contact_kn += k.kt(wall_offset_[s] + c);
+      if (wall_touching[at++]) kn[wp[c][0]].add(k.kt(wall_offset_[s] + c));
   }
+  agree_sums(kn);
+  for (std::size_t w = 0; w < walls.size(); ++w) walls[w].contact_kn = kn[w].value();
   double tmin = kInf;
 #pragma omp parallel for schedule(static) reduction(min : tmin) if (n > kParallelMin)
   for (int i = 0; i < n; ++i) {
@@ -247,10 +249,7 @@ void World<D>::compute_forces() {
       }
     }
   }
-  if (trace_energy) {
-    energy.dissipated_contacts += e.contacts;
-    energy.dissipated_bonds += e.bonds;
-  }
+  if (trace_energy) step_sums_[0] = e.contacts, step_sums_[1] = e.bonds;
   log_cracks();
 }
 
@@ -321,8 +320,9 @@ typename World<D>::Motion World<D>::move_particles() {
   const double h = dt, alpha = local_damping;
   const Vec<D> g = Gravity ? *gravity : Vec<D>::Zero();
   const int blocks = block_count(n);
-  std::vector<double> body(Energy ? blocks : 0, 0.0), local(Energy ? blocks : 0, 0.0), kin(Energy ? blocks : 0, 0.0),
-      held(Energy ? blocks : 0, 0.0);
+  // Energy terms per block, summed exactly: the same bits on any number of threads or processes.
+  std::vector<ExactSum> body(Energy ? blocks : 0), local(Energy ? blocks : 0), kin(Energy ? blocks : 0),
+      held(Energy ? blocks : 0);
   double moved2 = 0;
   int too_far = n;  // the first particle that moved more than half its radius in this step, or went non-finite
   const std::uint8_t* ghost = p.ghost.empty() ? nullptr : p.ghost.data();  // moved by their own processes
@@ -385,22 +385,18 @@ typename World<D>::Motion World<D>::move_particles() {
       if constexpr (Energy) {
         // Forces act at t, between the half-step velocities they change: their power is F·v(t), with
         // v(t) = ½(v(t−Δt/2) + v(t+Δt/2)), which is what central differences take out of ½ m v(t−Δt/2)·v(t+Δt/2).
-        body[b] += 0.5 * h * (fext.dot(v0 + p.v[i]) + mext.dot(w0 + p.w[i]));  // Tang (3.74)
-        held[b] += held_work;
-        local[b] -= 0.5 * h * (fd.dot(v0 + p.v[i]) + md.dot(w0 + p.w[i]));
+        body[b].add(0.5 * h * (fext.dot(v0 + p.v[i]) + mext.dot(w0 + p.w[i])));  // Tang (3.74)
+        held[b].add(held_work);
+        local[b].add(-0.5 * h * (fd.dot(v0 + p.v[i]) + md.dot(w0 + p.w[i])));
         // ½ m v(t−Δt/2)·v(t+Δt/2) is the kinetic energy at t for which central differences conserve
         // energy exactly in a linear system.
-        kin[b] += 0.5 * (p.mass[i] * v0.dot(p.v[i]) + p.inertia[i] * w0.dot(p.w[i]));  // Tang (3.79)
+        kin[b].add(0.5 * (p.mass[i] * v0.dot(p.v[i]) + p.inertia[i] * w0.dot(p.w[i])));  // Tang (3.79)
       }
     }
   }
   if constexpr (Energy) {
-    double sb = 0, sl = 0, sk = 0, sh = 0;
-    for (int b = 0; b < blocks; ++b) sb += body[b], sl += local[b], sk += kin[b], sh += held[b];
-    energy.body_work += sb;
-    energy.boundary_work += sh;
-    energy.dissipated_local += sl;
-    ke_half_ = sk;
+    for (int b = 0; b < blocks; ++b)
+      step_sums_[2] += body[b], step_sums_[3] += local[b], step_sums_[4] += kin[b], step_sums_[5] += held[b];
   }
   return {std::sqrt(moved2), too_far < n ? too_far : -1};
 }
@@ -413,15 +409,39 @@ void World<D>::move_walls() {
     wl.force.setZero();
     wl.moment.setZero();
   }
+  // The step's sums, exact (the same bits on any number of processes, which share them here, once a step): the
+  // energy terms of the force pass and the law of motion, each wall's force and moment, the gauges' readings.
+  constexpr int kWallTerms = D + Dim<D>::rot;
+  const std::size_t energy_terms = trace_energy ? step_sums_.size() : 0;
+  std::vector<ExactSum> sums(energy_terms + walls.size() * kWallTerms + gauges.size() * 2 * D);
+  std::copy_n(step_sums_.begin(), energy_terms, sums.begin());
+  ExactSum* wall_sums = sums.data() + energy_terms;
+  ExactSum* gauge_sums = wall_sums + walls.size() * kWallTerms;
   for (std::size_t s = 0; s < sets.size(); ++s) {
     const auto& wp = sets[s]->wall_pairs();
     for (std::size_t c = 0; c < wp.size(); ++c) {
       const std::size_t slot = wall_offset_[s] + c;
-      Wall<D>& wl = walls[wp[c][0]];
-      wl.force -= slots_.f[slot];
-      wl.moment += slots_.ma[slot];
+      ExactSum* w = wall_sums + wp[c][0] * kWallTerms;
+      for (int k = 0; k < D; ++k) w[k].add(-slots_.f[slot][k]);
+      for (int k = 0; k < Dim<D>::rot; ++k) w[D + k].add(slots_.ma[slot][k]);
     }
   }
+  for (std::size_t g = 0; g < gauges.size(); ++g) gauges[g].add_sums(particles, gauge_sums + g * 2 * D);
+  agree_sums(sums);
+  if (trace_energy) {
+    energy.dissipated_contacts += sums[0].value();
+    energy.dissipated_bonds += sums[1].value();
+    energy.body_work += sums[2].value();
+    energy.dissipated_local += sums[3].value();
+    ke_half_ = sums[4].value();
+    energy.boundary_work += sums[5].value();
+    step_sums_.fill(ExactSum{});
+  }
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    for (int k = 0; k < D; ++k) walls[w].force[k] = wall_sums[w * kWallTerms + k].value();
+    for (int k = 0; k < Dim<D>::rot; ++k) walls[w].moment[k] = wall_sums[w * kWallTerms + D + k].value();
+  }
+  for (std::size_t g = 0; g < gauges.size(); ++g) gauges[g].read(gauge_sums + g * 2 * D);
   for (auto& wl : walls) {
     if (wl.area_between.empty()) continue;
     double a = 1;
@@ -431,7 +451,7 @@ void World<D>::move_walls() {
   }
   for (std::size_t w = 0; w < walls.size(); ++w) {
     Wall<D>& wl = walls[w];
-    wl.control_velocity(time, dt, wl.gauge >= 0 ? gauges[wl.gauge].value(particles) : 0.0);
+    wl.control_velocity(time, dt, wl.gauge >= 0 ? gauges[wl.gauge].reading() : 0.0);
     const Vec<D> du = wl.velocity * dt;
     if (trace_energy) energy.boundary_work -= wl.force.dot(du);  // Tang (3.76): work done on the balls
     wl.origin += du;
@@ -491,13 +511,14 @@ void World<D>::update_energy() {
       walls[w].origin -= walls[w].velocity * dt;
     }
   }
-  double e = 0;
-  for (const auto& s : sets) e += s->strain_energy(particles, walls);
+  std::vector<ExactSum> e(1);
+  for (const auto& s : sets) e[0] += s->strain_energy(particles, walls);
+  agree_sums(e);
   if (back) {
     particles.x.swap(x_now);
     for (std::size_t w = 0; w < walls.size(); ++w) walls[w].origin = wall_now[w];
   }
-  energy.strain = e;
+  energy.strain = e[0].value();
   energy.kinetic = ke_half_;
 }
 

@@ -120,8 +120,9 @@ class World {
   // positions: this process keeps the particles of its region, and as ghosts the others' that its contacts reach.
   // Every contact is computed on each process that holds one of its particles, and each particle sums its own
   // contacts in the serial order, so any number of processes gives the bits of the whole world. Call on every
-  // process with the same world, after init() and install_bonds(). Walls, gauges and energy tracing are refused
-  // (std::logic_error) until they are shared too.
+  // process with the same world, after init() and install_bonds(). Sums over particles or contacts (energy
+  // terms, wall forces, gauge readings) are exact (engine/exact_sum.hpp) and shared, so they are the serial bits
+  // too.
   void split(const Exchange& exchange);
   bool is_split() const { return split_.has_value(); }
   // The particle's index in the whole world (its own index when the world is whole).
@@ -166,9 +167,10 @@ class World {
     std::vector<std::int64_t> global;               // held particle → index in the whole world, increasing
     std::vector<std::vector<int>> send, fill;       // per rank: own particles whose motion goes there, ghosts it fills
     std::vector<std::vector<std::int64_t>> driven;  // the driven groups' members, whole-world indices
-    std::vector<Crack<D>> cracks;                   // this step's breaks of pairs whose A is its own, not yet merged
-    std::array<std::int64_t, 3> passing_key{};      // this step's first pair passing through: set, A, B (whole world)
-    std::string passing;                            // and the message that names it (empty: none)
+    std::vector<std::array<std::vector<std::int64_t>, 2>> gauges;  // the gauges' sides, whole-world indices
+    std::vector<Crack<D>> cracks;               // this step's breaks of pairs whose A is its own, not yet merged
+    std::array<std::int64_t, 3> passing_key{};  // this step's first pair passing through: set, A, B (whole world)
+    std::string passing;                        // and the message that names it (empty: none)
   };
   std::optional<SplitState> split_;
   void redistribute();  // particles to their regions' processes with their pairs; ghosts refreshed
@@ -189,7 +191,9 @@ class World {
   // particle or hold only ghosts leave. Returns the new index of each whole-world index held (lookup by search).
   void hold(const std::vector<Source>& sources, const std::vector<Bytes>& received);
   int held_index(std::int64_t global) const;  // −1: not held
-  void own_driven_members();
+  void own_members();                         // the driven groups' and gauges' members held as own
+  // Sums taken on each process, made the whole world's (nothing when the world is whole).
+  void agree_sums(std::vector<ExactSum>& sums) const;
   void count_crack(const Crack<D>& c);
 
   Slots<D> slots_;
@@ -202,6 +206,9 @@ class World {
   std::int64_t step_at_rebuild_ = 0;
   double ke_half_ = 0;
   std::vector<std::int64_t> crack_counts_;  // [kind][mode][phase_a][phase_b], phase_a ≤ phase_b
+  // The step's energy terms until move_walls adds them (with the walls' sums: one exchange a step when split):
+  // dissipated in contacts and bonds, body work, local damping, kinetic, held supports.
+  std::array<ExactSum, 6> step_sums_{};
 };
 
 template <int D>

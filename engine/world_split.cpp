@@ -5,6 +5,7 @@
 // (held particles keep their whole-world order, so the pair lists keep it too): the bits are the serial ones.
 // Particles change hands at neighbour-list rebuilds, each with the histories of its pairs.
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <stdexcept>
 #include <tuple>
@@ -119,22 +120,47 @@ void World<D>::hold(const std::vector<Source>& sources, const std::vector<Bytes>
 }
 
 template <int D>
-void World<D>::own_driven_members() {
-  for (std::size_t g = 0; g < driven.size(); ++g) {
-    driven[g].members.clear();
-    for (std::int64_t m : split_->driven[g]) {
+void World<D>::own_members() {
+  auto own = [&](const std::vector<std::int64_t>& whole, std::vector<int>& members) {
+    members.clear();
+    for (std::int64_t m : whole) {
       const int i = held_index(m);
-      if (i >= 0 && !particles.is_ghost(i)) driven[g].members.push_back(i);
+      if (i >= 0 && !particles.is_ghost(i)) members.push_back(i);
     }
+  };
+  for (std::size_t g = 0; g < driven.size(); ++g) own(split_->driven[g], driven[g].members);
+  for (std::size_t g = 0; g < gauges.size(); ++g) {
+    own(split_->gauges[g][0], gauges[g].a);
+    own(split_->gauges[g][1], gauges[g].b);
+  }
+}
+
+// Exact sums add as integers, in any order; their non-finite parts (infinities, NaN) are counted beside them.
+template <int D>
+void World<D>::agree_sums(std::vector<ExactSum>& sums) const {
+  if (!split_ || sums.empty()) return;
+  constexpr int kL = ExactSum::kLimbs, kEach = kL + 3;
+  std::vector<std::int64_t> limbs(sums.size() * kEach);
+  for (std::size_t k = 0; k < sums.size(); ++k) {
+    const auto& l = sums[k].limbs();
+    std::copy(l.begin(), l.end(), limbs.begin() + k * kEach);
+    const double s = sums[k].special();
+    limbs[k * kEach + kL] = std::isnan(s), limbs[k * kEach + kL + 1] = s == kInf,
+                      limbs[k * kEach + kL + 2] = s == -kInf;
+  }
+  split_->exchange->sum(limbs);
+  for (std::size_t k = 0; k < sums.size(); ++k) {
+    auto& l = sums[k].limbs();
+    const auto* mine = limbs.data() + k * kEach;
+    std::copy(mine, mine + kL, l.begin());
+    const bool nan = mine[kL] > 0 || (mine[kL + 1] > 0 && mine[kL + 2] > 0);
+    sums[k].special() = nan ? kNaN : mine[kL + 1] > 0 ? kInf : mine[kL + 2] > 0 ? -kInf : 0.0;
   }
 }
 
 template <int D>
 void World<D>::split(const Exchange& exchange) {
   if (split_) throw std::logic_error("World::split: the world is split already");
-  if (!walls.empty() || !gauges.empty() || trace_energy)
-    throw std::logic_error(
-        "World::split: walls, opening gauges and energy tracing are not shared between processes yet");
   const int n = particles.size();
   SplitState st;
   st.exchange = &exchange;
@@ -143,6 +169,11 @@ void World<D>::split(const Exchange& exchange) {
   st.global.resize(n);
   std::iota(st.global.begin(), st.global.end(), std::int64_t(0));
   for (const auto& g : driven) st.driven.emplace_back(g.members.begin(), g.members.end());
+  for (auto& g : gauges) {
+    st.gauges.push_back(
+        {std::vector<std::int64_t>(g.a.begin(), g.a.end()), std::vector<std::int64_t>(g.b.begin(), g.b.end())});
+    g.whole_a = g.a.size(), g.whole_b = g.b.size();
+  }
   st.send.resize(exchange.size());
   st.fill.resize(exchange.size());
   split_ = std::move(st);
@@ -221,7 +252,7 @@ void World<D>::send_ghosts() {
   }
   for (int i = 0; i < p.size(); ++i)
     if (p.is_ghost(i)) split_->fill[split_->regions.owner(p.x[i])].push_back(i);
-  own_driven_members();
+  own_members();
 }
 
 // At a rebuild: each own particle that left its region goes to its new owner, with the histories of its pairs
@@ -256,6 +287,20 @@ void World<D>::redistribute() {
         ++pair_count[r];
         carried[r].push_back(pairs[c][1 - e]);
       }
+    }
+  }
+  // Ball–wall pairs (only own particles have them) go with their particle; a wall is known everywhere.
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    const auto& pairs = sets[s]->wall_pairs();
+    for (std::size_t c = 0; c < pairs.size(); ++c) {
+      const auto [w, j] = pairs[c];
+      const int r = owner[j];
+      if (r == me) continue;
+      put_bytes(pair_records[r], -1 - static_cast<std::int32_t>(s));
+      put_bytes(pair_records[r], static_cast<std::int64_t>(w));
+      put_bytes(pair_records[r], split_->global[j]);
+      sets[s]->history(c, true, pair_records[r]);
+      ++pair_count[r];
     }
   }
   std::vector<Bytes> out(ranks);
@@ -294,21 +339,27 @@ void World<D>::redistribute() {
     int rank;
     std::size_t at;  // its history's offset in what the rank sent
   };
-  std::vector<std::vector<Arrived>> arrived(sets.size());
+  // Per set, ball pairs then wall pairs (a wall pair's record names its set −1 − s).
+  std::vector<std::vector<Arrived>> arrived(2 * sets.size());
   for (int r = 0; r < ranks; ++r) {
     std::size_t at = pairs_at[r];
     const auto n = take_bytes<std::uint64_t>(in[r], at);
     for (std::uint64_t k = 0; k < n; ++k) {
-      const auto s = take_bytes<std::int32_t>(in[r], at);
-      const int a = held_index(take_bytes<std::int64_t>(in[r], at));
+      const auto code = take_bytes<std::int32_t>(in[r], at);
+      const bool wall = code < 0;
+      const int s = wall ? -1 - code : code;
+      const auto first = take_bytes<std::int64_t>(in[r], at);
+      const int a = wall ? static_cast<int>(first) : held_index(first);
       const int b = held_index(take_bytes<std::int64_t>(in[r], at));
       if (a < 0 || b < 0) throw std::logic_error("World::redistribute: a pair arrived without its particles");
-      arrived[s].push_back({{a, b}, r, at});
+      arrived[2 * s + wall].push_back({{a, b}, r, at});
       at += sets[s]->history_size();
     }
   }
-  for (std::size_t s = 0; s < sets.size(); ++s) {
-    auto& list = arrived[s];
+  for (std::size_t list_index = 0; list_index < arrived.size(); ++list_index) {
+    const std::size_t s = list_index / 2;
+    const bool wall = list_index % 2;
+    auto& list = arrived[list_index];
     if (list.empty()) continue;
     // A pair may arrive from two processes (its particles left both): the copies are the same.
     std::stable_sort(list.begin(), list.end(), [](const Arrived& x, const Arrived& y) { return x.pair < y.pair; });
@@ -322,7 +373,7 @@ void World<D>::redistribute() {
       pairs.push_back(a.pair);
       histories.insert(histories.end(), in[a.rank].begin() + a.at, in[a.rank].begin() + a.at + size);
     }
-    sets[s]->add(pairs, histories, false);
+    sets[s]->add(pairs, histories, wall);
   }
   send_ghosts();
 }
@@ -341,7 +392,10 @@ void World<D>::share_motion() {
       put_bytes(out[r], p.w[i]);
       put_bytes(out[r], p.q[i]);
     }
-  const std::vector<Bytes> in = ex.all_to_all(out);
+  constexpr std::size_t kEach = 2 * sizeof(Vec<D>) + sizeof(Rot<D>) + sizeof(typename Dim<D>::Orientation);
+  std::vector<std::size_t> sizes(ex.size());
+  for (int r = 0; r < ex.size(); ++r) sizes[r] = split_->fill[r].size() * kEach;
+  const std::vector<Bytes> in = ex.swap(out, sizes);
   for (int r = 0; r < ex.size(); ++r) {
     std::size_t at = 0;
     for (int i : split_->fill[r]) {
@@ -421,7 +475,8 @@ void World<D>::agree_on_step(const Motion& motion) {
 template int World<2>::own_count() const;
 template int World<2>::held_index(std::int64_t) const;
 template void World<2>::hold(const std::vector<Source>&, const std::vector<Bytes>&);
-template void World<2>::own_driven_members();
+template void World<2>::own_members();
+template void World<2>::agree_sums(std::vector<ExactSum>&) const;
 template void World<2>::split(const Exchange&);
 template std::vector<std::vector<int>> World<2>::wanted_ghosts() const;
 template void World<2>::send_ghosts();
@@ -432,7 +487,8 @@ template void World<2>::agree_on_step(const Motion&);
 template int World<3>::own_count() const;
 template int World<3>::held_index(std::int64_t) const;
 template void World<3>::hold(const std::vector<Source>&, const std::vector<Bytes>&);
-template void World<3>::own_driven_members();
+template void World<3>::own_members();
+template void World<3>::agree_sums(std::vector<ExactSum>&) const;
 template void World<3>::split(const Exchange&);
 template std::vector<std::vector<int>> World<3>::wanted_ghosts() const;
 template void World<3>::send_ghosts();

@@ -41,8 +41,8 @@ void World<D>::moved_too_far(int i) const {
     m << " moved " << p.v[i].norm() * dt / p.radius[i] << " of its radius in one step (|v| = " << p.v[i].norm()
       << " m/s)";
   }
-  m << "; likely cause: timestep " << dt << " s too large for the contact stiffness (critical estimate "
-    << dt_critical << " s), or forces out of all proportion (particles placed deep inside each other, an applied "
+  m << "; likely cause: timestep " << dt << " s too large for the contact stiffness (critical estimate " << dt_critical
+    << " s), or forces out of all proportion (particles placed deep inside each other, an applied "
     << "load or a wall speed far beyond what the specimen can take)";
   throw InstabilityError(m.str());
 }
@@ -65,8 +65,7 @@ void World<D>::passing_through(const Pair& pair) const {
     const Vec<D> d = p.x[b] - p.x[a];
     const double depth = p.radius[a] + p.radius[b] - d.norm();
     m << particle_name(a) << " and " << particle_name(b) << " overlap by " << depth / std::min(p.radius[a], p.radius[b])
-      << " of the smaller radius (approaching at " << std::max(0.0, -(p.v[b] - p.v[a]).dot(d.normalized()))
-      << " m/s)";
+      << " of the smaller radius (approaching at " << std::max(0.0, -(p.v[b] - p.v[a]).dot(d.normalized())) << " m/s)";
   }
   m << ": they are passing through each other, which no contact law can stop; likely cause: an impact too fast "
        "for the contact stiffness (the kinetic energy exceeds what the springs store at half a radius of overlap: "
@@ -106,7 +105,8 @@ template <int D>
 void World<D>::check_opening_control() const {
   for (const auto& wl : walls) {
     if (wl.control != WallControl::Opening) continue;
-    const double reading = gauges[wl.gauge].value(particles);
+    // A split world's gauge reads the whole world's particles only where the processes share their sums.
+    const double reading = split_ ? gauges[wl.gauge].reading() : gauges[wl.gauge].value(particles);
     if (!std::isfinite(reading) || wl.opening_gain * dt >= 1) {
       std::ostringstream m;
       m << "unstable " << when(*this) << ": wall '" << wl.name << "' under opening control: ";
@@ -133,8 +133,7 @@ void World<D>::check_energy() const {
   const auto& p = particles;
   const int n = p.size();
   const double budget = std::abs(energy.initial) + std::abs(energy.body_work) + std::abs(energy.boundary_work);
-  const double out =
-      energy.kinetic + energy.dissipated_contacts + energy.dissipated_bonds + energy.dissipated_local;
+  const double out = energy.kinetic + energy.dissipated_contacts + energy.dissipated_bonds + energy.dissipated_local;
   if (out <= 2.0 * budget + 1e-12) return;
   int fastest = 0;  // the particle with the most kinetic energy, to point at
   double e_max = -1;
@@ -144,8 +143,8 @@ void World<D>::check_energy() const {
   }
   std::ostringstream m;
   m << "unstable " << when(*this) << ": kinetic energy " << energy.kinetic << " J plus dissipated "
-    << energy.dissipated_contacts + energy.dissipated_bonds + energy.dissipated_local << " J exceeds twice the energy put in (" << budget
-    << " J)";
+    << energy.dissipated_contacts + energy.dissipated_bonds + energy.dissipated_local
+    << " J exceeds twice the energy put in (" << budget << " J)";
   if (n > 0) m << ", " << particle_name(fastest) << " moving fastest (|v| = " << p.v[fastest].norm() << " m/s)";
   // The fastest contact vibration's half period, π over its angular frequency, is π times the critical estimate.
   const double steps = M_PI * dt_critical / dt;

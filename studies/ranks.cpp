@@ -81,6 +81,19 @@ std::vector<std::vector<std::uint8_t>> Ranks::share(int n, const Job& job) const
 std::vector<Bytes> RanksExchange::all_to_all(const std::vector<Bytes>& out) const {
   const int n = size();
   if (n == 1) return {out[0]};
+  std::vector<std::size_t> in_sizes(n);
+#ifdef MESOCRACK_MPI
+  std::vector<int> send_count(n), receive_count(n);
+  for (int r = 0; r < n; ++r) send_count[r] = static_cast<int>(out[r].size());
+  MPI_Alltoall(send_count.data(), 1, MPI_INT, receive_count.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  for (int r = 0; r < n; ++r) in_sizes[r] = static_cast<std::size_t>(receive_count[r]);
+#endif
+  return swap(out, in_sizes);
+}
+
+std::vector<Bytes> RanksExchange::swap(const std::vector<Bytes>& out, const std::vector<std::size_t>& in_sizes) const {
+  const int n = size();
+  if (n == 1) return {out[0]};
   std::vector<Bytes> in(n);
 #ifdef MESOCRACK_MPI
   std::vector<int> send_count(n), send_at(n), receive_count(n), receive_at(n);
@@ -89,8 +102,8 @@ std::vector<Bytes> RanksExchange::all_to_all(const std::vector<Bytes>& out) cons
     send_at[r] = static_cast<int>(sending.size());
     send_count[r] = static_cast<int>(out[r].size());
     sending.insert(sending.end(), out[r].begin(), out[r].end());
+    receive_count[r] = static_cast<int>(in_sizes[r]);
   }
-  MPI_Alltoall(send_count.data(), 1, MPI_INT, receive_count.data(), 1, MPI_INT, MPI_COMM_WORLD);
   int total = 0;
   for (int r = 0; r < n; ++r) receive_at[r] = total, total += receive_count[r];
   Bytes receiving(total);
@@ -123,6 +136,15 @@ void RanksExchange::max(std::vector<double>& values) const {
 #ifdef MESOCRACK_MPI
   if (size() > 1)
     MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+#else
+  (void)values;
+#endif
+}
+
+void RanksExchange::sum(std::vector<std::int64_t>& values) const {
+#ifdef MESOCRACK_MPI
+  if (size() > 1)
+    MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
 #else
   (void)values;
 #endif

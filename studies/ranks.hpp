@@ -41,8 +41,10 @@ class RanksExchange final : public Exchange {
   int rank() const override { return ranks_.rank(); }
   int size() const override { return ranks_.size(); }
   std::vector<Bytes> all_to_all(const std::vector<Bytes>& out) const override;
+  std::vector<Bytes> swap(const std::vector<Bytes>& out, const std::vector<std::size_t>& in_sizes) const override;
   std::vector<Bytes> all_gather(const Bytes& mine) const override;
   void max(std::vector<double>& values) const override;
+  void sum(std::vector<std::int64_t>& values) const override;
 
  private:
   const Ranks& ranks_;

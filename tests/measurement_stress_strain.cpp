@@ -151,7 +151,7 @@ void circle_stress_equals_wall_stress(int per_side) {
   REQUIRE(pk.unbalanced < 1e-5);  // the comparison below assumes equilibrium
   double ke = 0, strain = 0;
   for (int i = 0; i < w.particles.size(); ++i) ke += 0.5 * w.particles.mass[i] * w.particles.v[i].squaredNorm();
-  for (const auto& s : w.sets) strain += s->strain_energy(w.particles, w.walls);
+  for (const auto& s : w.sets) strain += s->strain_energy(w.particles, w.walls).value();
   const Region<D> region = pk.centre_region(0.35);
   const Tensor<D> sigma = average_stress(w, region), box = pk.box_stress();
   int inside = 0;

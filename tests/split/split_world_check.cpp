@@ -1,16 +1,20 @@
-// One bonded 3D block stepped whole and split across the processes of an MPI launch (World::split), side by side
-// on every process: each process's own particles must carry the whole world's bits at every check, and the crack
-// logs must be the same, entry for entry. Run by tests/split_specimen.cpp under mpirun with 1, 2 and 4 ranks.
-//
-// The block drifts along its length through the fixed cuts between the regions while its ends pull it apart, so
-// particles change hands at every rebuild, bonds break in tension and shear, and the pieces slide and part.
-// Checked after every step. Exit 0 and a line "same bits ..." per rank when everything agreed; 1 and the first
-// difference otherwise.
+// Bonded blocks stepped whole and split across the processes of an MPI launch (World::split), side by side on
+// every process: each process's own particles must carry the whole world's bits after every step, and so must the
+// timestep, the walls, the energy terms and the crack log, entry for entry. Run by tests/split_specimen.cpp under
+// mpirun with 1, 2 and 4 ranks. Two scenes:
+// - drifting: a 3D block drifts along its length through the fixed cuts between the regions while its held ends
+//   pull it apart, so particles change hands at every rebuild, bonds break in tension and shear, and the pieces
+//   slide and part (adaptive skin);
+// - boxed (2D and 3D): a block under gravity crushed by a wall moving at a set velocity, against a fixed floor,
+//   a fixed side, a stress servo on the other side and, in 3D, a wall under opening control reading a gauge across
+//   the block; energy traced, local damping.
+// Exit 0 and a line "same bits ..." per rank and scene when everything agreed; 1 and the first difference otherwise.
 #include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include "contact_models/linear.hpp"
 #include "contact_models/parallel_bond.hpp"
 #include "engine/random_stream.hpp"
 #include "engine/world.hpp"
@@ -20,33 +24,100 @@ using namespace mc;
 
 namespace {
 
-World<3> drifting_block() {
+constexpr double kR = 1e-3;
+
+template <int D>
+World<D> bonded_world(RandomStream& rng, int nx, int ny, int nz, Vec<D> velocity) {
   ParallelBondParams prm;
   prm.contact.modulus = 5e9, prm.contact.kn_ks_ratio = 2.5, prm.contact.friction = 0.5;
   prm.modulus = 10e9, prm.kn_ks_ratio = 2.5;
   prm.tensile_mean = 10e6, prm.tensile_std = 2e6;
   prm.shear_mean = 4e6, prm.shear_std = 1e6;
-  World<3> w;
-  w.sets.push_back(std::make_unique<ContactSet<ParallelBond, 3>>(prm));
+  World<D> w;
+  w.sets.push_back(std::make_unique<ContactSet<ParallelBond, D>>(prm));
   w.model_of = {{0}};
-  w.domain_lo = Vec<3>::Constant(-1);
-  w.domain_hi = Vec<3>::Constant(1);
-  RandomStream rng(11);
-  const double r = 1e-3, dx = 2 * r, dy = std::sqrt(3.0) * r;
-  const int nx = 30, ny = 7, nz = 6;
+  w.domain_lo = Vec<D>::Constant(-1);
+  w.domain_hi = Vec<D>::Constant(1);
+  const double dx = 2 * kR, dy = std::sqrt(3.0) * kR;
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
-        const int n =
-            w.particles.add(Vec<3>((i + 0.5 * (j % 2)) * dx, j * dy, k * dx), r * (1 - 0.15 * rng.uniform()), 2600, 0);
-        w.particles.v[n] = Vec<3>(5.0, 0, 0);
-        if (i == 0) w.particles.fix[n] = 0xff, w.particles.v[n] = Vec<3>(4.5, 0, 0);
-        if (i == nx - 1) w.particles.fix[n] = 0xff, w.particles.v[n] = Vec<3>(5.5, 0.3, 0);
+        Vec<D> x;
+        x[0] = (i + 0.5 * (j % 2)) * dx;
+        x[1] = j * dy;
+        if constexpr (D == 3) x[2] = k * dx;
+        const int n = w.particles.add(x, kR * (1 - 0.15 * rng.uniform()), 2600, 0);
+        w.particles.v[n] = velocity;
       }
+  return w;
+}
+
+World<3> drifting_block() {
+  RandomStream rng(11);
+  const int nx = 30;
+  World<3> w = bonded_world<3>(rng, nx, 7, 6, Vec<3>(5.0, 0, 0));
+  for (int n = 0; n < w.particles.size(); ++n) {
+    const int i = n % nx;
+    if (i == 0) w.particles.fix[n] = 0xff, w.particles.v[n] = Vec<3>(4.5, 0, 0);
+    if (i == nx - 1) w.particles.fix[n] = 0xff, w.particles.v[n] = Vec<3>(5.5, 0.3, 0);
+  }
   w.local_damping = 0.05;
   w.rebuild_interval = 30;
   w.init();
   w.install_bonds(0.5, 5);
+  return w;
+}
+
+template <int D>
+World<D> boxed_block() {
+  RandomStream rng(5);
+  const int nx = D == 2 ? 40 : 20, ny = D == 2 ? 20 : 7, nz = D == 2 ? 1 : 6;
+  World<D> w = bonded_world<D>(rng, nx, ny, nz, Vec<D>::Zero());
+  Vec<D> lo = Vec<D>::Constant(kInf), hi = Vec<D>::Constant(-kInf);
+  for (const auto& x : w.particles.x) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+  lo.array() -= kR, hi.array() += kR;
+  const auto& prm = static_cast<const ContactSet<ParallelBond, D>&>(*w.sets[0]).params();
+  WallMaterial wm;
+  wm.kn = Linear::ball_kn<D>(prm.contact, kR);
+  wm.ks = wm.kn / prm.contact.kn_ks_ratio;
+  wm.friction = 0.3;
+  for (int d = 0; d < D; ++d) {
+    const Vec<D> e = Vec<D>::Unit(d);
+    w.walls.push_back(Wall<D>::plane(lo[d] * e, e));
+    w.walls.push_back(Wall<D>::plane(hi[d] * e, -e));
+  }
+  for (auto& wall : w.walls) wall.material = wm;
+  auto& top = w.walls[3];
+  top.control = WallControl::Velocity;
+  top.target_velocity = -0.5 * Vec<D>::Unit(1);
+  top.ramp_time = 2e-5;
+  auto& side = w.walls[1];
+  side.control = WallControl::Servo;
+  side.target_stress = 2e6;
+  side.servo_area = D == 2 ? hi[1] - lo[1] : (hi[1] - lo[1]) * (hi[2] - lo[2]);
+  side.servo_max_speed = 0.5;
+  if constexpr (D == 3) {
+    // A gauge across the block along x (its first and last columns), read by the front wall under opening control.
+    OpeningGauge<3> g;
+    for (int n = 0; n < w.particles.size(); ++n) {
+      if (n % nx == 0) g.a.push_back(n);
+      if (n % nx == nx - 1) g.b.push_back(n);
+    }
+    g.direction = Vec<3>::UnitX();
+    g.start = g.separation(w.particles);
+    w.gauges.push_back(g);
+    auto& front = w.walls[4];
+    front.control = WallControl::Opening;
+    front.gauge = 0;
+    front.opening_rate = 0.05;
+    front.opening_gain = 2000;
+    front.servo_max_speed = front.retreat_speed = 0.05;
+  }
+  w.gravity = -9.81 * Vec<D>::Unit(1);
+  w.local_damping = 0.1;
+  w.trace_energy = true;
+  w.init();
+  w.install_bonds(0.5, 9);
   return w;
 }
 
@@ -55,8 +126,9 @@ bool same(const T& a, const T& b) {
   return std::memcmp(static_cast<const void*>(&a), static_cast<const void*>(&b), sizeof(T)) == 0;
 }
 
-// The first difference between the split world's own particles and the whole world's, or "".
-std::string difference(const World<3>& whole, const World<3>& split) {
+// The first difference between the split world and the whole one, or "".
+template <int D>
+std::string difference(const World<D>& whole, const World<D>& split) {
   const auto &p = split.particles, &q = whole.particles;
   for (int i = 0; i < p.size(); ++i) {
     if (p.is_ghost(i)) continue;
@@ -64,7 +136,18 @@ std::string difference(const World<3>& whole, const World<3>& split) {
     if (!same(p.x[i], q.x[g]) || !same(p.v[i], q.v[g]) || !same(p.w[i], q.w[g]) || !same(p.q[i], q.q[g]))
       return "particle " + std::to_string(g) + " moved otherwise";
   }
-  if (whole.dt != split.dt) return "timestep";
+  if (!same(whole.dt, split.dt)) return "timestep";
+  for (std::size_t k = 0; k < whole.walls.size(); ++k) {
+    const auto &a = whole.walls[k], &b = split.walls[k];
+    if (!same(a.origin, b.origin) || !same(a.force, b.force) || !same(a.moment, b.moment) ||
+        !same(a.velocity, b.velocity) || !same(a.contact_kn, b.contact_kn))
+      return "wall " + std::to_string(k);
+  }
+  const auto &e = whole.energy, &f = split.energy;
+  if (!same(e.body_work, f.body_work) || !same(e.boundary_work, f.boundary_work) ||
+      !same(e.dissipated_contacts, f.dissipated_contacts) || !same(e.dissipated_bonds, f.dissipated_bonds) ||
+      !same(e.dissipated_local, f.dissipated_local) || !same(e.kinetic, f.kinetic) || !same(e.strain, f.strain))
+    return "energy";
   if (whole.cracks.size() != split.cracks.size())
     return "crack log: " + std::to_string(split.cracks.size()) + " entries against " +
            std::to_string(whole.cracks.size());
@@ -76,32 +159,28 @@ std::string difference(const World<3>& whole, const World<3>& split) {
   return "";
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  Ranks::start(&argc, &argv);
-  const Ranks& ranks = Ranks::world();
-  const RanksExchange exchange(ranks);
-  World<3> whole = drifting_block(), split = drifting_block();
+template <int D, class Make>
+void check(const char* scene, Make&& make, int steps, const Ranks& ranks, const Exchange& exchange) {
+  World<D> whole = make(), split = make();
   const std::size_t bonds = whole.bond_count();
   split.split(exchange);
-  std::vector<std::uint8_t> owned(whole.particles.size(), 0);
   auto own_now = [&] {
     std::vector<std::uint8_t> o(whole.particles.size(), 0);
     for (int i = 0; i < split.particles.size(); ++i)
       if (!split.particles.is_ghost(i)) o[split.global_index(i)] = 1;
     return o;
   };
-  owned = own_now();
+  std::vector<std::uint8_t> owned = own_now();
   const int own_at_start = split.own_count(), held_at_start = split.held_count();
   long arrived = 0;
-  const int steps = 4000;
   for (int s = 1; s <= steps; ++s) {
     whole.step();
     split.step();
+    if (whole.trace_energy && s % 100 == 0) whole.update_energy(), split.update_energy();
     const std::string d = difference(whole, split);
     if (!d.empty()) {
-      std::printf("rank %d of %d: step %d: %s\n", ranks.rank(), ranks.size(), s, d.c_str());
+      std::printf("%s: rank %d of %d: step %d: %s\n", scene, ranks.rank(), ranks.size(), s, d.c_str());
+      std::fflush(stdout);
       ranks.abort(1);
     }
     const auto now = own_now();
@@ -109,9 +188,20 @@ int main(int argc, char** argv) {
     owned = now;
   }
   std::printf(
-      "same bits: rank %d of %d, %d steps, %lld rebuilds, %zu bonds, %zu cracks; own %d then %d (held %d), %ld "
+      "same bits: %s, rank %d of %d, %d steps, %lld rebuilds, %zu bonds, %zu cracks; own %d then %d (held %d), %ld "
       "arrived\n",
-      ranks.rank(), ranks.size(), steps, static_cast<long long>(split.rebuilds), bonds, split.cracks.size(),
+      scene, ranks.rank(), ranks.size(), steps, static_cast<long long>(split.rebuilds), bonds, split.cracks.size(),
       own_at_start, split.own_count(), held_at_start, arrived);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Ranks::start(&argc, &argv);
+  const Ranks& ranks = Ranks::world();
+  const RanksExchange exchange(ranks);
+  check<3>("drifting 3D", drifting_block, 4000, ranks, exchange);
+  check<2>("boxed 2D", boxed_block<2>, 3000, ranks, exchange);
+  check<3>("boxed 3D", boxed_block<3>, 3000, ranks, exchange);
   return 0;
 }
