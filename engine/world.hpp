@@ -125,6 +125,11 @@ class World {
   // too.
   void split(const Exchange& exchange);
   bool is_split() const { return split_.has_value(); }
+  // A split world's load balance: at a rebuild, when the process that owns the most particles owns more than
+  // (1 + imbalance_limit) times the mean, the regions are bisected afresh from the current positions (the bits do
+  // not change: only who computes what). 0: the regions stay as split() drew them.
+  double imbalance_limit = 0;
+  std::int64_t rebalances() const { return split_ ? split_->rebalances : 0; }
   // The particle's index in the whole world (its own index when the world is whole).
   std::int64_t global_index(int i) const { return split_ ? split_->global[i] : i; }
   // The particles this process holds, its own and ghosts, and its own alone.
@@ -171,9 +176,12 @@ class World {
     std::vector<Crack<D>> cracks;               // this step's breaks of pairs whose A is its own, not yet merged
     std::array<std::int64_t, 3> passing_key{};  // this step's first pair passing through: set, A, B (whole world)
     std::string passing;                        // and the message that names it (empty: none)
+    std::int64_t rebalances = 0;
+    double balanced_most = 0;  // the most particles a region owned when the regions were drawn
   };
   std::optional<SplitState> split_;
   void redistribute();  // particles to their regions' processes with their pairs; ghosts refreshed
+  void rebalance();     // new regions when the own counts are out of balance (imbalance_limit)
   std::vector<std::vector<int>> wanted_ghosts() const;
   void send_ghosts();
   void share_motion();  // the own particles' new motion to the processes that hold them as ghosts

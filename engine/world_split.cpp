@@ -45,6 +45,14 @@ struct RecordList {
   std::vector<std::pair<std::int64_t, std::size_t>> items;  // global index, byte offset of the record
   std::size_t end = 0;                                      // the byte after the last record
 };
+// The most particles any region owns.
+template <int D>
+double most_owned(const Decomposition<D>& regions, const std::vector<Vec<D>>& x) {
+  std::vector<double> count(regions.size(), 0);
+  for (const auto& p : x) ++count[regions.owner(p)];
+  return *std::max_element(count.begin(), count.end());
+}
+
 inline RecordList read_records(const Bytes& in, std::size_t at, std::size_t size) {
   RecordList r;
   const auto n = take_bytes<std::uint64_t>(in, at);
@@ -165,6 +173,7 @@ void World<D>::split(const Exchange& exchange) {
   SplitState st;
   st.exchange = &exchange;
   st.regions = Decomposition<D>::bisect(particles.x, exchange.size());
+  st.balanced_most = most_owned(st.regions, particles.x);
   st.reach = 2 * particles.max_radius();
   st.global.resize(n);
   std::iota(st.global.begin(), st.global.end(), std::int64_t(0));
@@ -255,6 +264,42 @@ void World<D>::send_ghosts() {
   own_members();
 }
 
+// The own counts of all processes; past the limit, every process gathers every own particle's position and
+// bisects them in whole-world order, so all draw the same regions.
+template <int D>
+void World<D>::rebalance() {
+  if (imbalance_limit <= 0) return;
+  const Exchange& ex = *split_->exchange;
+  Bytes mine;
+  for (int i = 0; i < particles.size(); ++i)
+    if (!particles.is_ghost(i)) put_bytes(mine, split_->global[i]), put_bytes(mine, particles.x[i]);
+  const std::size_t each = sizeof(std::int64_t) + sizeof(Vec<D>);
+  Bytes count;
+  put_bytes(count, static_cast<double>(mine.size() / each));
+  double most = 0, total = 0;
+  for (const Bytes& b : ex.all_gather(count)) {
+    std::size_t at = 0;
+    const double c = take_bytes<double>(b, at);
+    most = std::max(most, c), total += c;
+  }
+  // Measured against the mean, or against what the last bisection achieved if that was more (a region holds
+  // whole lattice rows, say): a fresh bisection could not do better.
+  if (most <= (1 + imbalance_limit) * std::max(total / ex.size(), split_->balanced_most)) return;
+  std::vector<std::pair<std::int64_t, Vec<D>>> everyone;
+  for (const Bytes& b : ex.all_gather(mine))
+    for (std::size_t at = 0; at < b.size();) {
+      const auto g = take_bytes<std::int64_t>(b, at);
+      everyone.push_back({g, take_bytes<Vec<D>>(b, at)});
+    }
+  std::sort(everyone.begin(), everyone.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Vec<D>> x;
+  x.reserve(everyone.size());
+  for (const auto& e : everyone) x.push_back(e.second);
+  split_->regions = Decomposition<D>::bisect(x, ex.size());
+  split_->balanced_most = most_owned(split_->regions, x);
+  ++split_->rebalances;
+}
+
 // At a rebuild: each own particle that left its region goes to its new owner, with the histories of its pairs
 // and the particles at their other ends; then the ghosts are sent afresh.
 template <int D>
@@ -262,6 +307,7 @@ void World<D>::redistribute() {
   auto& p = particles;
   const Exchange& ex = *split_->exchange;
   const int me = ex.rank(), ranks = ex.size();
+  rebalance();
   const auto& regions = split_->regions;
   std::vector<int> owner(p.size());
   for (int i = 0; i < p.size(); ++i) owner[i] = regions.owner(p.x[i]);
@@ -481,6 +527,7 @@ template void World<2>::split(const Exchange&);
 template std::vector<std::vector<int>> World<2>::wanted_ghosts() const;
 template void World<2>::send_ghosts();
 template void World<2>::redistribute();
+template void World<2>::rebalance();
 template void World<2>::share_motion();
 template double World<2>::agreed_min(double) const;
 template void World<2>::agree_on_step(const Motion&);
@@ -493,6 +540,7 @@ template void World<3>::split(const Exchange&);
 template std::vector<std::vector<int>> World<3>::wanted_ghosts() const;
 template void World<3>::send_ghosts();
 template void World<3>::redistribute();
+template void World<3>::rebalance();
 template void World<3>::share_motion();
 template double World<3>::agreed_min(double) const;
 template void World<3>::agree_on_step(const Motion&);
