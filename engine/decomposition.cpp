@@ -73,6 +73,21 @@ bool Decomposition<D>::near(int r, const Vec<D>& x, double reach) const {
   return d2 <= reach * reach;
 }
 
+template <int D>
+std::vector<int> Decomposition<D>::neighbours(int r, double reach) const {
+  std::vector<int> out;
+  for (int o = 0; o < size(); ++o) {
+    if (o == r) continue;
+    double d2 = 0;
+    for (int k = 0; k < D; ++k) {
+      const double gap = std::max({lo_[o][k] - hi_[r][k], lo_[r][k] - hi_[o][k], 0.0});
+      d2 += gap * gap;
+    }
+    if (d2 <= reach * reach) out.push_back(o);
+  }
+  return out;
+}
+
 template class Decomposition<2>;
 template class Decomposition<3>;
 

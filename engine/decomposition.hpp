@@ -19,6 +19,8 @@ class Decomposition {
   int owner(const Vec<D>& x) const;
   // Whether x lies within `reach` of rank r's region (inside it included).
   bool near(int r, const Vec<D>& x, double reach) const;
+  // The other ranks whose regions come within `reach` of rank r's: the only ones its particles can be ghosts of.
+  std::vector<int> neighbours(int r, double reach) const;
   const Vec<D>& lo(int r) const { return lo_[r]; }
   const Vec<D>& hi(int r) const { return hi_[r]; }
 

@@ -205,10 +205,13 @@ std::vector<std::vector<int>> World<D>::wanted_ghosts() const {
   // The layer is widened by a relative 1e-9: a pair just within reach must never miss its ghost to rounding.
   const double layer = (split_->reach + skin) * (1 + 1e-9);
   std::vector<std::vector<int>> wanted(ranks);
+  // Own particles lie in this region (they were placed at this rebuild): only the regions within the layer of
+  // it can want them.
+  const std::vector<int> close = regions.neighbours(me, layer);
   for (int i = 0; i < p.size(); ++i) {
     if (p.is_ghost(i)) continue;
-    for (int r = 0; r < ranks; ++r)
-      if (r != me && regions.near(r, p.x[i], layer)) wanted[r].push_back(i);
+    for (int r : close)
+      if (regions.near(r, p.x[i], layer)) wanted[r].push_back(i);
   }
   for (const auto& s : sets) {
     const auto& pairs = s->pairs();

@@ -91,26 +91,27 @@ std::vector<Bytes> RanksExchange::all_to_all(const std::vector<Bytes>& out) cons
   return swap(out, in_sizes);
 }
 
+// Point to point, with only the ranks there is something to send to or receive from (a split specimen's
+// neighbours): the cost does not grow with the number of ranks. Messages between two ranks arrive in the order
+// they were sent, so consecutive exchanges never mix.
 std::vector<Bytes> RanksExchange::swap(const std::vector<Bytes>& out, const std::vector<std::size_t>& in_sizes) const {
   const int n = size();
   if (n == 1) return {out[0]};
   std::vector<Bytes> in(n);
 #ifdef MESOCRACK_MPI
-  std::vector<int> send_count(n), send_at(n), receive_count(n), receive_at(n);
-  Bytes sending;
+  std::vector<MPI_Request> requests;
   for (int r = 0; r < n; ++r) {
-    send_at[r] = static_cast<int>(sending.size());
-    send_count[r] = static_cast<int>(out[r].size());
-    sending.insert(sending.end(), out[r].begin(), out[r].end());
-    receive_count[r] = static_cast<int>(in_sizes[r]);
+    if (in_sizes[r] == 0) continue;
+    in[r].resize(in_sizes[r]);
+    requests.emplace_back();
+    MPI_Irecv(in[r].data(), static_cast<int>(in_sizes[r]), MPI_BYTE, r, 0, MPI_COMM_WORLD, &requests.back());
   }
-  int total = 0;
-  for (int r = 0; r < n; ++r) receive_at[r] = total, total += receive_count[r];
-  Bytes receiving(total);
-  MPI_Alltoallv(sending.data(), send_count.data(), send_at.data(), MPI_BYTE, receiving.data(), receive_count.data(),
-                receive_at.data(), MPI_BYTE, MPI_COMM_WORLD);
-  for (int r = 0; r < n; ++r)
-    in[r].assign(receiving.begin() + receive_at[r], receiving.begin() + receive_at[r] + receive_count[r]);
+  for (int r = 0; r < n; ++r) {
+    if (out[r].empty()) continue;
+    requests.emplace_back();
+    MPI_Isend(out[r].data(), static_cast<int>(out[r].size()), MPI_BYTE, r, 0, MPI_COMM_WORLD, &requests.back());
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
 #endif
   return in;
 }
