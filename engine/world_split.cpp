@@ -457,6 +457,24 @@ void World<D>::share_motion() {
 }
 
 template <int D>
+std::string World<D>::first_failure(std::int64_t key, const std::string& message) const {
+  Bytes mine;
+  if (key >= 0) {
+    put_bytes(mine, key);
+    mine.insert(mine.end(), message.begin(), message.end());
+  }
+  std::string first;
+  std::int64_t lowest = -1;
+  for (const Bytes& b : split_->exchange->all_gather(mine)) {
+    if (b.empty()) continue;
+    std::size_t at = 0;
+    const auto k = take_bytes<std::int64_t>(b, at);
+    if (lowest < 0 || k < lowest) lowest = k, first.assign(b.begin() + static_cast<std::ptrdiff_t>(at), b.end());
+  }
+  return first;
+}
+
+template <int D>
 double World<D>::agreed_min(double x) const {
   std::vector<double> v{-x};
   split_->exchange->max(v);
@@ -533,6 +551,7 @@ template void World<2>::redistribute();
 template void World<2>::rebalance();
 template void World<2>::share_motion();
 template double World<2>::agreed_min(double) const;
+template std::string World<2>::first_failure(std::int64_t, const std::string&) const;
 template void World<2>::agree_on_step(const Motion&);
 template int World<3>::own_count() const;
 template int World<3>::held_index(std::int64_t) const;
@@ -546,6 +565,7 @@ template void World<3>::redistribute();
 template void World<3>::rebalance();
 template void World<3>::share_motion();
 template double World<3>::agreed_min(double) const;
+template std::string World<3>::first_failure(std::int64_t, const std::string&) const;
 template void World<3>::agree_on_step(const Motion&);
 
 }  // namespace mc

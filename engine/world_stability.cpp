@@ -77,16 +77,28 @@ template <int D>
 void World<D>::check_stability() const {
   const auto& p = particles;
   const int n = p.size();
-  for (int i = 0; i < n; ++i)
-    for (int k = 0; k < D; ++k)
+  int outside = -1;  // the first own particle (in the whole world's order) outside the domain
+  for (int i = 0; i < n && outside < 0; ++i)
+    for (int k = 0; k < D && !p.is_ghost(i); ++k)
       if (!(p.x[i][k] >= domain_lo[k] && p.x[i][k] <= domain_hi[k])) {
-        std::ostringstream m;
-        m << "stopped " << when(*this) << ": " << particle_name(i) << " left the domain (coordinate " << k << " = "
-          << p.x[i][k] << " m, domain " << domain_lo[k] << " .. " << domain_hi[k] << " m, |v| = " << p.v[i].norm()
-          << " m/s); likely cause: a gap in the walls, an explosion of the packing, a particle shot out by an "
-             "impact, or a domain set too small";
-        throw InstabilityError(m.str());
+        outside = i;
+        break;
       }
+  std::string message;
+  if (outside >= 0) {
+    const int i = outside;
+    int k = 0;
+    while (p.x[i][k] >= domain_lo[k] && p.x[i][k] <= domain_hi[k]) ++k;
+    std::ostringstream m;
+    m << "stopped " << when(*this) << ": " << particle_name(i) << " left the domain (coordinate " << k << " = "
+      << p.x[i][k] << " m, domain " << domain_lo[k] << " .. " << domain_hi[k] << " m, |v| = " << p.v[i].norm()
+      << " m/s); likely cause: a gap in the walls, an explosion of the packing, a particle shot out by an "
+         "impact, or a domain set too small";
+    message = m.str();
+  }
+  // A split world stops on every process together, with the message of the first such particle of all.
+  if (split_) message = first_failure(outside >= 0 ? global_index(outside) : -1, message);
+  if (!message.empty()) throw InstabilityError(message);
   for (std::size_t w = 0; w < walls.size(); ++w)
     if (!walls[w].origin.allFinite() || !walls[w].force.allFinite()) {
       std::ostringstream m;

@@ -7,7 +7,8 @@
 //   slide and part (adaptive skin);
 // - boxed (2D and 3D): a block under gravity crushed by a wall moving at a set velocity, against a fixed floor,
 //   a fixed side, a stress servo on the other side and, in 3D, a wall under opening control reading a gauge across
-//   the block; energy traced, local damping.
+//   the block; energy traced, local damping;
+// - escaping: the drifting block leaves its domain; the split run must stop where the whole one stops.
 // Exit 0 and a line "same bits ..." per rank and scene when everything agreed; 1 and the first difference otherwise.
 #include <cstdio>
 #include <cstring>
@@ -16,6 +17,7 @@
 
 #include "contact_models/linear.hpp"
 #include "contact_models/parallel_bond.hpp"
+#include "engine/errors.hpp"
 #include "engine/random_stream.hpp"
 #include "engine/world.hpp"
 #include "studies/ranks.hpp"
@@ -196,6 +198,39 @@ void check(const char* scene, Make&& make, int steps, const Ranks& ranks, const 
       own_at_start, split.own_count(), held_at_start, static_cast<long long>(split.rebalances()), arrived);
 }
 
+// The drifting block in a domain that ends 1.5 mm past its leading end: checked for stability every 10 steps,
+// the split world must stop at the same step as the whole one, on every rank, with the same message.
+void check_escape(const Ranks& ranks, const Exchange& exchange) {
+  auto make = [] {
+    World<3> w = drifting_block();
+    w.domain_hi[0] = 0.0605;
+    return w;
+  };
+  World<3> whole = make(), split = make();
+  split.split(exchange);
+  auto stop = [](World<3>& w) -> std::pair<long, std::string> {
+    for (long s = 1; s <= 5000; ++s) {
+      w.step();
+      if (s % 10) continue;
+      try {
+        w.check_stability();
+      } catch (const InstabilityError& e) {
+        return {s, e.what()};
+      }
+    }
+    return {-1, ""};
+  };
+  const auto a = stop(whole), b = stop(split);
+  if (a.first < 0 || a != b) {
+    std::printf("escaping 3D: rank %d of %d: the whole world stopped at step %ld (%s), the split one at %ld (%s)\n",
+                ranks.rank(), ranks.size(), a.first, a.second.c_str(), b.first, b.second.c_str());
+    std::fflush(stdout);
+    ranks.abort(1);
+  }
+  std::printf("same stop: escaping 3D, rank %d of %d, step %ld: %.60s...\n", ranks.rank(), ranks.size(), b.first,
+              b.second.c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -205,5 +240,6 @@ int main(int argc, char** argv) {
   check<3>("drifting 3D", drifting_block, 4000, ranks, exchange);
   check<2>("boxed 2D", boxed_block<2>, 3000, ranks, exchange);
   check<3>("boxed 3D", boxed_block<3>, 3000, ranks, exchange);
+  check_escape(ranks, exchange);
   return 0;
 }
