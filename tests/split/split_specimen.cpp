@@ -31,7 +31,7 @@ TEST_CASE("split_specimen_on_1_2_and_4_ranks_gives_the_whole_world_bits") {
       arrived += number_before(at, " arrived");
       rebalances += number_before(at, " rebalances");
     }
-    CHECK(reports == 3 * n);  // three scenes
+    CHECK(reports == 4 * n);  // four scenes
     int stops = 0;
     for (std::size_t at = 0; (at = r.out.find("same stop: escaping", at)) != std::string::npos; ++at) ++stops;
     CHECK(stops == n);  // the escaping block stopped alike on every rank

@@ -4,7 +4,7 @@
 // mpirun with 1, 2 and 4 ranks. Two scenes:
 // - drifting: a 3D block drifts along its length through the fixed cuts between the regions while its held ends
 //   pull it apart, so particles change hands at every rebuild, bonds break in tension and shear, and the pieces
-//   slide and part (adaptive skin);
+//   slide and part (adaptive skin); and the same with the CPM, whose bonds reach past the ghost layer;
 // - boxed (2D and 3D): a block under gravity crushed by a wall moving at a set velocity, against a fixed floor,
 //   a fixed side, a stress servo on the other side and, in 3D, a wall under opening control reading a gauge across
 //   the block; energy traced, local damping;
@@ -13,8 +13,10 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <type_traits>
 #include <vector>
 
+#include "contact_models/cpm.hpp"
 #include "contact_models/linear.hpp"
 #include "contact_models/parallel_bond.hpp"
 #include "engine/errors.hpp"
@@ -28,15 +30,22 @@ namespace {
 
 constexpr double kR = 1e-3;
 
-template <int D>
-World<D> bonded_world(RandomStream& rng, int nx, int ny, int nz, Vec<D> velocity) {
+ParallelBondParams parallel_bond() {
   ParallelBondParams prm;
   prm.contact.modulus = 5e9, prm.contact.kn_ks_ratio = 2.5, prm.contact.friction = 0.5;
   prm.modulus = 10e9, prm.kn_ks_ratio = 2.5;
   prm.tensile_mean = 10e6, prm.tensile_std = 2e6;
   prm.shear_mean = 4e6, prm.shear_std = 1e6;
+  return prm;
+}
+
+// Spheres (discs) on a layered hexagonal lattice, radii 0.85–1 kR at random, all at the given velocity; one
+// contact model.
+template <int D, class Model = ParallelBond>
+World<D> bonded_world(RandomStream& rng, int nx, int ny, int nz, Vec<D> velocity,
+                      const typename Model::Params& prm = parallel_bond()) {
   World<D> w;
-  w.sets.push_back(std::make_unique<ContactSet<ParallelBond, D>>(prm));
+  w.sets.push_back(std::make_unique<ContactSet<Model, D>>(prm));
   w.model_of = {{0}};
   w.domain_lo = Vec<D>::Constant(-1);
   w.domain_hi = Vec<D>::Constant(1);
@@ -54,10 +63,20 @@ World<D> bonded_world(RandomStream& rng, int nx, int ny, int nz, Vec<D> velocity
   return w;
 }
 
+// The drifting block; with the CPM, bonded up to R_I = 1.5 (R_A + R_B): bonds reach past the ghost layer, so
+// their far partners must be sent as ghosts of their own.
+template <class Model = ParallelBond>
 World<3> drifting_block() {
   RandomStream rng(11);
   const int nx = 30;
-  World<3> w = bonded_world<3>(rng, nx, 7, 6, Vec<3>(5.0, 0, 0));
+  typename Model::Params prm;
+  if constexpr (std::is_same_v<Model, Cpm>) {
+    prm.modulus = 30e9, prm.crack_onset_strain = 1e-4, prm.relative_ductility = 30;
+    prm.cohesion = 3e6, prm.tan_friction = 0.8, prm.interaction_radius = 2.0;
+  } else {
+    prm = parallel_bond();
+  }
+  World<3> w = bonded_world<3, Model>(rng, nx, 7, 6, Vec<3>(5.0, 0, 0), prm);
   for (int n = 0; n < w.particles.size(); ++n) {
     const int i = n % nx;
     if (i == 0) w.particles.fix[n] = 0xff, w.particles.v[n] = Vec<3>(4.5, 0, 0);
@@ -202,7 +221,7 @@ void check(const char* scene, Make&& make, int steps, const Ranks& ranks, const 
 // the split world must stop at the same step as the whole one, on every rank, with the same message.
 void check_escape(const Ranks& ranks, const Exchange& exchange) {
   auto make = [] {
-    World<3> w = drifting_block();
+    World<3> w = drifting_block<ParallelBond>();
     w.domain_hi[0] = 0.0605;
     return w;
   };
@@ -237,7 +256,8 @@ int main(int argc, char** argv) {
   Ranks::start(&argc, &argv);
   const Ranks& ranks = Ranks::world();
   const RanksExchange exchange(ranks);
-  check<3>("drifting 3D", drifting_block, 4000, ranks, exchange);
+  check<3>("drifting 3D", drifting_block<ParallelBond>, 4000, ranks, exchange);
+  check<3>("drifting 3D CPM", drifting_block<Cpm>, 4000, ranks, exchange);
   check<2>("boxed 2D", boxed_block<2>, 3000, ranks, exchange);
   check<3>("boxed 3D", boxed_block<3>, 3000, ranks, exchange);
   check_escape(ranks, exchange);
