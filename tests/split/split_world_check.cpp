@@ -257,7 +257,7 @@ int main(int argc, char** argv) {
   const Ranks& ranks = Ranks::world();
   const RanksExchange exchange(ranks);
   check<3>("drifting 3D", drifting_block<ParallelBond>, 4000, ranks, exchange);
-  check<3>("drifting 3D CPM", drifting_block<Cpm>, 4000, ranks, exchange);
+  check<3>("drifting 3D CPM", drifting_block<Cpm>, 3200, ranks, exchange);
   check<2>("boxed 2D", boxed_block<2>, 3000, ranks, exchange);
   check<3>("boxed 3D", boxed_block<3>, 3000, ranks, exchange);
   check_escape(ranks, exchange);
