@@ -96,6 +96,7 @@ class World {
   std::vector<Crack<D>> cracks;
   // Cracks of a kind and mode; phases −1 count any phase (the pair is unordered).
   std::int64_t crack_count(CrackKind kind, CrackMode mode, int phase_a = -1, int phase_b = -1) const;
+  // Counts of this process's lists (a split world's: pairs with an own particle, those across a cut on both sides).
   std::size_t bond_count() const;  // intact bonds of all models
 
   std::size_t contact_count() const;    // touching or bonded ball–ball contacts

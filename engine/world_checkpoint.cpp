@@ -2,6 +2,7 @@
 // as never stopping.
 #include <cstring>
 #include <new>
+#include <stdexcept>
 
 #include "engine/errors.hpp"
 #include "engine/world.hpp"
@@ -29,6 +30,8 @@ std::vector<std::uint8_t> crack_bytes(const std::vector<Crack<D>>& cracks) {
 
 template <int D>
 void World<D>::save(Archive& a) const {
+  // A split world holds a part of the state: its checkpoint must be gathered first (not built yet).
+  if (split_) throw std::logic_error("World::save: a split world's state is not gathered for checkpoints yet");
   const auto& p = particles;
   a.put("radius", p.radius);
   a.put("stiffness", p.stiffness);
@@ -87,6 +90,7 @@ void World<D>::save(Archive& a) const {
 
 template <int D>
 void World<D>::restore(const Archive& a) {
+  if (split_) throw std::logic_error("World::restore: restore the whole world, then split it");
   auto& p = particles;
   a.get("radius", p.radius);
   a.get("stiffness", p.stiffness);
