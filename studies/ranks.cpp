@@ -59,22 +59,14 @@ std::vector<std::vector<std::uint8_t>> Ranks::share(int n, const Job& job) const
     mine.insert(mine.end(), out[k].begin(), out[k].end());
   }
   if (!joined_ || size_ == 1) return out;
-#ifdef MESOCRACK_MPI
-  const int count = static_cast<int>(mine.size());
-  std::vector<int> counts(size_), offsets(size_);
-  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
-  int total = 0;
-  for (int r = 0; r < size_; ++r) offsets[r] = total, total += counts[r];
-  std::vector<std::uint8_t> all(total);
-  MPI_Allgatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, MPI_COMM_WORLD);
-  for (std::size_t at = 0; at < all.size();) {
-    std::uint64_t head[2];
-    std::memcpy(head, all.data() + at, sizeof head);
-    at += sizeof head;
-    out[head[0]].assign(all.begin() + at, all.begin() + at + head[1]);
-    at += head[1];
-  }
-#endif
+  for (const Bytes& theirs : RanksExchange(*this).all_gather(mine))
+    for (std::size_t at = 0; at < theirs.size();) {
+      std::uint64_t head[2];
+      std::memcpy(head, theirs.data() + at, sizeof head);
+      at += sizeof head;
+      out[head[0]].assign(theirs.begin() + at, theirs.begin() + at + head[1]);
+      at += head[1];
+    }
   return out;
 }
 
