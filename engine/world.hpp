@@ -188,9 +188,9 @@ class World {
   void share_motion();  // the own particles' new motion to the processes that hold them as ghosts
   void agree_on_step(const Motion& motion);
   double agreed_min(double x) const;
-  // Of the failures the processes found (key −1: none here), the message of the one with the lowest key, on
-  // every process; "" when none found any.
-  std::string first_failure(std::int64_t key, const std::string& message) const;
+  // Of the failures the processes found (an empty message: none here), the message of the one with the lowest
+  // key (whole-world order), on every process; "" when none found any.
+  std::string first_failure(const std::array<std::int64_t, 3>& key, const std::string& message) const;
   // Where a held particle comes from when the held set changes: the held arrays (local ≥ 0), or a record at byte
   // `at` of what rank `rank` sent.
   struct Source {

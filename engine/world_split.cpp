@@ -457,19 +457,19 @@ void World<D>::share_motion() {
 }
 
 template <int D>
-std::string World<D>::first_failure(std::int64_t key, const std::string& message) const {
+std::string World<D>::first_failure(const std::array<std::int64_t, 3>& key, const std::string& message) const {
   Bytes mine;
-  if (key >= 0) {
+  if (!message.empty()) {
     put_bytes(mine, key);
     mine.insert(mine.end(), message.begin(), message.end());
   }
   std::string first;
-  std::int64_t lowest = -1;
+  std::array<std::int64_t, 3> lowest{};
   for (const Bytes& b : split_->exchange->all_gather(mine)) {
     if (b.empty()) continue;
     std::size_t at = 0;
-    const auto k = take_bytes<std::int64_t>(b, at);
-    if (lowest < 0 || k < lowest) lowest = k, first.assign(b.begin() + static_cast<std::ptrdiff_t>(at), b.end());
+    const auto k = take_bytes<std::array<std::int64_t, 3>>(b, at);
+    if (first.empty() || k < lowest) lowest = k, first.assign(b.begin() + static_cast<std::ptrdiff_t>(at), b.end());
   }
   return first;
 }
@@ -492,26 +492,7 @@ void World<D>::agree_on_step(const Motion& motion) {
   std::vector<double> v{motion.moved, too_far, split_->passing.empty() ? 0.0 : 1.0, split_->cracks.empty() ? 0.0 : 1.0};
   ex.max(v);
   moved_ = v[0];
-  auto fail = [&](const std::string& mine, bool ordered_by_key) {
-    Bytes b;
-    if (!mine.empty()) {
-      for (std::int64_t k : split_->passing_key) put_bytes(b, k);
-      b.insert(b.end(), mine.begin(), mine.end());
-    }
-    const auto all = ex.all_gather(b);
-    const Bytes* first = nullptr;
-    for (const Bytes& m : all) {
-      if (m.empty()) continue;
-      if (!first ||
-          (ordered_by_key && std::lexicographical_compare(reinterpret_cast<const std::int64_t*>(m.data()),
-                                                          reinterpret_cast<const std::int64_t*>(m.data()) + 3,
-                                                          reinterpret_cast<const std::int64_t*>(first->data()),
-                                                          reinterpret_cast<const std::int64_t*>(first->data()) + 3)))
-        first = &m;
-    }
-    throw InstabilityError(std::string(first->begin() + 3 * sizeof(std::int64_t), first->end()));
-  };
-  if (v[2] > 0) fail(split_->passing, true);
+  if (v[2] > 0) throw InstabilityError(first_failure(split_->passing_key, split_->passing));
   if (v[1] > -kInf) {
     std::string mine;
     if (motion.too_far >= 0 && too_far == v[1]) {
@@ -521,7 +502,7 @@ void World<D>::agree_on_step(const Motion& motion) {
         mine = e.what();
       }
     }
-    fail(mine, false);
+    throw InstabilityError(first_failure({-static_cast<std::int64_t>(v[1]), 0, 0}, mine));
   }
   if (v[3] > 0) {
     Bytes b;
@@ -551,7 +532,7 @@ template void World<2>::redistribute();
 template void World<2>::rebalance();
 template void World<2>::share_motion();
 template double World<2>::agreed_min(double) const;
-template std::string World<2>::first_failure(std::int64_t, const std::string&) const;
+template std::string World<2>::first_failure(const std::array<std::int64_t, 3>&, const std::string&) const;
 template void World<2>::agree_on_step(const Motion&);
 template int World<3>::own_count() const;
 template int World<3>::held_index(std::int64_t) const;
@@ -565,7 +546,7 @@ template void World<3>::redistribute();
 template void World<3>::rebalance();
 template void World<3>::share_motion();
 template double World<3>::agreed_min(double) const;
-template std::string World<3>::first_failure(std::int64_t, const std::string&) const;
+template std::string World<3>::first_failure(const std::array<std::int64_t, 3>&, const std::string&) const;
 template void World<3>::agree_on_step(const Motion&);
 
 }  // namespace mc

@@ -97,7 +97,7 @@ void World<D>::check_stability() const {
     message = m.str();
   }
   // A split world stops on every process together, with the message of the first such particle of all.
-  if (split_) message = first_failure(outside >= 0 ? global_index(outside) : -1, message);
+  if (split_) message = first_failure({outside >= 0 ? global_index(outside) : 0, 0, 0}, message);
   if (!message.empty()) throw InstabilityError(message);
   for (std::size_t w = 0; w < walls.size(); ++w)
     if (!walls[w].origin.allFinite() || !walls[w].force.allFinite()) {

@@ -8,7 +8,8 @@
 // - boxed (2D and 3D): a block under gravity crushed by a wall moving at a set velocity, against a fixed floor,
 //   a fixed side, a stress servo on the other side and, in 3D, a wall under opening control reading a gauge across
 //   the block; energy traced, local damping;
-// - escaping: the drifting block leaves its domain; the split run must stop where the whole one stops.
+// - stops: the drifting block leaves its domain, a sphere shot through it moves too far in a step or passes
+//   through its neighbour; the split run must stop where the whole one stops, with its message.
 // Exit 0 and a line "same bits ..." per rank and scene when everything agreed; 1 and the first difference otherwise.
 #include <cstdio>
 #include <cstring>
@@ -217,37 +218,45 @@ void check(const char* scene, Make&& make, int steps, const Ranks& ranks, const 
       own_at_start, split.own_count(), held_at_start, static_cast<long long>(split.rebalances()), arrived);
 }
 
-// The drifting block in a domain that ends 1.5 mm past its leading end: checked for stability every 10 steps,
-// the split world must stop at the same step as the whole one, on every rank, with the same message.
-void check_escape(const Ranks& ranks, const Exchange& exchange) {
-  auto make = [] {
-    World<3> w = drifting_block<ParallelBond>();
-    w.domain_hi[0] = 0.0605;
-    return w;
-  };
+// The whole and the split world stepped until one throws InstabilityError (at most 5 000 steps, checked every
+// 10): both must stop at the same step, on every rank, with the same message.
+void check_stop(const char* scene, World<3> (*make)(), const Ranks& ranks, const Exchange& exchange) {
   World<3> whole = make(), split = make();
   split.split(exchange);
   auto stop = [](World<3>& w) -> std::pair<long, std::string> {
-    for (long s = 1; s <= 5000; ++s) {
-      w.step();
-      if (s % 10) continue;
-      try {
-        w.check_stability();
-      } catch (const InstabilityError& e) {
-        return {s, e.what()};
+    try {
+      for (long s = 1; s <= 5000; ++s) {
+        w.step();
+        if (s % 10 == 0) w.check_stability();
       }
+    } catch (const InstabilityError& e) {
+      return {w.step_count, e.what()};
     }
     return {-1, ""};
   };
   const auto a = stop(whole), b = stop(split);
   if (a.first < 0 || a != b) {
-    std::printf("escaping 3D: rank %d of %d: the whole world stopped at step %ld (%s), the split one at %ld (%s)\n",
+    std::printf("%s: rank %d of %d: the whole world stopped at step %ld (%s), the split one at %ld (%s)\n", scene,
                 ranks.rank(), ranks.size(), a.first, a.second.c_str(), b.first, b.second.c_str());
     std::fflush(stdout);
     ranks.abort(1);
   }
-  std::printf("same stop: escaping 3D, rank %d of %d, step %ld: %.60s...\n", ranks.rank(), ranks.size(), b.first,
+  std::printf("same stop: %s, rank %d of %d, step %ld: %.70s...\n", scene, ranks.rank(), ranks.size(), b.first,
               b.second.c_str());
+}
+
+// The drifting block in a domain that ends 1.5 mm past its leading end: it leaves it.
+World<3> escaping_block() {
+  World<3> w = drifting_block<ParallelBond>();
+  w.domain_hi[0] = 0.0605;
+  return w;
+}
+// One sphere inside the block shot sideways: at 5 000 m/s it moves more than half its radius in the first step;
+// at 2 000 m/s it runs into its neighbour until the pair passes through.
+World<3> shot_block(double speed) {
+  World<3> w = drifting_block<ParallelBond>();
+  w.particles.v[700] = Vec<3>(0, speed, 0);
+  return w;
 }
 
 }  // namespace
@@ -260,6 +269,10 @@ int main(int argc, char** argv) {
   check<3>("drifting 3D CPM", drifting_block<Cpm>, 3200, ranks, exchange);
   check<2>("boxed 2D", boxed_block<2>, 3000, ranks, exchange);
   check<3>("boxed 3D", boxed_block<3>, 3000, ranks, exchange);
-  check_escape(ranks, exchange);
+  check_stop("escaping 3D", escaping_block, ranks, exchange);
+  check_stop(
+      "too fast 3D", [] { return shot_block(5000); }, ranks, exchange);
+  check_stop(
+      "passing through 3D", [] { return shot_block(2000); }, ranks, exchange);
   return 0;
 }
