@@ -265,10 +265,10 @@ int main(int argc, char** argv) {
   Ranks::start(&argc, &argv);
   const Ranks& ranks = Ranks::world();
   const RanksExchange exchange(ranks);
-  check<3>("drifting 3D", drifting_block<ParallelBond>, 4000, ranks, exchange);
+  check<3>("drifting 3D", drifting_block<ParallelBond>, 3000, ranks, exchange);
   check<3>("drifting 3D CPM", drifting_block<Cpm>, 3200, ranks, exchange);
-  check<2>("boxed 2D", boxed_block<2>, 3000, ranks, exchange);
-  check<3>("boxed 3D", boxed_block<3>, 3000, ranks, exchange);
+  check<2>("boxed 2D", boxed_block<2>, 2400, ranks, exchange);
+  check<3>("boxed 3D", boxed_block<3>, 2400, ranks, exchange);
   check_stop("escaping 3D", escaping_block, ranks, exchange);
   check_stop(
       "too fast 3D", [] { return shot_block(5000); }, ranks, exchange);
