@@ -78,11 +78,17 @@ World<3> drifting_block() {
     prm = parallel_bond();
   }
   World<3> w = bonded_world<3, Model>(rng, nx, 7, 6, Vec<3>(5.0, 0, 0), prm);
+  // The trailing end keeps its velocity (held); the leading end is a driven group that speeds up from the
+  // drift to 5.5 m/s over 20 µs while it moves sideways.
+  DrivenGroup<3> lead;
+  lead.velocity = Vec<3>(5.5, 0.3, 0);
+  lead.ramp_time = 2e-5;
   for (int n = 0; n < w.particles.size(); ++n) {
     const int i = n % nx;
     if (i == 0) w.particles.fix[n] = 0xff, w.particles.v[n] = Vec<3>(4.5, 0, 0);
-    if (i == nx - 1) w.particles.fix[n] = 0xff, w.particles.v[n] = Vec<3>(5.5, 0.3, 0);
+    if (i == nx - 1) w.particles.fix[n] = 0x07, lead.members.push_back(n);
   }
+  w.driven.push_back(lead);
   w.local_damping = 0.05;
   w.rebuild_interval = 30;
   // The drift carries particles into the upper regions: rebalanced past 2 % (the bits must not notice).
