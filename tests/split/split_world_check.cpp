@@ -78,17 +78,18 @@ World<3> drifting_block() {
     prm = parallel_bond();
   }
   World<3> w = bonded_world<3, Model>(rng, nx, 7, 6, Vec<3>(5.0, 0, 0), prm);
-  // The trailing end keeps its velocity (held); the leading end is a driven group that speeds up from the
-  // drift to 5.5 m/s over 20 µs while it moves sideways.
-  DrivenGroup<3> lead;
-  lead.velocity = Vec<3>(5.5, 0.3, 0);
-  lead.ramp_time = 2e-5;
+  // Both ends hold their velocities; a driven group (the middle of the top layer, held along z only) is pressed
+  // down from rest to 0.5 m/s over 20 µs while it drifts with the rest.
+  DrivenGroup<3> press;
+  press.velocity = Vec<3>(0, 0, -0.5);
+  press.ramp_time = 2e-5;
   for (int n = 0; n < w.particles.size(); ++n) {
-    const int i = n % nx;
+    const int i = n % nx, k = n / (nx * 7);
     if (i == 0) w.particles.fix[n] = 0xff, w.particles.v[n] = Vec<3>(4.5, 0, 0);
-    if (i == nx - 1) w.particles.fix[n] = 0x07, lead.members.push_back(n);
+    if (i == nx - 1) w.particles.fix[n] = 0xff, w.particles.v[n] = Vec<3>(5.5, 0.3, 0);
+    if (k == 5 && i >= 10 && i < 20) w.particles.fix[n] = 0x04, press.members.push_back(n);
   }
-  w.driven.push_back(lead);
+  w.driven.push_back(press);
   w.local_damping = 0.05;
   w.rebuild_interval = 30;
   // The drift carries particles into the upper regions: rebalanced past 2 % (the bits must not notice).
