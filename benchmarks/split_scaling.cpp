@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "benchmarks/dense_assembly.hpp"
@@ -23,51 +24,42 @@ using namespace mc::bench;
 
 namespace {
 
-// The launch's exchange, with the wall time spent in it.
+// The launch's exchange, with the wall time spent in it and the bytes this rank sent to the others.
 class TimedExchange final : public Exchange {
  public:
   explicit TimedExchange(const Exchange& inner) : inner_(inner) {}
   int rank() const override { return inner_.rank(); }
   int size() const override { return inner_.size(); }
   std::vector<Bytes> all_to_all(const std::vector<Bytes>& out) const override {
-    const auto t0 = Clock::now();
-    auto in = inner_.all_to_all(out);
-    for (const auto& b : out) sent += static_cast<double>(b.size());
-    seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-    ++calls;
-    return in;
+    count_sent(out);
+    return timed([&] { return inner_.all_to_all(out); });
   }
   std::vector<Bytes> swap(const std::vector<Bytes>& out, const std::vector<std::size_t>& in_sizes) const override {
-    const auto t0 = Clock::now();
-    auto in = inner_.swap(out, in_sizes);
-    for (const auto& b : out) sent += static_cast<double>(b.size());
-    seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-    ++calls;
-    return in;
+    count_sent(out);
+    return timed([&] { return inner_.swap(out, in_sizes); });
   }
   std::vector<Bytes> all_gather(const Bytes& mine) const override {
-    const auto t0 = Clock::now();
-    auto all = inner_.all_gather(mine);
-    seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-    ++calls;
-    return all;
+    return timed([&] { return inner_.all_gather(mine); });
   }
   void max(std::vector<double>& v) const override {
-    const auto t0 = Clock::now();
-    inner_.max(v);
-    seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-    ++calls;
+    timed([&] { return inner_.max(v), 0; });
   }
   void sum(std::vector<std::int64_t>& v) const override {
-    const auto t0 = Clock::now();
-    inner_.sum(v);
-    seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-    ++calls;
+    timed([&] { return inner_.sum(v), 0; });
   }
   mutable double seconds = 0, sent = 0;
-  mutable long calls = 0;
 
  private:
+  template <class F>
+  std::invoke_result_t<F&> timed(F&& f) const {
+    const auto t0 = Clock::now();
+    auto result = f();
+    seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    return result;
+  }
+  void count_sent(const std::vector<Bytes>& out) const {
+    for (const auto& b : out) sent += static_cast<double>(b.size());
+  }
   const Exchange& inner_;
 };
 
@@ -100,7 +92,6 @@ int main(int argc, char** argv) {
   if (ranks.size() > 1) w.split(exchange);
   for (int s = 0; s < 5; ++s) w.step();
   exchange.seconds = exchange.sent = 0;
-  exchange.calls = 0;
   const std::int64_t rebuilds = w.rebuilds;
   const auto t0 = Clock::now();
   for (int s = 0; s < steps; ++s) w.step();

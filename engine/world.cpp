@@ -236,16 +236,12 @@ void World<D>::compute_forces() {
   for (std::size_t s = 0; s < sets.size(); ++s) {
     e += sets[s]->forces(particles, walls, dt, trace_energy, slots_, offset_[s], wall_offset_[s]);
     if (const auto pr = sets[s]->passing_through()) [[unlikely]] {
-      if (!split_) passing_through(*pr);
+      if (!split_) throw InstabilityError(passing_message(*pr));
       // A split world fails at the end of the step, on every process together (agree_on_step).
       if (split_->passing.empty()) {
         const auto [a, b] = *pr;
         split_->passing_key = {static_cast<std::int64_t>(s), a < 0 ? a : global_index(a), global_index(b)};
-        try {
-          passing_through(*pr);
-        } catch (const InstabilityError& err) {
-          split_->passing = err.what();
-        }
+        split_->passing = passing_message(*pr);
       }
     }
   }
@@ -484,7 +480,7 @@ void World<D>::step() {
     agree_on_step(motion);
   } else {
     if (motion.too_far >= 0) [[unlikely]]
-      moved_too_far(motion.too_far);
+      throw InstabilityError(too_far_message(motion.too_far));
     moved_ = motion.moved;
   }
   move_walls();

@@ -152,9 +152,9 @@ class World {
   };
   template <bool Damp, bool Gravity, bool Applied, bool Energy>
   Motion move_particles();
-  // The stability guard's every-step part: throw InstabilityError naming the particle(s) and the cause.
-  [[noreturn]] void moved_too_far(int i) const;
-  [[noreturn]] void passing_through(const Pair& pair) const;
+  // The stability guard's every-step part: the messages (for InstabilityError) naming the particle(s) and the cause.
+  std::string too_far_message(int i) const;
+  std::string passing_message(const Pair& pair) const;
   void check_energy() const;
   void check_opening_control() const;
   void move_walls();
@@ -200,7 +200,7 @@ class World {
     bool ghost;
   };
   // The held particles become `sources` (in whole-world order); pairs are renumbered, those that lose a
-  // particle or hold only ghosts leave. Returns the new index of each whole-world index held (lookup by search).
+  // particle or hold only ghosts leave.
   void hold(const std::vector<Source>& sources, const std::vector<Bytes>& received);
   int held_index(std::int64_t global) const;  // −1: not held
   void own_members();                         // the driven groups' and gauges' members held as own

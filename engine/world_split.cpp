@@ -40,11 +40,12 @@ std::size_t record_size(Particles<D>& p, bool applied, bool with_ids) {
   return n;
 }
 
-// Reads the records of a message: how many, then each one's global index and the offset of its data.
-struct RecordList {
-  std::vector<std::pair<std::int64_t, std::size_t>> items;  // global index, byte offset of the record
-  std::size_t end = 0;                                      // the byte after the last record
-};
+// The position of `value` in a sorted list, or −1.
+inline int index_in(const std::vector<std::int64_t>& sorted, std::int64_t value) {
+  const auto it = std::lower_bound(sorted.begin(), sorted.end(), value);
+  return it != sorted.end() && *it == value ? static_cast<int>(it - sorted.begin()) : -1;
+}
+
 // The most particles any region owns.
 template <int D>
 double most_owned(const Decomposition<D>& regions, const std::vector<Vec<D>>& x) {
@@ -53,6 +54,11 @@ double most_owned(const Decomposition<D>& regions, const std::vector<Vec<D>>& x)
   return *std::max_element(count.begin(), count.end());
 }
 
+// Reads the records of a message: how many, then each one's global index and the offset of its data.
+struct RecordList {
+  std::vector<std::pair<std::int64_t, std::size_t>> items;  // global index, byte offset of the record
+  std::size_t end = 0;                                      // the byte after the last record
+};
 inline RecordList read_records(const Bytes& in, std::size_t at, std::size_t size) {
   RecordList r;
   const auto n = take_bytes<std::uint64_t>(in, at);
@@ -76,9 +82,7 @@ int World<D>::own_count() const {
 
 template <int D>
 int World<D>::held_index(std::int64_t global) const {
-  const auto& g = split_->global;
-  const auto it = std::lower_bound(g.begin(), g.end(), global);
-  return it != g.end() && *it == global ? static_cast<int>(it - g.begin()) : -1;
+  return index_in(split_->global, global);
 }
 
 template <int D>
@@ -115,11 +119,8 @@ void World<D>::hold(const std::vector<Source>& sources, const std::vector<Bytes>
     }
   }
   // A pair keeps its particles whatever copy of them is held now (a ghost's comes afresh from its owner).
-  std::vector<int> to(p.size(), -1);
-  for (int i = 0; i < p.size(); ++i) {
-    const auto it = std::lower_bound(nglobal.begin(), nglobal.end(), split_->global[i]);
-    if (it != nglobal.end() && *it == split_->global[i]) to[i] = static_cast<int>(it - nglobal.begin());
-  }
+  std::vector<int> to(p.size());
+  for (int i = 0; i < p.size(); ++i) to[i] = index_in(nglobal, split_->global[i]);
   p = std::move(np);
   ids = std::move(nids);
   x_at_rebuild_ = std::move(nx_rebuild);
@@ -262,8 +263,9 @@ void World<D>::send_ghosts() {
     for (std::int64_t g : sent[r]) split_->send[r].push_back(held_index(g));
     split_->fill[r].clear();
   }
-  for (int i = 0; i < p.size(); ++i)
-    if (p.is_ghost(i)) split_->fill[split_->regions.owner(p.x[i])].push_back(i);
+  // Held particle k came from keep[k]: a ghost is filled by the rank that sent it.
+  for (std::size_t k = 0; k < keep.size(); ++k)
+    if (keep[k].ghost) split_->fill[keep[k].rank].push_back(static_cast<int>(k));
   own_members();
 }
 
@@ -494,15 +496,9 @@ void World<D>::agree_on_step(const Motion& motion) {
   moved_ = v[0];
   if (v[2] > 0) throw InstabilityError(first_failure(split_->passing_key, split_->passing));
   if (v[1] > -kInf) {
-    std::string mine;
-    if (motion.too_far >= 0 && too_far == v[1]) {
-      try {
-        moved_too_far(motion.too_far);
-      } catch (const InstabilityError& e) {
-        mine = e.what();
-      }
-    }
-    throw InstabilityError(first_failure({-static_cast<std::int64_t>(v[1]), 0, 0}, mine));
+    const bool mine = motion.too_far >= 0 && too_far == v[1];
+    throw InstabilityError(
+        first_failure({-static_cast<std::int64_t>(v[1]), 0, 0}, mine ? too_far_message(motion.too_far) : ""));
   }
   if (v[3] > 0) {
     Bytes b;

@@ -31,7 +31,7 @@ std::string during(const World<D>& w) {
 }  // namespace
 
 template <int D>
-void World<D>::moved_too_far(int i) const {
+std::string World<D>::too_far_message(int i) const {
   const auto& p = particles;
   std::ostringstream m;
   m << "unstable " << during(*this) << ": " << particle_name(i);
@@ -44,14 +44,14 @@ void World<D>::moved_too_far(int i) const {
   m << "; likely cause: timestep " << dt << " s too large for the contact stiffness (critical estimate " << dt_critical
     << " s), or forces out of all proportion (particles placed deep inside each other, an applied "
     << "load or a wall speed far beyond what the specimen can take)";
-  throw InstabilityError(m.str());
+  return m.str();
 }
 
 // Two particles (or a particle and a wall) closer than half the smaller radius: the springs could not stop them,
 // and once the centres pass, the contact normal turns round and pushes them on through. No contact law holds
 // such a pair apart; the run cannot be trusted from here.
 template <int D>
-void World<D>::passing_through(const Pair& pair) const {
+std::string World<D>::passing_message(const Pair& pair) const {
   const auto& p = particles;
   const auto [a, b] = pair;
   std::ostringstream m;
@@ -70,25 +70,25 @@ void World<D>::passing_through(const Pair& pair) const {
   m << ": they are passing through each other, which no contact law can stop; likely cause: an impact too fast "
        "for the contact stiffness (the kinetic energy exceeds what the springs store at half a radius of overlap: "
        "stiffen the contact or slow the impact), or particles placed deep inside each other";
-  throw InstabilityError(m.str());
+  return m.str();
 }
 
 template <int D>
 void World<D>::check_stability() const {
   const auto& p = particles;
   const int n = p.size();
-  int outside = -1;  // the first own particle (in the whole world's order) outside the domain
+  // The first own particle (in the whole world's order) outside the domain, and the axis it left along.
+  auto axis_out = [&](int i) {
+    int k = 0;
+    while (k < D && p.x[i][k] >= domain_lo[k] && p.x[i][k] <= domain_hi[k]) ++k;
+    return k;  // D: inside
+  };
+  int outside = -1, k = D;
   for (int i = 0; i < n && outside < 0; ++i)
-    for (int k = 0; k < D && !p.is_ghost(i); ++k)
-      if (!(p.x[i][k] >= domain_lo[k] && p.x[i][k] <= domain_hi[k])) {
-        outside = i;
-        break;
-      }
+    if (!p.is_ghost(i) && (k = axis_out(i)) < D) outside = i;
   std::string message;
   if (outside >= 0) {
     const int i = outside;
-    int k = 0;
-    while (p.x[i][k] >= domain_lo[k] && p.x[i][k] <= domain_hi[k]) ++k;
     std::ostringstream m;
     m << "stopped " << when(*this) << ": " << particle_name(i) << " left the domain (coordinate " << k << " = "
       << p.x[i][k] << " m, domain " << domain_lo[k] << " .. " << domain_hi[k] << " m, |v| = " << p.v[i].norm()
@@ -173,10 +173,10 @@ void World<D>::check_energy() const {
 
 template void World<2>::check_stability() const;
 template void World<3>::check_stability() const;
-template void World<2>::moved_too_far(int) const;
-template void World<3>::moved_too_far(int) const;
-template void World<2>::passing_through(const Pair&) const;
-template void World<3>::passing_through(const Pair&) const;
+template std::string World<2>::too_far_message(int) const;
+template std::string World<3>::too_far_message(int) const;
+template std::string World<2>::passing_message(const Pair&) const;
+template std::string World<3>::passing_message(const Pair&) const;
 template void World<2>::check_energy() const;
 template void World<2>::check_opening_control() const;
 template void World<3>::check_opening_control() const;

@@ -26,6 +26,11 @@ void finalize() {
   MPI_Finalized(&done);
   if (!done) MPI_Finalize();
 }
+// Element-wise over the ranks, in place.
+template <class T>
+void reduce_in_place(std::vector<T>& values, int ranks, MPI_Datatype type, MPI_Op op) {
+  if (ranks > 1) MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), type, op, MPI_COMM_WORLD);
+}
 #endif
 }  // namespace
 
@@ -127,8 +132,7 @@ std::vector<Bytes> RanksExchange::all_gather(const Bytes& mine) const {
 
 void RanksExchange::max(std::vector<double>& values) const {
 #ifdef MESOCRACK_MPI
-  if (size() > 1)
-    MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  reduce_in_place(values, size(), MPI_DOUBLE, MPI_MAX);
 #else
   (void)values;
 #endif
@@ -136,8 +140,7 @@ void RanksExchange::max(std::vector<double>& values) const {
 
 void RanksExchange::sum(std::vector<std::int64_t>& values) const {
 #ifdef MESOCRACK_MPI
-  if (size() > 1)
-    MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+  reduce_in_place(values, size(), MPI_INT64_T, MPI_SUM);
 #else
   (void)values;
 #endif

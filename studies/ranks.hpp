@@ -3,7 +3,6 @@
 // or a command started without a launcher, is one rank and never touches MPI.
 #pragma once
 #include <cstdint>
-#include <cstring>
 #include <functional>
 #include <type_traits>
 #include <vector>
@@ -55,12 +54,15 @@ template <class T, class F>
 std::vector<T> share_values(const Ranks& ranks, int n, F&& job) {
   static_assert(std::is_trivially_copyable_v<T>);
   const auto bytes = ranks.share(n, [&](int k) {
-    const T value = job(k);
-    const auto* b = reinterpret_cast<const std::uint8_t*>(&value);
-    return std::vector<std::uint8_t>(b, b + sizeof value);
+    Bytes b;
+    put_bytes(b, static_cast<T>(job(k)));
+    return b;
   });
-  std::vector<T> out(n);
-  for (int k = 0; k < n; ++k) std::memcpy(static_cast<void*>(&out[k]), bytes[k].data(), sizeof(T));
+  std::vector<T> out;
+  for (const Bytes& b : bytes) {
+    std::size_t at = 0;
+    out.push_back(take_bytes<T>(b, at));
+  }
   return out;
 }
 
