@@ -61,8 +61,10 @@ density = 2400
 [[contacts]]
 phase_a = "c"
 model = "contact_bond"
-modulus = )" + num(k.normal) + R"(
-kn_ks_ratio = )" + num(k.normal / k.shear) + R"(
+modulus = )" + num(k.normal) +
+                            R"(
+kn_ks_ratio = )" + num(k.normal / k.shear) +
+                            R"(
 bond_normal_strength = 1e12
 bond_shear_strength = 1e12
 [bonds]
@@ -101,8 +103,10 @@ kn = 1e11
 [[walls]]
 name = "load"
 shape = "segment"
-a = ["77 mm", )" + num(top) + R"(]
-b = ["83 mm", )" + num(top) + R"(]
+a = ["77 mm", )" + num(top) +
+                            R"(]
+b = ["83 mm", )" + num(top) +
+                            R"(]
 inside = ["80 mm", "10 mm"]
 kn = 1e11
 motion = "velocity"
@@ -128,7 +132,8 @@ supports = "left right"
 deflection_groups = "mid above_left above_right"
 cmod = "cmod"
 span = "140 mm"
-depth = )" + num(20 * std::sqrt(3.0) * R) + R"(
+depth = )" + num(20 * std::sqrt(3.0) * R) +
+                            R"(
 [run]
 duration = "3 ms"
 [output]
@@ -148,60 +153,58 @@ history_every = 20
   CHECK(measured == doctest::Approx(expected).epsilon(0.05));
 }
 
-// The notched beam under CMOD control: once the ramp is over (twice its length), the crack-mouth opening grows at
-// the prescribed 10 mm/s through the peak and past it. Checked as the least-squares slope of CMOD(t) over each
-// fifth of the stretch from the end of the ramp to where the load has fallen to 60 % of the peak after it,
-// and over the tenth of that stretch centred on the peak: each within 5 % of the rate.
-TEST_CASE("cmod_servo_holds_its_opening_rate_through_the_peak_of_a_notched_beam") {
-  const TempDir d;
-  const Result r = mesocrack({"run", kBeam, "-o", "beam.h5"}, d.dir);
-  REQUIRE_MESSAGE(r.code == 0, r.describe());
-  const auto t = history(d / "beam.h5", "time"), cmod = history(d / "beam.h5", "bending.cmod"),
-             load = history(d / "beam.h5", "bending.load");
-  const double rate = 10e-3, ramp = 0.5e-3;
-  const std::size_t peak = static_cast<std::size_t>(std::max_element(load.begin(), load.end()) - load.begin());
-  std::size_t from = 0, to = peak;
-  while (t[from] < 2 * ramp) ++from;
-  while (to + 1 < load.size() && load[to] > 0.6 * load[peak]) ++to;
-  REQUIRE(peak > from + 50);
-  REQUIRE(to > peak);
-  const Json j = summary_of("beam.h5", d.dir);
-  MESSAGE("peak load ", j["bending"]["peak_load"].number, " N per 100 mm at CMOD ", cmod[peak] * 1e6, " um, t = ",
-          t[peak] * 1e3, " ms; G_F = ", j["bending"]["G_F"].number, " N/m; run ", r.seconds, " s");
-  const std::size_t fifth = (to - from) / 5;
-  for (int k = 0; k < 5; ++k) {
-    const double s = slope(t, cmod, from + k * fifth, from + (k + 1) * fifth);
-    MESSAGE("CMOD rate over fifth ", k + 1, ": ", s * 1e3, " mm/s");
-    CHECK(s == doctest::Approx(rate).epsilon(0.05));
-  }
-  const std::size_t half = (to - from) / 20;
-  const double at_peak = slope(t, cmod, peak - half, peak + half);
-  MESSAGE("CMOD rate around the peak: ", at_peak * 1e3, " mm/s");
-  CHECK(at_peak == doctest::Approx(rate).epsilon(0.05));
-}
-
-// The energy balance of the whole notched-beam test (Tang 3.74–3.80): the loading point's work equals the strain
-// energy plus what bond breakage and softening, friction and local damping dissipated plus the kinetic energy,
-// within 1 % at every recorded row once the work is under way (the summary's worst |residual| / work). Central
-// differences conserve energy to O(Δt²) per step and every dissipation is booked by the law that causes it, so
-// what is left is the dashpot-free integrator's error: far below 1 %. Quasi-static under CMOD control, the work
-// goes mostly into fracture: the bonds' share above half, local damping's below a fifth (measured 75 % and 8 %).
-TEST_CASE("notched_beam_energy_balance_closes_within_one_percent_with_fracture_the_main_sink") {
+// The notched beam under CMOD control, in one run (with energy tracing, which changes no force):
+// - the servo: once the ramp is over (twice its length), the crack-mouth opening grows at the prescribed 10 mm/s
+//   through the peak and past it. Checked as the least-squares slope of CMOD(t) over each fifth of the stretch
+//   from the end of the ramp to where the load has fallen to 60 % of the peak after it, and over the tenth of that
+//   stretch centred on the peak: each within 5 % of the rate.
+// - the energy balance of the whole test (Tang 3.74–3.80): the loading point's work equals the strain energy plus
+//   what bond breakage and softening, friction and local damping dissipated plus the kinetic energy, within 1 % at
+//   every recorded row once the work is under way (the summary's worst |residual| / work). Central differences
+//   conserve energy to O(Δt²) per step and every dissipation is booked by the law that causes it, so what is left
+//   is the dashpot-free integrator's error: far below 1 %. Quasi-static under CMOD control, the work goes mostly
+//   into fracture: the bonds' share above half, local damping's below a fifth (measured 75 % and 8 %).
+TEST_CASE("notched_beam_under_cmod_control_holds_its_opening_rate_and_closes_its_energy_balance_within_one_percent") {
   const TempDir d;
   const Result r = mesocrack({"run", kBeam, "-o", "beam.h5", "--set", "physics.energy=true"}, d.dir);
   REQUIRE_MESSAGE(r.code == 0, r.describe());
+  const auto t = history(d / "beam.h5", "time"), cmod = history(d / "beam.h5", "bending.cmod"),
+             load = history(d / "beam.h5", "bending.load");
   const Json j = summary_of("beam.h5", d.dir);
-  const Json& e = j["bending"]["energy"];
-  const double work = e["boundary_work"].number;
-  MESSAGE("work ", work, " J: strain ", e["strain"].number, ", bonds ", e["dissipated_bonds"].number, ", friction ",
-          e["dissipated_contacts"].number, ", local damping ", e["dissipated_local"].number, ", kinetic ",
-          e["kinetic"].number, "; worst |residual|/work ", e["worst_residual_over_work"].number, "; G_F RILEM ",
-          j["bending"]["G_F"].number, " N/m, by the bonds ", e["G_F_bonds"].number, " N/m; tortuosity ",
-          j["bending"]["crack_path"]["tortuosity"].number);
-  REQUIRE(work > 0);
-  CHECK(e["worst_residual_over_work"].number < 0.01);
-  CHECK(e["dissipated_bonds"].number > 0.5 * work);
-  CHECK(e["dissipated_local"].number < 0.2 * work);
+  {  // the opening rate through the peak
+    const double rate = 10e-3, ramp = 0.5e-3;
+    const std::size_t peak = static_cast<std::size_t>(std::max_element(load.begin(), load.end()) - load.begin());
+    std::size_t from = 0, to = peak;
+    while (t[from] < 2 * ramp) ++from;
+    while (to + 1 < load.size() && load[to] > 0.6 * load[peak]) ++to;
+    REQUIRE(peak > from + 50);
+    REQUIRE(to > peak);
+    MESSAGE("peak load ", j["bending"]["peak_load"].number, " N per 100 mm at CMOD ", cmod[peak] * 1e6,
+            " um, t = ", t[peak] * 1e3, " ms; G_F = ", j["bending"]["G_F"].number, " N/m; run ", r.seconds, " s");
+    const std::size_t fifth = (to - from) / 5;
+    for (int k = 0; k < 5; ++k) {
+      const double s = slope(t, cmod, from + k * fifth, from + (k + 1) * fifth);
+      MESSAGE("CMOD rate over fifth ", k + 1, ": ", s * 1e3, " mm/s");
+      CHECK(s == doctest::Approx(rate).epsilon(0.05));
+    }
+    const std::size_t half = (to - from) / 20;
+    const double at_peak = slope(t, cmod, peak - half, peak + half);
+    MESSAGE("CMOD rate around the peak: ", at_peak * 1e3, " mm/s");
+    CHECK(at_peak == doctest::Approx(rate).epsilon(0.05));
+  }
+  {  // the energy balance
+    const Json& e = j["bending"]["energy"];
+    const double work = e["boundary_work"].number;
+    MESSAGE("work ", work, " J: strain ", e["strain"].number, ", bonds ", e["dissipated_bonds"].number, ", friction ",
+            e["dissipated_contacts"].number, ", local damping ", e["dissipated_local"].number, ", kinetic ",
+            e["kinetic"].number, "; worst |residual|/work ", e["worst_residual_over_work"].number, "; G_F RILEM ",
+            j["bending"]["G_F"].number, " N/m, by the bonds ", e["G_F_bonds"].number, " N/m; tortuosity ",
+            j["bending"]["crack_path"]["tortuosity"].number);
+    CHECK(work > 0);
+    CHECK(e["worst_residual_over_work"].number < 0.01);
+    CHECK(e["dissipated_bonds"].number > 0.5 * work);
+    CHECK(e["dissipated_local"].number < 0.2 * work);
+  }
 }
 
 // The opening servo's law (wall.hpp): v = clamp(gain (rate·τ(t + Δt) − reading), −retreat_speed, max_speed) along
@@ -212,7 +215,7 @@ TEST_CASE("opening_servo_is_proportional_inside_its_band_and_backs_off_no_faster
   w.control = mc::WallControl::Opening;
   w.opening_rate = 10e-3, w.opening_gain = 8000, w.servo_max_speed = 30e-3, w.retreat_speed = 10e-3;
   const double t = 2e-3, dt = 1e-7, target = w.opening_rate * (t + dt);  // no ramp: τ(t) = t
-  w.control_velocity(t, dt, target - 1e-6);                               // 1 µm behind: 8 mm/s
+  w.control_velocity(t, dt, target - 1e-6);                              // 1 µm behind: 8 mm/s
   CHECK(w.velocity.dot(w.normal) == doctest::Approx(8e-3).epsilon(1e-9));
   w.control_velocity(t, dt, target + 0.5e-6);  // 0.5 µm ahead: backs off at 4 mm/s, inside the retreat limit
   CHECK(w.velocity.dot(w.normal) == doctest::Approx(-4e-3).epsilon(1e-9));
@@ -259,7 +262,8 @@ TEST_CASE("bad_bending_and_opening_control_keys_are_refused_naming_the_key") {
       {"thickness = \"100 mm\"", "thickness = \"100 mm\"\nnotch = 1", {"bending.notch"}},
       {"probe = \"cmod\"", "probe = \"gauge\"", {"walls[2].probe", "'gauge'", "opening probe", "declared: cmod"}},
       {"gain = \"50000 /s\"", "gain = 0", {"walls[2].gain", "> 0"}},
-      {"max_speed = \"500 mm/s\"", "max_speed = \"500 mm/s\"\nretreat_speed = \"0 mm/s\"",
+      {"max_speed = \"500 mm/s\"",
+       "max_speed = \"500 mm/s\"\nretreat_speed = \"0 mm/s\"",
        {"walls[2].retreat_speed", "> 0"}},
       {"groups = \"mouth_left mouth_right\"", "groups = \"mouth_left\"", {"probes[0].groups", "two [[groups]]"}},
   };

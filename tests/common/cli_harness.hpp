@@ -84,6 +84,50 @@ std::vector<fs::path> runnable_scenes() {
   return scenes;
 }
 
+// What kinds of state a scene's run carries: its keys (section.key, arrays of tables merged), with the values of
+// the keys that choose a model, a specimen or a motion. Scenes alike in this (the same test on another material)
+// checkpoint the same kinds of state.
+std::string state_signature(const fs::path& scene) {
+  std::vector<std::string> keys;
+  std::string section;
+  std::istringstream in(slurp(scene));
+  for (std::string line; std::getline(in, line);) {
+    line = line.substr(0, line.find('#'));
+    line.erase(0, line.find_first_not_of(" \t"));
+    line.erase(line.find_last_not_of(" \t\r") + 1);
+    if (line.empty()) continue;
+    if (line.front() == '[') {
+      section = line.substr(line.find_first_not_of('['), line.find(']') - line.find_first_not_of('['));
+      continue;
+    }
+    const auto eq = line.find('=');
+    if (eq == std::string::npos) continue;
+    std::string key = line.substr(0, line.find_first_of(" =")), value = line.substr(eq + 1);
+    value.erase(0, value.find_first_not_of(' '));
+    const bool chooses =
+        key == "model" || key == "kind" || key == "motion" || key == "control" || key == "dimension" || key == "energy";
+    keys.push_back(section + "." + key + (chooses ? "=" + value : ""));
+  }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  std::string sig;
+  for (const auto& k : keys) sig += k + "\n";
+  return sig;
+}
+
+// Of the runnable scenes, the first (by name) of each state signature.
+std::vector<fs::path> scenes_one_per_kind_of_state() {
+  std::vector<fs::path> picked;
+  std::vector<std::string> seen;
+  for (const auto& s : runnable_scenes()) {
+    const std::string sig = state_signature(s);
+    if (std::find(seen.begin(), seen.end(), sig) != seen.end()) continue;
+    seen.push_back(sig);
+    picked.push_back(s);
+  }
+  return picked;
+}
+
 // ---------------------------------------------------------------- the command as a child process
 
 struct Result {

@@ -36,7 +36,7 @@ TEST_CASE("kill_9_at_random_moments_then_resume_gives_the_uninterrupted_run_bit_
   std::mt19937_64 rng(14);
   std::vector<double> moments;  // seconds after the start
   for (int k = 0; k < 4; ++k) moments.push_back(std::uniform_real_distribution<double>(0.0, 0.06)(rng));
-  for (int k = 0; k < 20; ++k) moments.push_back(std::uniform_real_distribution<double>(0.0, run_seconds)(rng));
+  for (int k = 0; k < 12; ++k) moments.push_back(std::uniform_real_distribution<double>(0.0, run_seconds)(rng));
 
   int absent = 0, resumed = 0, finished_first = 0;
   for (std::size_t k = 0; k < moments.size(); ++k) {
@@ -70,5 +70,5 @@ TEST_CASE("kill_9_at_random_moments_then_resume_gives_the_uninterrupted_run_bit_
   }
   MESSAGE(moments.size(), " kills over a ", run_seconds, " s run: ", absent, " before the file existed, ", resumed,
           " resumed to the uninterrupted run bit for bit (", finished_first, " of them had finished before the kill)");
-  CHECK(resumed >= 10);
+  CHECK(resumed >= 6);
 }
