@@ -2,60 +2,53 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
+#include "engine/exact_sum.hpp"
 #include "engine/parallel.hpp"
 
 namespace mc {
 
 namespace {
 
-// Σ_{i<n} term(i) in fixed blocks of kBlock particles, the block sums added in order: the same bits whatever
-// the thread count (parallel.hpp).
-template <class T, class F>
-T block_sum(int n, const T& zero, F&& term) {
-  std::vector<T> part(block_count(n), zero);
+// Σ over the particles this process owns of K terms (terms(i, sums) adds particle i's), each sum exact
+// (engine/exact_sum.hpp) and made the whole world's: the same bits on any thread count and for any split of the
+// world across processes, whose processes call it together.
+template <int K, int D, class F>
+std::array<double, K> exact_sums(const World<D>& world, F&& terms) {
+  const auto& p = world.particles;
+  const int n = p.size();
+  std::vector<std::array<ExactSum, K>> part(block_count(n));
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (int b = 0; b < static_cast<int>(part.size()); ++b) {
     const int end = std::min(n, (b + 1) * kBlock);
-    for (int i = b * kBlock; i < end; ++i) part[b] += term(i);
+    for (int i = b * kBlock; i < end; ++i)
+      if (!p.is_ghost(i)) terms(i, part[b]);
   }
-  T sum = zero;
-  for (const T& p : part) sum += p;
-  return sum;
+  std::vector<ExactSum> total(K);
+  for (const auto& block : part)
+    for (int k = 0; k < K; ++k) total[k] += block[k];
+  world.agree_sums(total);
+  std::array<double, K> out;
+  for (int k = 0; k < K; ++k) out[k] = total[k].value();
+  return out;
 }
 
-template <int D>
-struct StressSum {
-  Tensor<D> s = Tensor<D>::Zero();  // Σ_Np Σ_Nc (x^c − x^p)_i F^c_j
-  double volume = 0;                // Σ_Np V^p
-  StressSum& operator+=(const StressSum& o) {
-    s += o.s;
-    volume += o.volume;
-    return *this;
-  }
-};
-
-struct Count {
-  double contacts = 0, particles = 0;
-  Count& operator+=(const Count& o) {
-    contacts += o.contacts;
-    particles += o.particles;
-    return *this;
-  }
-};
-
-template <int D>
-struct Moments {
-  double n = 0;
-  Vec<D> x = Vec<D>::Zero(), v = Vec<D>::Zero();             // Σ x^p, Σ V^p
-  Tensor<D> xx = Tensor<D>::Zero(), vx = Tensor<D>::Zero();  // Σ x̃ x̃ᵀ, Σ Ṽ x̃ᵀ
-  Moments& operator+=(const Moments& o) {
-    n += o.n, x += o.x, v += o.v, xx += o.xx, vx += o.vx;
-    return *this;
-  }
-};
+// A D×D tensor's entries into sums [first, first + D²), and back.
+template <int D, std::size_t K>
+void add_tensor(std::array<ExactSum, K>& sums, int first, const Tensor<D>& t) {
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) sums[first + i * D + j].add(t(i, j));
+}
+template <int D, std::size_t K>
+Tensor<D> tensor_at(const std::array<double, K>& sums, int first) {
+  Tensor<D> t;
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) t(i, j) = sums[first + i * D + j];
+  return t;
+}
 
 }  // namespace
 
@@ -79,44 +72,44 @@ double lens_volume(double R, double r, double d) {
 template <int D>
 double porosity(const World<D>& world, const Region<D>& region) {
   const auto& p = world.particles;
-  const double solid = block_sum(p.size(), 0.0, [&](int i) {
-    return lens_volume<D>(region.radius, p.radius[i], (p.x[i] - region.centre).norm());
+  const auto solid = exact_sums<1>(world, [&](int i, std::array<ExactSum, 1>& s) {
+    s[0].add(lens_volume<D>(region.radius, p.radius[i], (p.x[i] - region.centre).norm()));
   });
-  return 1.0 - solid / region.volume();
+  return 1.0 - solid[0] / region.volume();
 }
 
 template <int D>
 Tensor<D> average_stress(const World<D>& world, const Region<D>& region) {
   const auto& p = world.particles;
-  const auto sum = block_sum(p.size(), StressSum<D>{}, [&](int i) {
-    StressSum<D> t;
-    if (!region.contains(p.x[i])) return t;
-    t.volume = Dim<D>::volume(p.radius[i]);
-    world.for_each_contact_of(i,
-                              [&](std::size_t, const Vec<D>& f, const Vec<D>& lever) { t.s += lever * f.transpose(); });
-    return t;
+  // Σ_Np Σ_Nc (x^c − x^p)_i F^c_j, then Σ_Np V^p.
+  constexpr int K = D * D + 1;
+  const auto sum = exact_sums<K>(world, [&](int i, std::array<ExactSum, K>& s) {
+    if (!region.contains(p.x[i])) return;
+    s[D * D].add(Dim<D>::volume(p.radius[i]));
+    world.for_each_contact_of(
+        i, [&](std::size_t, const Vec<D>& f, const Vec<D>& lever) { add_tensor<D>(s, 0, lever * f.transpose()); });
   });
-  if (sum.volume == 0) return Tensor<D>::Constant(kNaN);
+  const double volume = sum[D * D];
+  if (volume == 0) return Tensor<D>::Constant(kNaN);
   // Tang (3.63) without its leading minus: with F^c the force ON the particle, a compressed particle receives
   // inward forces at outward levers, so the plain sum is already negative in compression (tension positive).
   // The factor (1 − n)/Σ V^p, (3.59)–(3.62), scales the particles whose centre is inside to the solid actually
   // inside the region, assuming the particles straddling its boundary are stressed like those inside.
-  return (1.0 - porosity(world, region)) / sum.volume * sum.s;
+  return (1.0 - porosity(world, region)) / volume * tensor_at<D>(sum, 0);
 }
 
 template <int D>
 double coordination_number(const World<D>& world, const Region<D>& region) {
   const auto& p = world.particles;
-  const Count c = block_sum(p.size(), Count{}, [&](int i) {
-    Count t;
-    if (!region.contains(p.x[i])) return t;
-    t.particles = 1;
+  const auto c = exact_sums<2>(world, [&](int i, std::array<ExactSum, 2>& s) {
+    if (!region.contains(p.x[i])) return;
+    double contacts = 0;
     world.for_each_contact_of(i, [&](std::size_t, const Vec<D>& f, const Vec<D>&) {
-      if (f.squaredNorm() > 0) t.contacts += 1;  // candidate pairs not (or no longer) touching carry no force
+      if (f.squaredNorm() > 0) contacts += 1;  // candidate pairs not (or no longer) touching carry no force
     });
-    return t;
+    s[0].add(contacts), s[1].add(1);
   });
-  return c.particles > 0 ? c.contacts / c.particles : kNaN;
+  return c[1] > 0 ? c[0] / c[1] : kNaN;
 }
 
 template <int D>
@@ -125,26 +118,30 @@ Tensor<D> best_fit_velocity_gradient(const World<D>& world, const Region<D>& reg
   const Tensor<D> undetermined = Tensor<D>::Constant(kNaN);
   // Means first, Tang (3.68), then the sums about them (3.69)–(3.70): centring before multiplying keeps the
   // normal equations free of the cancellation that Σ x xᵀ − N x̄ x̄ᵀ would suffer far from the origin.
-  const Moments<D> m0 = block_sum(p.size(), Moments<D>{}, [&](int i) {
-    Moments<D> t;
-    if (region.contains(p.x[i])) t.n = 1, t.x = p.x[i], t.v = p.v[i];
-    return t;
+  // Count, Σ x^p, Σ V^p.
+  constexpr int K0 = 1 + 2 * D;
+  const auto m0 = exact_sums<K0>(world, [&](int i, std::array<ExactSum, K0>& s) {
+    if (!region.contains(p.x[i])) return;
+    s[0].add(1);
+    for (int k = 0; k < D; ++k) s[1 + k].add(p.x[i][k]), s[1 + D + k].add(p.v[i][k]);
   });
-  if (m0.n < D + 1) return undetermined;
-  const Vec<D> xm = m0.x / m0.n, vm = m0.v / m0.n;
-  const Moments<D> m = block_sum(p.size(), Moments<D>{}, [&](int i) {
-    Moments<D> t;
-    if (!region.contains(p.x[i])) return t;
+  if (m0[0] < D + 1) return undetermined;
+  Vec<D> xm, vm;
+  for (int k = 0; k < D; ++k) xm[k] = m0[1 + k] / m0[0], vm[k] = m0[1 + D + k] / m0[0];
+  // Σ x̃ x̃ᵀ, Σ Ṽ x̃ᵀ.
+  constexpr int K1 = 2 * D * D;
+  const auto m1 = exact_sums<K1>(world, [&](int i, std::array<ExactSum, K1>& s) {
+    if (!region.contains(p.x[i])) return;
     const Vec<D> xt = p.x[i] - xm, vt = p.v[i] - vm;
-    t.xx = xt * xt.transpose();
-    t.vx = vt * xt.transpose();
-    return t;
+    add_tensor<D>(s, 0, xt * xt.transpose());
+    add_tensor<D>(s, D * D, vt * xt.transpose());
   });
+  const Tensor<D> xx = tensor_at<D>(m1, 0), vx = tensor_at<D>(m1, D * D);
   // (3.71)–(3.73): minimising Σ |α̇ x̃ − Ṽ|² gives α̇ (Σ x̃ x̃ᵀ) = Σ Ṽ x̃ᵀ; Σ x̃ x̃ᵀ is symmetric, so
   // α̇ᵀ = (Σ x̃ x̃ᵀ)⁻¹ (Σ Ṽ x̃ᵀ)ᵀ.
-  const Eigen::FullPivLU<Tensor<D>> lu(m.xx);
+  const Eigen::FullPivLU<Tensor<D>> lu(xx);
   if (!lu.isInvertible()) return undetermined;
-  return lu.solve(Tensor<D>(m.vx.transpose())).transpose();
+  return lu.solve(Tensor<D>(vx.transpose())).transpose();
 }
 
 template double lens_volume<2>(double, double, double);

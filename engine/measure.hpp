@@ -1,6 +1,7 @@
 // Measurements inside a circle (2D) or sphere (3D), as PFC's measurement circles (Tang 2013 §3.4): porosity,
 // average stress, coordination number and the best-fit strain rate. Stress and strain are tension positive.
-// Every sum runs in fixed blocks of particles added in order, so a measurement does not depend on the thread count.
+// Every sum is exact (engine/exact_sum.hpp) over the particles a process owns, then shared: a measurement does not
+// depend on the thread count, nor on how a split world is divided (its processes measure together).
 // A region holding no particle centre gives NaN: "nothing measured" must not read as a zero stress or strain.
 // Stress and coordination read the contact forces of the last step, so they need an initialised world.
 #pragma once

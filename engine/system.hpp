@@ -105,6 +105,9 @@ class System {
 
   // The scene's histories in its order; the samplers read this system and stay valid while it lives.
   virtual const std::vector<Series>& histories() const = 0;
+  // Brings what the samplers read up to date; called before each row is sampled (a split world gathers the
+  // particles they observe: its processes call it, and sample the row, together).
+  virtual void before_row() {}
   virtual SpecimenData specimen() const = 0;
   // Positions, velocities and forces of every body, N·D values each: one frame of the output.
   virtual void frame(std::vector<double>& x, std::vector<double>& v, std::vector<double>& force) const = 0;

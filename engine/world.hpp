@@ -96,10 +96,10 @@ class World {
   std::vector<Crack<D>> cracks;
   // Cracks of a kind and mode; phases −1 count any phase (the pair is unordered).
   std::int64_t crack_count(CrackKind kind, CrackMode mode, int phase_a = -1, int phase_b = -1) const;
-  // Counts of this process's lists (a split world's: pairs with an own particle, those across a cut on both sides).
-  std::size_t bond_count() const;  // intact bonds of all models
-
-  std::size_t contact_count() const;    // touching or bonded ball–ball contacts
+  // The whole world's counts; a split world's processes call them together (each pair counts on A's process).
+  std::size_t bond_count() const;     // intact bonds of all models
+  std::size_t contact_count() const;  // touching or bonded ball–ball contacts
+  // This process's lists (a split world's: pairs with an own particle, those across a cut on both sides).
   std::size_t candidate_count() const;  // pairs in the neighbour lists
   Vec<D> slot_force(std::size_t slot) const { return slots_.f[slot]; }
   // Each contact of particle p: fn(slot, force on p, vector from p's centre to the contact point).
@@ -114,6 +114,8 @@ class World {
   }
 
   // The complete dynamic state (checkpoints): restoring it and stepping on gives the same bits as never stopping.
+  // A split world's processes save together: the whole world's state is gathered into process 0's archive (the
+  // others' stay empty). Restore a whole world, then split it (on any number of processes).
   void save(Archive& a) const;
   void restore(const Archive& a);
 
@@ -136,6 +138,14 @@ class World {
   // The particles this process holds, its own and ghosts, and its own alone.
   int held_count() const { return particles.size(); }
   int own_count() const;
+  // Where the particle of whole-world index `global` is held here (−1: not held).
+  int held_index(std::int64_t global) const;
+  // What observers need of a split world; its processes call these together, in the same order.
+  // Sums taken on each process made the whole world's (nothing to do when the world is whole).
+  void agree_sums(std::vector<ExactSum>& sums) const;
+  // Per-particle values of the held particles (`held[k][i]`: array k, particle i), gathered on process 0 in the
+  // whole world's order from their owners; the other processes get nothing. A whole world returns them as given.
+  std::vector<std::vector<Vec<D>>> gather_whole(const std::vector<const std::vector<Vec<D>>*>& held) const;
 
   std::size_t wall_slot_offset(int set) const { return wall_offset_[set]; }
   std::size_t slot_offset(int set) const { return offset_[set]; }
@@ -202,10 +212,13 @@ class World {
   // The held particles become `sources` (in whole-world order); pairs are renumbered, those that lose a
   // particle or hold only ghosts leave.
   void hold(const std::vector<Source>& sources, const std::vector<Bytes>& received);
-  int held_index(std::int64_t global) const;  // −1: not held
-  void own_members();                         // the driven groups' and gauges' members held as own
-  // Sums taken on each process, made the whole world's (nothing when the world is whole).
-  void agree_sums(std::vector<ExactSum>& sums) const;
+  void own_members();  // the driven groups' and gauges' members held as own
+  // Process 0's archive of a split world: the whole world's state gathered (world_split_save.cpp).
+  void save_split(Archive& a) const;
+  // save()'s archive from the whole world's particles, neighbour-list positions, sets' bytes and slot forces;
+  // the rest (walls, gauges, crack log, scalars, energy) is the same on every process.
+  void write_archive(Archive& a, const Particles<D>& p, const std::vector<Vec<D>>& x_at_rebuild,
+                     const std::vector<std::vector<std::uint8_t>>& set_bytes, const std::vector<Vec<D>>& slot_f) const;
   void count_crack(const Crack<D>& c);
 
   Slots<D> slots_;

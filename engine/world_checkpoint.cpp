@@ -30,9 +30,19 @@ std::vector<std::uint8_t> crack_bytes(const std::vector<Crack<D>>& cracks) {
 
 template <int D>
 void World<D>::save(Archive& a) const {
-  // A split world holds a part of the state: its checkpoint must be gathered first (not built yet).
-  if (split_) throw std::logic_error("World::save: a split world's state is not gathered for checkpoints yet");
-  const auto& p = particles;
+  if (split_) {
+    save_split(a);
+    return;
+  }
+  std::vector<std::vector<std::uint8_t>> set_bytes;
+  for (const auto& s : sets) set_bytes.push_back(s->save());
+  write_archive(a, particles, x_at_rebuild_, set_bytes, slots_.f);
+}
+
+template <int D>
+void World<D>::write_archive(Archive& a, const Particles<D>& p, const std::vector<Vec<D>>& x_at_rebuild,
+                             const std::vector<std::vector<std::uint8_t>>& set_bytes,
+                             const std::vector<Vec<D>>& slot_f) const {
   a.put("radius", p.radius);
   a.put("stiffness", p.stiffness);
   a.put("mass", p.mass);
@@ -52,7 +62,7 @@ void World<D>::save(Archive& a) const {
       q.insert(q.end(), {o.w(), o.x(), o.y(), o.z()});
   }
   a.reals["q"] = q;
-  a.put("x_at_rebuild", x_at_rebuild_);
+  a.put("x_at_rebuild", x_at_rebuild);
   a.put("wall_at_rebuild", wall_at_rebuild_);
   std::vector<double> wl;
   for (const auto& w : walls) {
@@ -68,9 +78,9 @@ void World<D>::save(Archive& a) const {
     for (const auto& gauge : gauges) g.push_back(gauge.start);
     a.reals["gauges"] = g;
   }
-  for (std::size_t s = 0; s < sets.size(); ++s) a.bytes["set" + std::to_string(s)] = sets[s]->save();
+  for (std::size_t s = 0; s < set_bytes.size(); ++s) a.bytes["set" + std::to_string(s)] = set_bytes[s];
   // The last step's contact forces: the servo gain and the timestep refresh read them before the next force pass.
-  a.put("slot_f", slots_.f);
+  a.put("slot_f", slot_f);
   a.bytes["cracks"] = crack_bytes(cracks);
   a.reals["scalars"] = {dt,
                         dt_critical,
@@ -169,6 +179,10 @@ void World<D>::restore(const Archive& a) {
                     std::max(c.phase_a, c.phase_b)];
 }
 
+template void World<2>::write_archive(Archive&, const Particles<2>&, const std::vector<Vec<2>>&,
+                                      const std::vector<std::vector<std::uint8_t>>&, const std::vector<Vec<2>>&) const;
+template void World<3>::write_archive(Archive&, const Particles<3>&, const std::vector<Vec<3>>&,
+                                      const std::vector<std::vector<std::uint8_t>>&, const std::vector<Vec<3>>&) const;
 template void World<2>::save(Archive&) const;
 template void World<3>::save(Archive&) const;
 template void World<2>::restore(const Archive&);

@@ -11,22 +11,17 @@
 #include <tuple>
 
 #include "engine/errors.hpp"
+#include "engine/particle_fields.hpp"
 #include "engine/world.hpp"
 
 namespace mc {
 
 namespace {
 
-// The per-particle arrays a record carries, in its order.
-template <int D>
-auto fields(Particles<D>& p) {
-  return std::tie(p.x, p.v, p.f, p.w, p.m, p.q, p.radius, p.mass, p.inertia, p.phase, p.stiffness, p.fix);
-}
-
 template <int D>
 void put_record(Bytes& out, std::int64_t global, Particles<D>& p, std::vector<std::int64_t>& ids, bool applied, int i) {
   put_bytes(out, global);
-  std::apply([&](auto&... v) { (put_bytes(out, v[i]), ...); }, fields(p));
+  std::apply([&](auto&... v) { (put_bytes(out, v[i]), ...); }, particle_fields(p));
   if (applied) put_bytes(out, p.f_applied[i]), put_bytes(out, p.m_applied[i]);
   if (!ids.empty()) put_bytes(out, ids[i]);
 }
@@ -34,7 +29,8 @@ void put_record(Bytes& out, std::int64_t global, Particles<D>& p, std::vector<st
 template <int D>
 std::size_t record_size(Particles<D>& p, bool applied, bool with_ids) {
   std::size_t n = sizeof(std::int64_t);
-  std::apply([&](auto&... v) { ((n += sizeof(typename std::decay_t<decltype(v)>::value_type)), ...); }, fields(p));
+  std::apply([&](auto&... v) { ((n += sizeof(typename std::decay_t<decltype(v)>::value_type)), ...); },
+             particle_fields(p));
   if (applied) n += sizeof(Vec<D>) + sizeof(Rot<D>);
   if (with_ids) n += sizeof(std::int64_t);
   return n;
@@ -82,6 +78,7 @@ int World<D>::own_count() const {
 
 template <int D>
 int World<D>::held_index(std::int64_t global) const {
+  if (!split_) return global >= 0 && global < particles.size() ? static_cast<int>(global) : -1;
   return index_in(split_->global, global);
 }
 
@@ -97,8 +94,9 @@ void World<D>::hold(const std::vector<Source>& sources, const std::vector<Bytes>
     np.ghost.push_back(s.ghost);
     if (s.local >= 0) {
       const int i = s.local;
-      std::apply([&](auto&... dst) { std::apply([&](auto&... src) { (dst.push_back(src[i]), ...); }, fields(p)); },
-                 fields(np));
+      std::apply(
+          [&](auto&... dst) { std::apply([&](auto&... src) { (dst.push_back(src[i]), ...); }, particle_fields(p)); },
+          particle_fields(np));
       if (applied) np.f_applied.push_back(p.f_applied[i]), np.m_applied.push_back(p.m_applied[i]);
       if (with_ids) nids.push_back(ids[i]);
       nx_rebuild.push_back(x_at_rebuild_[i]);
@@ -109,7 +107,7 @@ void World<D>::hold(const std::vector<Source>& sources, const std::vector<Bytes>
           [&](auto&... dst) {
             ((dst.push_back(take_bytes<typename std::decay_t<decltype(dst)>::value_type>(in, at))), ...);
           },
-          fields(np));
+          particle_fields(np));
       if (applied) {
         np.f_applied.push_back(take_bytes<Vec<D>>(in, at));
         np.m_applied.push_back(take_bytes<Rot<D>>(in, at));
@@ -187,6 +185,12 @@ void World<D>::split(const Exchange& exchange) {
   st.send.resize(exchange.size());
   st.fill.resize(exchange.size());
   split_ = std::move(st);
+  // The last step's contact forces of a restored world (the timestep refresh and the servos read them before the
+  // next force pass) stay with their pairs through the relink.
+  std::vector<std::vector<Pair>> whole_pairs;
+  for (const auto& set : sets) whole_pairs.push_back(set->pairs()), whole_pairs.push_back(set->wall_pairs());
+  const std::vector<Vec<D>> whole_f = slots_.f;
+  const std::vector<std::size_t> whole_offset = offset_, whole_wall_offset = wall_offset_;
   // Every process holds the whole world: its own particles are those of its region, the rest are ghosts until
   // the owners say which ones it needs.
   std::vector<Source> all;
@@ -194,6 +198,23 @@ void World<D>::split(const Exchange& exchange) {
   hold(all, {});
   send_ghosts();
   relink();
+  if (whole_f.empty()) return;
+  auto force_of = [&](const std::vector<Pair>& list, std::size_t first, const Pair& pair) {
+    const auto it = std::lower_bound(list.begin(), list.end(), pair);
+    return whole_f[first + static_cast<std::size_t>(it - list.begin())];
+  };
+  const auto& global = split_->global;
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    const auto& pairs = sets[s]->pairs();
+    for (std::size_t c = 0; c < pairs.size(); ++c)
+      slots_.f[offset_[s] + c] =
+          force_of(whole_pairs[2 * s], whole_offset[s],
+                   {static_cast<int>(global[pairs[c][0]]), static_cast<int>(global[pairs[c][1]])});
+    const auto& walls_of = sets[s]->wall_pairs();
+    for (std::size_t c = 0; c < walls_of.size(); ++c)
+      slots_.f[wall_offset_[s] + c] = force_of(whole_pairs[2 * s + 1], whole_wall_offset[s],
+                                               {walls_of[c][0], static_cast<int>(global[walls_of[c][1]])});
+  }
 }
 
 // The own particles other processes need as ghosts, per rank: those within the ghost layer of its region, and
@@ -495,11 +516,8 @@ void World<D>::agree_on_step(const Motion& motion) {
   ex.max(v);
   moved_ = v[0];
   if (v[2] > 0) throw InstabilityError(first_failure(split_->passing_key, split_->passing));
-  if (v[1] > -kInf) {
-    const bool mine = motion.too_far >= 0 && too_far == v[1];
-    throw InstabilityError(
-        first_failure({-static_cast<std::int64_t>(v[1]), 0, 0}, mine ? too_far_message(motion.too_far) : ""));
-  }
+  // The step's breaks join the log before a particle moving too far stops the run, as in the whole world (whose
+  // law of motion follows the crack log; a pair passing through stops it before).
   if (v[3] > 0) {
     Bytes b;
     for (const Crack<D>& c : split_->cracks) put_bytes(b, c);
@@ -514,6 +532,11 @@ void World<D>::agree_on_step(const Motion& motion) {
     for (const Crack<D>& c : merged) count_crack(c);
   }
   split_->cracks.clear();
+  if (v[1] > -kInf) {
+    const bool mine = motion.too_far >= 0 && too_far == v[1];
+    throw InstabilityError(
+        first_failure({-static_cast<std::int64_t>(v[1]), 0, 0}, mine ? too_far_message(motion.too_far) : ""));
+  }
 }
 
 template int World<2>::own_count() const;
