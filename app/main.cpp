@@ -56,9 +56,16 @@ int run(const std::string& scene_file, std::string output, const std::vector<std
   mc::RunOptions opt;
   opt.output = output;
   opt.resume = !resume.empty();
+  // Under mpirun the ranks run the one specimen split across them; rank 0 writes the output and reports.
+  const mc::Ranks& ranks = mc::Ranks::world();
+  const mc::RanksExchange exchange(ranks);
+  if (ranks.size() > 1) opt.exchange = &exchange;
   const mc::RunResult r = mc::run_scene(scene, opt);
-  std::fprintf(stderr, "%s after %lld steps, t = %.6g s, %.1f s wall time -> %s\n", r.status.c_str(),
+  if (!ranks.root()) return 0;
+  std::fprintf(stderr, "%s after %lld steps, t = %.6g s, %.1f s wall time -> %s", r.status.c_str(),
                static_cast<long long>(r.steps), r.time, r.wall_seconds, output.c_str());
+  if (ranks.size() > 1) std::fprintf(stderr, " (split across %d ranks)", ranks.size());
+  std::fputc('\n', stderr);
   return 0;
 }
 

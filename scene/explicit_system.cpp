@@ -30,11 +30,43 @@ void with_scene_timestep(const Scene& s, F&& f) {
 }  // namespace
 
 template <int D>
-ExplicitSystem<D>::ExplicitSystem(const Scene& scene)
-    : scene_(scene), world_(build_world<D>(scene, info_)), obs_(scene) {
+ExplicitSystem<D>::ExplicitSystem(const Scene& scene, const Exchange* exchange)
+    : scene_(scene), exchange_(exchange), world_(build_world<D>(scene, info_)), obs_(scene) {
   world_.ids = info_.ids;  // the engine's messages name particles as the specimen does
   check_probes();
-  series_ = make_series<D>(scene, &world_, &info_, &obs_);
+  if (splits()) view_ = world_.particles, view_gauges_ = world_.gauges;
+  const Observed<D> view = splits() ? Observed<D>{&view_, &info_.groups, &world_.walls, &view_gauges_}
+                                    : Observed<D>{&world_.particles, &info_.groups, &world_.walls, &world_.gauges};
+  series_ = make_series<D>(scene, &world_, view, &info_, &obs_);
+}
+
+template <int D>
+void ExplicitSystem<D>::split() {
+  if (!splits()) return;
+  specimen_ = specimen();
+  view_ = world_.particles;
+  view_gauges_ = world_.gauges;
+  world_.split(*exchange_);
+}
+
+// Every process sends every other the motion and forces of the particles it owns: the whole view is then the
+// whole world's, on each process alike.
+template <int D>
+void ExplicitSystem<D>::before_row() {
+  if (!splits()) return;
+  const auto& p = world_.particles;
+  Bytes mine;
+  for (int i = 0; i < p.size(); ++i) {
+    if (p.is_ghost(i)) continue;
+    put_bytes(mine, world_.global_index(i));
+    put_bytes(mine, p.x[i]), put_bytes(mine, p.v[i]), put_bytes(mine, p.f[i]), put_bytes(mine, p.w[i]);
+  }
+  for (const Bytes& b : exchange_->all_gather(mine))
+    for (std::size_t at = 0; at < b.size();) {
+      const auto g = take_bytes<std::int64_t>(b, at);
+      view_.x[g] = take_bytes<Vec<D>>(b, at), view_.v[g] = take_bytes<Vec<D>>(b, at);
+      view_.f[g] = take_bytes<Vec<D>>(b, at), view_.w[g] = take_bytes<Rot<D>>(b, at);
+    }
 }
 
 template <int D>
@@ -55,6 +87,7 @@ void ExplicitSystem<D>::start() {
     world_.update_energy();
     world_.energy.initial = world_.energy.kinetic + world_.energy.strain;
   }
+  split();
 }
 
 // Bonds, and how many each phase pair got (mortar, aggregate, ITZ …): written with the specimen.
@@ -88,6 +121,7 @@ void ExplicitSystem<D>::step() {
 
 template <int D>
 SpecimenData ExplicitSystem<D>::specimen() const {
+  if (world_.is_split()) return specimen_;
   const auto& p = world_.particles;
   SpecimenData d{D, {}, p.radius, {}, {}, info_.ids, info_.facts, info_.outlines, {}};
   for (const auto& x : p.x) d.x.insert(d.x.end(), x.data(), x.data() + D);
@@ -100,8 +134,10 @@ template <int D>
 void ExplicitSystem<D>::frame(std::vector<double>& x, std::vector<double>& v, std::vector<double>& f) const {
   const auto& p = world_.particles;
   x.clear(), v.clear(), f.clear();
-  for (int i = 0; i < p.size(); ++i)
-    for (int k = 0; k < D; ++k) x.push_back(p.x[i][k]), v.push_back(p.v[i][k]), f.push_back(p.f[i][k]);
+  // A split world's frame is gathered on process 0 (the others get none).
+  const auto whole = world_.gather_whole({&p.x, &p.v, &p.f});
+  for (std::size_t i = 0; i < whole[0].size(); ++i)
+    for (int k = 0; k < D; ++k) x.push_back(whole[0][i][k]), v.push_back(whole[1][i][k]), f.push_back(whole[2][i][k]);
 }
 
 template <int D>
@@ -147,6 +183,7 @@ void ExplicitSystem<D>::restore(const Archive& a) {
   std::size_t k = 0;
   for (auto& si : obs_.strain)
     for (int i = 0; i < D * D; ++i) si.strain.data()[i] = strains[k++];
+  split();
 }
 
 template class ExplicitSystem<2>;

@@ -12,8 +12,11 @@ namespace mc {
 template <int D>
 class ExplicitSystem final : public System {
  public:
-  // Builds the world (a generated specimen is generated here). The scene must outlive the system.
-  explicit ExplicitSystem(const Scene& scene);
+  // Builds the world (a generated specimen is generated here). The scene must outlive the system. With an
+  // exchange of more than one process, every process builds the whole world and splits it once it starts or is
+  // restored (World::split): the processes then step, observe and save together, and process 0 gets the frames
+  // and the checkpoints. The exchange must outlive the system.
+  explicit ExplicitSystem(const Scene& scene, const Exchange* exchange = nullptr);
   ExplicitSystem(const ExplicitSystem&) = delete;  // the history samplers point into it
   ExplicitSystem& operator=(const ExplicitSystem&) = delete;
 
@@ -25,6 +28,7 @@ class ExplicitSystem final : public System {
   double timestep() const override { return world_.dt; }
   void check_stability() const override { world_.check_stability(); }
   const std::vector<Series>& histories() const override { return series_; }
+  void before_row() override;
   SpecimenData specimen() const override;
   void frame(std::vector<double>& x, std::vector<double>& v, std::vector<double>& force) const override;
   std::vector<std::string> crack_models() const override;
@@ -39,11 +43,20 @@ class ExplicitSystem final : public System {
  private:
   void check_probes() const;
   void install_bonds();
+  bool splits() const { return exchange_ && exchange_->size() > 1; }
+  // The whole world at the start (or at a restore), then split: the whole view starts as a copy of it.
+  void split();
 
   const Scene& scene_;
+  const Exchange* exchange_;
   SpecimenInfo info_;
   World<D> world_;
   Observers<D> obs_;
+  // A split world's whole view of what groups, probes and analyses read (their particles by whole-world index),
+  // brought up to date before each row (before_row), and its specimen as it started.
+  Particles<D> view_;
+  std::vector<OpeningGauge<D>> view_gauges_;
+  SpecimenData specimen_;
   std::vector<Series> series_;
 };
 

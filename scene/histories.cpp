@@ -15,11 +15,14 @@ namespace {
 const char* axis_name(int k) { return k == 0 ? "x" : k == 1 ? "y" : "z"; }
 std::string tensor_name(int i, int j) { return std::string(axis_name(i)) + axis_name(j); }
 
-// Appends series to a list; with no world, their names alone.
+// Appends series to a list; with no world, their names alone. Particles are read in `bodies` and opening gauges in
+// `gauges`: the world's own, or a split world's whole view of them.
 template <int D>
 struct SeriesList {
   std::vector<Series> out;
   World<D>* w;
+  const Particles<D>* bodies;
+  const std::vector<OpeningGauge<D>>* gauges;
   void add(std::string name, std::string unit, std::function<double()> f) {
     out.push_back({std::move(name), std::move(unit), w ? std::move(f) : nullptr});
   }
@@ -70,23 +73,23 @@ void add_walls(const Scene& s, SeriesList<D>& l) {
 // specimen exerts), and its mean displacement from the start.
 template <int D>
 void add_groups(const Scene& s, const SpecimenInfo* info, SeriesList<D>& l) {
-  const World<D>* w = l.w;
+  const Particles<D>* p = l.bodies;
   for (std::size_t gi = 0; gi < s.groups.size(); ++gi) {
     const std::string pre = "group." + s.groups[gi].name + ".";
     const std::vector<int>* members = info ? &info->groups[gi] : nullptr;
     auto x0 = std::make_shared<std::vector<Vec<D>>>();
-    if (w)
-      for (int i : *members) x0->push_back(w->particles.x[i]);
+    if (p)
+      for (int i : *members) x0->push_back(p->x[i]);
     for (int k = 0; k < D; ++k)
-      l.add(pre + "reaction_" + axis_name(k), "N", [w, members, k] {
+      l.add(pre + "reaction_" + axis_name(k), "N", [p, members, k] {
         double f = 0;
-        for (int i : *members) f -= w->particles.f[i][k];
+        for (int i : *members) f -= p->f[i][k];
         return f;
       });
     for (int k = 0; k < D; ++k)
-      l.add(pre + "disp_" + axis_name(k), "m", [w, members, k, x0] {
+      l.add(pre + "disp_" + axis_name(k), "m", [p, members, k, x0] {
         double u = 0;
-        for (std::size_t n = 0; n < members->size(); ++n) u += w->particles.x[(*members)[n]][k] - (*x0)[n][k];
+        for (std::size_t n = 0; n < members->size(); ++n) u += p->x[(*members)[n]][k] - (*x0)[n][k];
         return u / static_cast<double>(members->size());
       });
   }
@@ -156,7 +159,8 @@ void add_regions(const Scene& s, const Observers<D>* obs, SeriesList<D>& l) {
 // Probes name particles by the specimen's ids; samplers use their indices.
 template <int D>
 void add_probes(const Scene& s, const SpecimenInfo* info, SeriesList<D>& l) {
-  const World<D>* w = l.w;
+  const Particles<D>* q = l.bodies;
+  const std::vector<OpeningGauge<D>>* gauges = l.gauges;
   auto index_of = [info](std::int64_t id) {
     if (!info) return -1;
     return static_cast<int>(std::find(info->ids.begin(), info->ids.end(), id) - info->ids.begin());
@@ -164,7 +168,7 @@ void add_probes(const Scene& s, const SpecimenInfo* info, SeriesList<D>& l) {
   for (const ProbeSpec& p : s.probes) {
     if (p.kind == ProbeSpec::Kind::Opening) {
       const int g = s.opening_gauge(p.name);
-      l.add(p.name, "m", [w, g] { return w->gauges[g].value(w->particles); });
+      l.add(p.name, "m", [q, gauges, g] { return (*gauges)[g].value(*q); });
       continue;
     }
     const int a = index_of(p.particles[0]);
@@ -175,30 +179,23 @@ void add_probes(const Scene& s, const SpecimenInfo* info, SeriesList<D>& l) {
       case K::Overlap:
       case K::Gap: {
         const double sign = p.kind == K::Overlap ? 1.0 : -1.0;
-        l.add(p.name, "m", [w, a, b, sign] {
-          const auto& q = w->particles;
-          return sign * (q.radius[a] + q.radius[b] - (q.x[b] - q.x[a]).norm());
-        });
+        l.add(p.name, "m",
+              [q, a, b, sign] { return sign * (q->radius[a] + q->radius[b] - (q->x[b] - q->x[a]).norm()); });
         break;
       }
       case K::RelativeSpeed:
         // Along the line of centres (positive when separating), or one component of v_b − v_a.
-        l.add(p.name, "m/s", [w, a, b, c] {
-          const auto& q = w->particles;
-          const Vec<D> dv = q.v[b] - q.v[a];
-          return c >= 0 ? dv[c] : dv.dot((q.x[b] - q.x[a]).normalized());
+        l.add(p.name, "m/s", [q, a, b, c] {
+          const Vec<D> dv = q->v[b] - q->v[a];
+          return c >= 0 ? dv[c] : dv.dot((q->x[b] - q->x[a]).normalized());
         });
         break;
-      case K::Position:
-        l.add(p.name, "m", [w, a, c] { return c >= 0 ? w->particles.x[a][c] : w->particles.x[a].norm(); });
-        break;
-      case K::Velocity:
-        l.add(p.name, "m/s", [w, a, c] { return c >= 0 ? w->particles.v[a][c] : w->particles.v[a].norm(); });
-        break;
+      case K::Position: l.add(p.name, "m", [q, a, c] { return c >= 0 ? q->x[a][c] : q->x[a].norm(); }); break;
+      case K::Velocity: l.add(p.name, "m/s", [q, a, c] { return c >= 0 ? q->v[a][c] : q->v[a].norm(); }); break;
       case K::Opening: break;  // above
       case K::AngularVelocity:
-        l.add(p.name, "rad/s", [w, a, c] {
-          const auto& om = w->particles.w[a];
+        l.add(p.name, "rad/s", [q, a, c] {
+          const auto& om = q->w[a];
           return D == 2 ? om[0] : (c >= 0 ? om[c] : om.norm());
         });
         break;
@@ -226,8 +223,9 @@ void Observers<D>::every_step(const World<D>& w, const Scene& s) {
 }
 
 template <int D>
-std::vector<Series> make_series(const Scene& s, World<D>* w, const SpecimenInfo* info, const Observers<D>* obs) {
-  SeriesList<D> l{{}, w};
+std::vector<Series> make_series(const Scene& s, World<D>* w, const Observed<D>& view, const SpecimenInfo* info,
+                                const Observers<D>* obs) {
+  SeriesList<D> l{{}, w, view.bodies, view.gauges};
   l.add("time", "s", [w] { return w->time; });
   l.add("step", "-", [w] { return static_cast<double>(w->step_count); });
   l.add("dt", "s", [w] { return w->dt; });
@@ -235,9 +233,7 @@ std::vector<Series> make_series(const Scene& s, World<D>* w, const SpecimenInfo*
   if (s.bond_tolerance >= 0) add_bonds<D>(s, l);
   add_walls<D>(s, l);
   add_groups<D>(s, info, l);
-  const Observed<D> observed{w ? &w->particles : nullptr, info ? &info->groups : nullptr, w ? &w->walls : nullptr,
-                             w ? &w->gauges : nullptr};
-  for (const auto& a : s.analyses) a->add_histories(l.out, observed);
+  for (const auto& a : s.analyses) a->add_histories(l.out, view);
   add_wall_strains<D>(s, l);
   if (s.energy) add_energy<D>(l);
   add_regions<D>(s, obs, l);
@@ -251,15 +247,17 @@ std::vector<std::string> history_names(const Scene& s) {
     for (const auto& x : rigid_cell_series(s)) names.push_back(x.name);
     return names;
   }
-  const std::vector<Series> series =
-      s.dimension == 2 ? make_series<2>(s, nullptr, nullptr, nullptr) : make_series<3>(s, nullptr, nullptr, nullptr);
+  const std::vector<Series> series = s.dimension == 2 ? make_series<2>(s, nullptr, {}, nullptr, nullptr)
+                                                      : make_series<3>(s, nullptr, {}, nullptr, nullptr);
   for (const auto& x : series) names.push_back(x.name);
   return names;
 }
 
 template struct Observers<2>;
 template struct Observers<3>;
-template std::vector<Series> make_series<2>(const Scene&, World<2>*, const SpecimenInfo*, const Observers<2>*);
-template std::vector<Series> make_series<3>(const Scene&, World<3>*, const SpecimenInfo*, const Observers<3>*);
+template std::vector<Series> make_series<2>(const Scene&, World<2>*, const Observed<2>&, const SpecimenInfo*,
+                                            const Observers<2>*);
+template std::vector<Series> make_series<3>(const Scene&, World<3>*, const Observed<3>&, const SpecimenInfo*,
+                                            const Observers<3>*);
 
 }  // namespace mc

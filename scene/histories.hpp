@@ -9,6 +9,7 @@
 #include "engine/measure.hpp"
 #include "engine/system.hpp"
 #include "engine/world.hpp"
+#include "scene/analysis.hpp"
 #include "scene/build_world.hpp"
 #include "scene/scene.hpp"
 
@@ -23,10 +24,13 @@ struct Observers {
   void every_step(const World<D>& w, const Scene& s);
 };
 
-// The series of a run of `s` on `w`; with `w` null, the names alone. The energy series bring the world's energy
-// terms up to date when sampled (World::update_energy), so they need it writable.
+// The series of a run of `s` on `w`; with `w` null, the names alone. Groups, probes and analyses read `view`: the
+// world's particles, walls and gauges, or (a split world) a whole copy of them kept up to date for each row. The
+// energy series bring the world's energy terms up to date when sampled (World::update_energy), so they need it
+// writable. The samplers of a split world call its processes together (World::agree_sums), in the list's order.
 template <int D>
-std::vector<Series> make_series(const Scene& s, World<D>* w, const SpecimenInfo* info, const Observers<D>* obs);
+std::vector<Series> make_series(const Scene& s, World<D>* w, const Observed<D>& view, const SpecimenInfo* info,
+                                const Observers<D>* obs);
 
 std::vector<std::string> history_names(const Scene& s);
 

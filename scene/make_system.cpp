@@ -8,7 +8,11 @@
 
 namespace mc {
 
-std::unique_ptr<System> make_system(const Scene& scene) {
+std::unique_ptr<System> make_system(const Scene& scene, const Exchange* exchange) {
+  if (scene.rigid_cell && exchange && exchange->size() > 1)
+    throw InputError(scene.file +
+                     ": [rigid_cell]: a rigid-cell specimen runs in one process (its solver factorises "
+                     "one matrix); run it without mpirun, or with mpirun -np 1");
   if (scene.rigid_cell) {
 #ifdef MESOCRACK_RIGID_CELL
     return make_rigid_cell_system(scene);
@@ -18,8 +22,8 @@ std::unique_ptr<System> make_system(const Scene& scene) {
                      "configure with -DMESOCRACK_RIGID_CELL=ON");
 #endif
   }
-  if (scene.dimension == 2) return std::make_unique<ExplicitSystem<2>>(scene);
-  return std::make_unique<ExplicitSystem<3>>(scene);
+  if (scene.dimension == 2) return std::make_unique<ExplicitSystem<2>>(scene, exchange);
+  return std::make_unique<ExplicitSystem<3>>(scene, exchange);
 }
 
 }  // namespace mc

@@ -3,12 +3,14 @@
 #pragma once
 #include <memory>
 
+#include "engine/exchange.hpp"
 #include "engine/system.hpp"
 #include "scene/scene.hpp"
 
 namespace mc {
 
-// Builds the system (a generated specimen is generated here). The scene must outlive it.
-std::unique_ptr<System> make_system(const Scene& scene);
+// Builds the system (a generated specimen is generated here). The scene must outlive it. With an exchange of more
+// than one process, the processes run one specimen split across them (the explicit family; ExplicitSystem).
+std::unique_ptr<System> make_system(const Scene& scene, const Exchange* exchange = nullptr);
 
 }  // namespace mc

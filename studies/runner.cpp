@@ -21,6 +21,53 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// An archive as bytes and back: process 0 reads a checkpoint and the others receive it.
+Bytes archive_bytes(const Archive& a) {
+  Bytes out;
+  auto put_string = [&](const std::string& s) {
+    put_bytes(out, static_cast<std::uint64_t>(s.size()));
+    out.insert(out.end(), s.begin(), s.end());
+  };
+  put_bytes(out, static_cast<std::uint64_t>(a.reals.size()));
+  for (const auto& [key, values] : a.reals) {
+    put_string(key);
+    put_bytes(out, static_cast<std::uint64_t>(values.size()));
+    for (double v : values) put_bytes(out, v);
+  }
+  put_bytes(out, static_cast<std::uint64_t>(a.bytes.size()));
+  for (const auto& [key, values] : a.bytes) {
+    put_string(key);
+    put_bytes(out, static_cast<std::uint64_t>(values.size()));
+    out.insert(out.end(), values.begin(), values.end());
+  }
+  return out;
+}
+
+Archive archive_of(const Bytes& in) {
+  Archive a;
+  std::size_t at = 0;
+  auto take_string = [&] {
+    const auto n = take_bytes<std::uint64_t>(in, at);
+    std::string s(in.begin() + static_cast<std::ptrdiff_t>(at), in.begin() + static_cast<std::ptrdiff_t>(at + n));
+    at += n;
+    return s;
+  };
+  for (auto n = take_bytes<std::uint64_t>(in, at); n > 0; --n) {
+    const std::string key = take_string();
+    auto& values = a.reals[key];
+    values.resize(take_bytes<std::uint64_t>(in, at));
+    for (double& v : values) v = take_bytes<double>(in, at);
+  }
+  for (auto n = take_bytes<std::uint64_t>(in, at); n > 0; --n) {
+    const std::string key = take_string();
+    const auto size = take_bytes<std::uint64_t>(in, at);
+    a.bytes[key].assign(in.begin() + static_cast<std::ptrdiff_t>(at),
+                        in.begin() + static_cast<std::ptrdiff_t>(at + size));
+    at += size;
+  }
+  return a;
+}
+
 // A stop condition and what it remembers (the peak, for post-peak conditions).
 struct StopState {
   StopSpec spec;
@@ -32,7 +79,12 @@ struct StopState {
 // scene's conditions or on an instability.
 class Runner {
  public:
-  Runner(const Scene& s, const RunOptions& o) : scene_(s), opt_(o), system_(make_system(s)) {
+  Runner(const Scene& s, const RunOptions& o)
+      : scene_(s),
+        opt_(o),
+        split_(o.exchange && o.exchange->size() > 1 ? o.exchange : nullptr),
+        writer_(!split_ || split_->rank() == 0),
+        system_(make_system(s, split_)) {
     for (const auto& st : s.stops) stops_.push_back({st, column_of(st.quantity)});
     buffer_.resize(system_->histories().size());
   }
@@ -48,7 +100,7 @@ class Runner {
       end_with("unstable", e.what());
       throw;
     } catch (const std::exception& e) {
-      if (out_->file().abandoned())
+      if (writer_ && out_->file().abandoned())
         throw IoError(std::string(e.what()) + "; " + opt_.output +
                       " keeps the run as last flushed: `summary` reads it, `run --resume` continues it from its last "
                       "checkpoint");
@@ -70,6 +122,7 @@ class Runner {
     if (last_record_step_ != system_->step_count()) record();
     if (last_frame_step_ != system_->step_count()) frame();
     checkpoint();
+    if (!writer_) return;
     out_->set_status(status == "finished" ? "finished" : "stopped", status);
     out_->flush();
     out_->write_csv();
@@ -78,16 +131,30 @@ class Runner {
 
   // A run cut short by an exception: what it recorded so far goes to the file, with the status saying why. When
   // that fails too, the file error is what the command reports (exit 3), naming the first failure as well.
+  // A split run's instabilities are found by all its processes together (each is agreed within the step): the
+  // others then wait until process 0 has written why, as the launch ends when the first of them exits with it.
+  // Any other failure is one process's own, and ends the launch as it stands.
   void end_with(const std::string& status, const std::string& why) {
     if (progress_shown_) std::fputc('\n', stderr);
     try {
-      flush_history();
-      out_->set_status(status, why);
-      out_->flush();
-      out_->write_csv();
+      if (writer_ && out_) {
+        flush_history();
+        out_->set_status(status, why);
+        out_->flush();
+        out_->write_csv();
+      }
     } catch (const IoError& e) {
       throw IoError(std::string(e.what()) + " (while recording that the run " + status + ": " + why + ")");
     }
+    if (status == "unstable") any(false);
+  }
+
+  // Whether any process says yes (a split run's processes call it together); this process's answer alone.
+  bool any(bool mine) const {
+    if (!split_) return mine;
+    std::vector<double> v{mine ? 1.0 : 0.0};
+    split_->max(v);
+    return v[0] > 0;
   }
 
  private:
@@ -104,10 +171,11 @@ class Runner {
       if (scene_.frame_every > 0 && s % scene_.frame_every == 0) frame();
       if ((s & 63) == 0) {
         const auto now = Clock::now();
+        // A checkpoint by the wall clock: when process 0's says so (the processes save together).
         const bool due = scene_.checkpoint_every > 0 ? s % scene_.checkpoint_every == 0
-                                                     : now - last_checkpoint > std::chrono::seconds(60);
+                                                     : any(writer_ && now - last_checkpoint > std::chrono::seconds(60));
         if (due) checkpoint(), last_checkpoint = now, last_flush = now;
-        if (now - last_flush > std::chrono::seconds(2)) flush_history(), out_->flush(), last_flush = now;
+        if (writer_ && now - last_flush > std::chrono::seconds(2)) flush_history(), out_->flush(), last_flush = now;
         if (now - last_progress > std::chrono::milliseconds(500)) progress(t0, now), last_progress = now;
       } else if (scene_.checkpoint_every > 0 && s % scene_.checkpoint_every == 0) {
         checkpoint(), last_checkpoint = last_flush = Clock::now();
@@ -142,16 +210,18 @@ class Runner {
   // Everything up to the step-0 checkpoint goes into the partial file; the file appears under its name only then,
   // complete, so that a run killed at any moment leaves either no file or one that can be read and resumed.
   void start_output(const std::vector<std::string>& names, const std::vector<std::string>& units) {
-    out_ = std::make_unique<RunOutput>(opt_.output, scene_.text, scene_.file, system_->specimen());
-    out_->create_histories(names, units);
     const std::vector<std::string> models = system_->crack_models();
-    if (!models.empty()) out_->create_crack_log(system_->dimension(), models);
     crack_log_ = !models.empty();
-    if (!scene_.xy_plots.empty()) out_->set_xy_plots(scene_.xy_plots);
+    if (writer_) {
+      out_ = std::make_unique<RunOutput>(opt_.output, scene_.text, scene_.file, system_->specimen());
+      out_->create_histories(names, units);
+      if (!models.empty()) out_->create_crack_log(system_->dimension(), models);
+      if (!scene_.xy_plots.empty()) out_->set_xy_plots(scene_.xy_plots);
+    }
     record();
     frame();
     checkpoint();
-    out_->publish();
+    if (writer_) out_->publish();
   }
 
   // An error message about the partial file, naming the output file the user gave instead.
@@ -162,10 +232,26 @@ class Runner {
     return message;
   }
 
+  // Process 0 reads the checkpoint (and where the file's histories and frames end) and the others receive it;
+  // then every process restores it, a split world splitting it afresh over however many processes there are now.
   void resume(const std::vector<std::string>& names, const std::vector<std::string>& units) {
-    const SceneChange change = scene_change();  // before the file is opened for writing: a refusal leaves it as is
-    out_ = std::make_unique<RunOutput>(opt_.output);
-    const Archive a = out_->read_checkpoint();
+    SceneChange change;
+    Archive a;
+    if (writer_) {
+      change = scene_change();  // before the file is opened for writing: a refusal leaves it as is
+      out_ = std::make_unique<RunOutput>(opt_.output);
+      a = out_->read_checkpoint();
+      const std::int64_t hrows = static_cast<std::int64_t>(a.reals.at("runner").at(0));
+      const std::int64_t frows = static_cast<std::int64_t>(a.reals.at("runner").at(1));
+      a.reals["runner_last"] = {
+          hrows > 0 ? out_->file().read_doubles("/history/step").at(static_cast<std::size_t>(hrows - 1)) : -1.0,
+          frows > 0
+              ? static_cast<double>(out_->file().read_ints("/frames/step").at(static_cast<std::size_t>(frows - 1)))
+              : -1.0,
+          change.stops_changed ? 1.0 : 0.0};
+    }
+    if (split_) a = archive_of(split_->all_gather(writer_ ? archive_bytes(a) : Bytes{})[0]);
+    change.stops_changed = a.reals.at("runner_last")[2] > 0;
     try {
       system_->restore(a);
     } catch (const InputError& e) {
@@ -184,13 +270,16 @@ class Runner {
       const auto& why = a.bytes.at("stop_reason");
       stop_reason_.assign(why.begin(), why.end());
     }
-    out_->create_histories(names, units);
-    out_->truncate(hrows, frows, crows);
     cracks_written_ = static_cast<std::size_t>(crows);
     crack_log_ = !system_->crack_models().empty();
-    if (hrows > 0) last_record_step_ = static_cast<std::int64_t>(out_->file().read_doubles("/history/step").back());
-    if (frows > 0) last_frame_step_ = out_->file().read_ints("/frames/step").back();
+    // The steps of the newest row and frame in the file (those of the checkpoint's, or later ones dropped now).
+    const auto& last = a.reals.at("runner_last");
+    if (hrows > 0) last_record_step_ = static_cast<std::int64_t>(last[0]);
+    if (frows > 0) last_frame_step_ = static_cast<std::int64_t>(last[1]);
     first_step_ = system_->step_count();
+    if (!writer_) return;
+    out_->create_histories(names, units);
+    out_->truncate(hrows, frows, crows);
     out_->set_status("running");
     out_->flush();
   }
@@ -215,6 +304,7 @@ class Runner {
 
   // One history row. A non-finite value is an instability: it never reaches the file (nor does its row).
   void record() {
+    system_->before_row();
     const auto& series = system_->histories();
     std::vector<double> row(series.size());
     for (std::size_t i = 0; i < series.size(); ++i) {
@@ -229,7 +319,8 @@ class Runner {
       }
     }
     last_record_step_ = system_->step_count();
-    for (std::size_t i = 0; i < series.size(); ++i) buffer_[i].push_back(row[i]);
+    if (writer_)
+      for (std::size_t i = 0; i < series.size(); ++i) buffer_[i].push_back(row[i]);
     for (auto& st : stops_) check_stop(st, row[st.column]);
   }
 
@@ -253,6 +344,7 @@ class Runner {
   }
 
   void flush_history() {
+    if (!writer_) return;
     flush_cracks();
     if (buffer_.empty() || buffer_[0].empty()) return;
     out_->append_history(buffer_);
@@ -265,6 +357,7 @@ class Runner {
     cracks_written_ = system_->crack_count();
   }
 
+  // A split world's frame is gathered on process 0, which alone can find it non-finite: the others hear it.
   void frame() {
     last_frame_step_ = system_->step_count();
     flush_history();
@@ -272,33 +365,42 @@ class Runner {
     system_->frame(x, v, f);
     const CellFrame cells = system_->cell_frame();
     const int d = system_->dimension();
-    refuse_non_finite("position", x, d, "particle", "/specimen");
-    refuse_non_finite("velocity", v, d, "particle", "/specimen");
-    refuse_non_finite("force", f, d, "particle", "/specimen");
-    refuse_non_finite("position", cells.corner, d, "cell corner", "/specimen/cells/corner");
-    refuse_non_finite("damage", cells.damage, 1, "contact facet", "/specimen/cells/facet_a");
+    std::string why;
+    if (writer_) {
+      why = non_finite("position", x, d, "particle", "/specimen");
+      if (why.empty()) why = non_finite("velocity", v, d, "particle", "/specimen");
+      if (why.empty()) why = non_finite("force", f, d, "particle", "/specimen");
+      if (why.empty()) why = non_finite("position", cells.corner, d, "cell corner", "/specimen/cells/corner");
+      if (why.empty()) why = non_finite("damage", cells.damage, 1, "contact facet", "/specimen/cells/facet_a");
+    }
+    if (any(!why.empty()))
+      throw InstabilityError(writer_ ? why
+                                     : "unstable at step " + std::to_string(system_->step_count()) +
+                                           ": process 0 found the frame non-finite (its message is in the output)");
+    if (!writer_) return;
     out_->append_frame(system_->time(), system_->step_count(), x, v, f, cells);
     out_->flush();
   }
 
-  // A frame's values are finite, or the run is unstable (before anything of the frame is written). `width` values
-  // describe one `item`, row k of `table`.
-  void refuse_non_finite(const char* what, const std::vector<double>& values, int width, const char* item,
+  // "" when a frame's values are finite, else why the run is unstable (found before anything of the frame is
+  // written). `width` values describe one `item`, row k of `table`.
+  std::string non_finite(const char* what, const std::vector<double>& values, int width, const char* item,
                          const char* table) const {
     const auto bad = std::find_if(values.begin(), values.end(), [](double x) { return !std::isfinite(x); });
-    if (bad == values.end()) return;
+    if (bad == values.end()) return "";
     const auto k = (bad - values.begin()) / width;
     std::ostringstream m;
     m << "unstable at step " << system_->step_count() << " (t = " << system_->time() << " s): the " << what << " of "
       << item << " " << k << " (row " << k << " of " << table << ") is " << *bad
       << "; likely cause: the state blew up between two stability checks (lower output.guard_every to find where)";
-    throw InstabilityError(m.str());
+    return m.str();
   }
 
   void checkpoint() {
     flush_history();
     Archive a;
-    system_->save(a);
+    system_->save(a);  // a split world's processes save together, into process 0's archive
+    if (!writer_) return;
     std::vector<double> rs = {static_cast<double>(out_->history_rows()), static_cast<double>(out_->frame_rows()),
                               static_cast<double>(cracks_written_)};
     for (const auto& st : stops_) rs.push_back(st.peak);
@@ -308,7 +410,7 @@ class Runner {
   }
 
   void progress(Clock::time_point t0, Clock::time_point now) {
-    if (!opt_.progress || !isatty(STDERR_FILENO)) return;
+    if (!writer_ || !opt_.progress || !isatty(STDERR_FILENO)) return;
     const double el = std::chrono::duration<double>(now - t0).count();
     const double rate = (system_->step_count() - first_step_) / std::max(el, 1e-9);
     double left = -1;
@@ -325,6 +427,8 @@ class Runner {
 
   const Scene& scene_;
   RunOptions opt_;
+  const Exchange* split_;  // the processes of a split world (null: this one alone)
+  bool writer_;            // this process writes the output (process 0 of a split world)
   std::unique_ptr<System> system_;
   std::vector<std::vector<double>> buffer_;
   std::vector<StopState> stops_;

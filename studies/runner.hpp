@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "engine/exchange.hpp"
 #include "scene/scene.hpp"
 
 namespace mc {
@@ -14,6 +15,9 @@ struct RunOptions {
   std::string output;    // OUT.h5
   bool resume = false;   // continue `output` from its last checkpoint
   bool progress = true;  // progress line on stderr (only when it is a terminal)
+  // The processes of a launch that run one specimen split across them (more than one; World::split): each calls
+  // run_scene alike, and process 0 writes the output. Null: this process runs the scene alone.
+  const Exchange* exchange = nullptr;
 };
 
 struct RunResult {
