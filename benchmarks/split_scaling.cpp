@@ -96,6 +96,9 @@ int main(int argc, char** argv) {
   const auto t0 = Clock::now();
   for (int s = 0; s < steps; ++s) w.step();
   const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  // Every rank's figures to the root: own, held, wall, exchange seconds, bytes sent per step.
+  const std::vector<double> mine{double(w.own_count()), double(w.held_count()), wall, exchange.seconds,
+                                 exchange.sent / steps};
   // What leaves the split world whole, as the run command writes it: a checkpoint gathered on the root (the whole
   // world's archive; whole, the plain save) and a frame's positions, velocities and forces gathered there.
   const auto c0 = Clock::now();
@@ -111,9 +114,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "checkpoint gathered in %.3f s (%.1f MB), frame gathered in %.3f s (%zu particles)\n",
                  std::chrono::duration<double>(c1 - c0).count(), archive_bytes / 1e6,
                  std::chrono::duration<double>(c2 - c1).count(), frame[0].size());
-  // Every rank's figures to the root: own, held, wall, exchange seconds, bytes sent per step.
-  const std::vector<double> mine{double(w.own_count()), double(w.held_count()), wall, exchange.seconds,
-                                 exchange.sent / steps};
   Bytes b;
   for (double x : mine) put_bytes(b, x);
   const auto all = launch.all_gather(b);

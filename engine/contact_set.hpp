@@ -117,11 +117,12 @@ class ContactSetBase {
   virtual void add(const std::vector<Pair>& pairs, const std::vector<std::uint8_t>& histories, bool wall) = 0;
   // Whether the ball (or wall) pairs carry their last dashpot forces (energy traced since the lists were set).
   virtual bool traced(bool wall) const = 0;
-  // The bytes save() gives for a set holding these pairs with these histories (history_size() bytes each, as
-  // history() gives them), the dashpot forces kept where `traced` says: a split world's whole checkpoint.
-  virtual std::vector<std::uint8_t> save_of(const std::vector<Pair>& pairs, const std::vector<std::uint8_t>& histories,
-                                            bool traced, const std::vector<Pair>& wall_pairs,
-                                            const std::vector<std::uint8_t>& wall_histories,
+  // The bytes save() gives for a set holding these pairs with these histories (each pair's history_size() bytes,
+  // as history() gave them), the dashpot forces kept where `traced` says: a split world's whole checkpoint.
+  virtual std::vector<std::uint8_t> save_of(const std::vector<Pair>& pairs,
+                                            const std::vector<const std::uint8_t*>& histories, bool traced,
+                                            const std::vector<Pair>& wall_pairs,
+                                            const std::vector<const std::uint8_t*>& wall_histories,
                                             bool wall_traced) const = 0;
 };
 
@@ -328,17 +329,38 @@ class ContactSet final : public ContactSetBase<D> {
   }
 
   std::vector<std::uint8_t> save() const override {
-    return bytes_of(pairs_, states_, wall_pairs_, wall_states_, dashpot_, wall_dashpot_);
+    std::vector<std::uint8_t> out;
+    put(out, pairs_);
+    put(out, states_);
+    put(out, wall_pairs_);
+    put(out, wall_states_);
+    put(out, dashpot_);
+    put(out, wall_dashpot_);
+    return out;
   }
   bool traced(bool wall) const override { return !(wall ? wall_dashpot_ : dashpot_).empty(); }
-  std::vector<std::uint8_t> save_of(const std::vector<Pair>& pairs, const std::vector<std::uint8_t>& histories,
+  // Written straight from the histories, in save()'s layout: a checkpoint's lists are hundreds of megabytes.
+  std::vector<std::uint8_t> save_of(const std::vector<Pair>& pairs, const std::vector<const std::uint8_t*>& histories,
                                     bool traced, const std::vector<Pair>& wall_pairs,
-                                    const std::vector<std::uint8_t>& wall_histories, bool wall_traced) const override {
-    std::vector<State> states, wall_states;
-    std::vector<Vec<D>> dashpot, wall_dashpot;
-    split_histories(histories, pairs.size(), traced, states, dashpot);
-    split_histories(wall_histories, wall_pairs.size(), wall_traced, wall_states, wall_dashpot);
-    return bytes_of(pairs, states, wall_pairs, wall_states, dashpot, wall_dashpot);
+                                    const std::vector<const std::uint8_t*>& wall_histories,
+                                    bool wall_traced) const override {
+    const std::size_t n = pairs.size(), nw = wall_pairs.size();
+    std::vector<std::uint8_t> out;
+    out.reserve(6 * sizeof(std::uint64_t) + (n + nw) * (sizeof(Pair) + sizeof(State) + sizeof(Vec<D>)));
+    auto part = [&](const std::vector<const std::uint8_t*>& from, std::size_t offset, std::size_t size, bool kept) {
+      const std::uint64_t count = kept ? from.size() : 0;
+      const auto* c = reinterpret_cast<const std::uint8_t*>(&count);
+      out.insert(out.end(), c, c + sizeof count);
+      if (kept)
+        for (const std::uint8_t* h : from) out.insert(out.end(), h + offset, h + offset + size);
+    };
+    put(out, pairs);
+    part(histories, 0, sizeof(State), true);
+    put(out, wall_pairs);
+    part(wall_histories, 0, sizeof(State), true);
+    part(histories, sizeof(State), sizeof(Vec<D>), traced);
+    part(wall_histories, sizeof(State), sizeof(Vec<D>), wall_traced);
+    return out;
   }
   void load(const std::vector<std::uint8_t>& in) override {
     std::size_t at = 0;
@@ -570,31 +592,6 @@ class ContactSet final : public ContactSetBase<D> {
     pairs.resize(out);
     states.resize(out);
     if (traced) dashpot.resize(out);
-  }
-
-  static std::vector<std::uint8_t> bytes_of(const std::vector<Pair>& pairs, const std::vector<State>& states,
-                                            const std::vector<Pair>& wall_pairs, const std::vector<State>& wall_states,
-                                            const std::vector<Vec<D>>& dashpot,
-                                            const std::vector<Vec<D>>& wall_dashpot) {
-    std::vector<std::uint8_t> out;
-    put(out, pairs);
-    put(out, states);
-    put(out, wall_pairs);
-    put(out, wall_states);
-    put(out, dashpot);
-    put(out, wall_dashpot);
-    return out;
-  }
-  // n histories as history() wrote them: the states, and the dashpot forces when `traced`.
-  static void split_histories(const std::vector<std::uint8_t>& in, std::size_t n, bool traced,
-                              std::vector<State>& states, std::vector<Vec<D>>& dashpot) {
-    constexpr std::size_t size = sizeof(State) + sizeof(Vec<D>);
-    states.resize(n);
-    if (traced) dashpot.resize(n);
-    for (std::size_t c = 0; c < n; ++c) {
-      std::memcpy(static_cast<void*>(&states[c]), in.data() + c * size, sizeof(State));
-      if (traced) std::memcpy(dashpot[c].data(), in.data() + c * size + sizeof(State), sizeof(Vec<D>));
-    }
   }
 
   template <class T>

@@ -218,7 +218,7 @@ class World {
   // save()'s archive from the whole world's particles, neighbour-list positions, sets' bytes and slot forces;
   // the rest (walls, gauges, crack log, scalars, energy) is the same on every process.
   void write_archive(Archive& a, const Particles<D>& p, const std::vector<Vec<D>>& x_at_rebuild,
-                     const std::vector<std::vector<std::uint8_t>>& set_bytes, const std::vector<Vec<D>>& slot_f) const;
+                     std::vector<std::vector<std::uint8_t>> set_bytes, const std::vector<Vec<D>>& slot_f) const;
   void count_crack(const Crack<D>& c);
 
   Slots<D> slots_;

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <new>
 #include <stdexcept>
+#include <utility>
 
 #include "engine/errors.hpp"
 #include "engine/world.hpp"
@@ -36,12 +37,12 @@ void World<D>::save(Archive& a) const {
   }
   std::vector<std::vector<std::uint8_t>> set_bytes;
   for (const auto& s : sets) set_bytes.push_back(s->save());
-  write_archive(a, particles, x_at_rebuild_, set_bytes, slots_.f);
+  write_archive(a, particles, x_at_rebuild_, std::move(set_bytes), slots_.f);
 }
 
 template <int D>
 void World<D>::write_archive(Archive& a, const Particles<D>& p, const std::vector<Vec<D>>& x_at_rebuild,
-                             const std::vector<std::vector<std::uint8_t>>& set_bytes,
+                             std::vector<std::vector<std::uint8_t>> set_bytes,
                              const std::vector<Vec<D>>& slot_f) const {
   a.put("radius", p.radius);
   a.put("stiffness", p.stiffness);
@@ -78,7 +79,7 @@ void World<D>::write_archive(Archive& a, const Particles<D>& p, const std::vecto
     for (const auto& gauge : gauges) g.push_back(gauge.start);
     a.reals["gauges"] = g;
   }
-  for (std::size_t s = 0; s < set_bytes.size(); ++s) a.bytes["set" + std::to_string(s)] = set_bytes[s];
+  for (std::size_t s = 0; s < set_bytes.size(); ++s) a.bytes["set" + std::to_string(s)] = std::move(set_bytes[s]);
   // The last step's contact forces: the servo gain and the timestep refresh read them before the next force pass.
   a.put("slot_f", slot_f);
   a.bytes["cracks"] = crack_bytes(cracks);
@@ -180,9 +181,9 @@ void World<D>::restore(const Archive& a) {
 }
 
 template void World<2>::write_archive(Archive&, const Particles<2>&, const std::vector<Vec<2>>&,
-                                      const std::vector<std::vector<std::uint8_t>>&, const std::vector<Vec<2>>&) const;
+                                      std::vector<std::vector<std::uint8_t>>, const std::vector<Vec<2>>&) const;
 template void World<3>::write_archive(Archive&, const Particles<3>&, const std::vector<Vec<3>>&,
-                                      const std::vector<std::vector<std::uint8_t>>&, const std::vector<Vec<3>>&) const;
+                                      std::vector<std::vector<std::uint8_t>>, const std::vector<Vec<3>>&) const;
 template void World<2>::save(Archive&) const;
 template void World<3>::save(Archive&) const;
 template void World<2>::restore(const Archive&);

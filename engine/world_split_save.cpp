@@ -3,6 +3,7 @@
 // particle A (every pair is held there), so process 0 sees the whole world's lists in its order.
 #include <algorithm>
 #include <tuple>
+#include <utility>
 
 #include "engine/particle_fields.hpp"
 #include "engine/world.hpp"
@@ -89,6 +90,14 @@ void World<D>::save_split(Archive& a) const {
   const auto& p = particles;
   std::vector<Bytes> out(ex.size());
   Bytes& mine = out[0];
+  std::size_t size =
+      sizeof(std::uint64_t) + static_cast<std::size_t>(own_count()) * (sizeof(std::int64_t) + sizeof(Vec<D>));
+  std::apply([&](const auto&... v) { ((size += v.size() * sizeof(v[0])), ...); }, particle_fields(p));
+  for (const auto& set : sets)
+    size += 2 + 2 * sizeof(std::uint64_t) +
+            (set->pairs().size() + set->wall_pairs().size()) *
+                (2 * sizeof(std::int64_t) + set->history_size() + sizeof(Vec<D>));
+  mine.reserve(size);
   put_bytes(mine, static_cast<std::uint64_t>(own_count()));
   for (int i = 0; i < p.size(); ++i) {
     if (p.is_ghost(i)) continue;
@@ -136,19 +145,21 @@ void World<D>::save_split(Archive& a) const {
       }
     }
     std::array<std::vector<Pair>, 2> pairs;
-    std::array<Bytes, 2> histories;
+    std::array<std::vector<const std::uint8_t*>, 2> histories;
     for (int wall = 0; wall < 2; ++wall) {
       auto& list = lists[wall];
       std::sort(list.begin(), list.end(), [](const auto& x, const auto& y) { return x.pair < y.pair; });
+      pairs[wall].reserve(list.size());
+      histories[wall].reserve(list.size());
       for (const auto& g : list) {
         pairs[wall].push_back(g.pair);
-        histories[wall].insert(histories[wall].end(), g.history, g.history + sets[s]->history_size());
+        histories[wall].push_back(g.history);
         slot_f.push_back(g.force);
       }
     }
     set_bytes.push_back(sets[s]->save_of(pairs[0], histories[0], traced[0], pairs[1], histories[1], traced[1]));
   }
-  write_archive(a, whole, x_at_rebuild, set_bytes, slot_f);
+  write_archive(a, whole, x_at_rebuild, std::move(set_bytes), slot_f);
 }
 
 template std::vector<std::vector<Vec<2>>> World<2>::gather_whole(const std::vector<const std::vector<Vec<2>>*>&) const;

@@ -1,7 +1,9 @@
 #include "studies/ranks.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <utility>
 
 #ifdef MESOCRACK_MPI
 #include <mpi.h>
@@ -30,6 +32,36 @@ void finalize() {
 template <class T>
 void reduce_in_place(std::vector<T>& values, int ranks, MPI_Datatype type, MPI_Op op) {
   if (ranks > 1) MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), type, op, MPI_COMM_WORLD);
+}
+// Posts every send and receive of one exchange and waits for them all. MPI counts are int: a message goes in
+// pieces of at most 1 GiB (a checkpoint gathered from a few million particles is larger than 2 GiB), which
+// arrive in the order they were sent. A receive's buffer has its size already; a rank's message to itself is
+// copied.
+void send_and_receive(const std::vector<std::pair<int, const Bytes*>>& sends,
+                      const std::vector<std::pair<int, Bytes*>>& receives) {
+  constexpr std::size_t kPiece = std::size_t(1) << 30;
+  int me = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  std::vector<MPI_Request> requests;
+  for (const auto& [r, b] : receives)
+    for (std::size_t at = 0; r != me && at < b->size(); at += kPiece) {
+      requests.emplace_back();
+      MPI_Irecv(b->data() + at, static_cast<int>(std::min(kPiece, b->size() - at)), MPI_BYTE, r, 0, MPI_COMM_WORLD,
+                &requests.back());
+    }
+  for (const auto& [r, b] : sends) {
+    if (r == me) {
+      for (const auto& [from, into] : receives)
+        if (from == me) std::memcpy(into->data(), b->data(), b->size());
+      continue;
+    }
+    for (std::size_t at = 0; at < b->size(); at += kPiece) {
+      requests.emplace_back();
+      MPI_Isend(b->data() + at, static_cast<int>(std::min(kPiece, b->size() - at)), MPI_BYTE, r, 0, MPI_COMM_WORLD,
+                &requests.back());
+    }
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
 }
 #endif
 }  // namespace
@@ -80,9 +112,9 @@ std::vector<Bytes> RanksExchange::all_to_all(const std::vector<Bytes>& out) cons
   if (n == 1) return {out[0]};
   std::vector<std::size_t> in_sizes(n);
 #ifdef MESOCRACK_MPI
-  std::vector<int> send_count(n), receive_count(n);
-  for (int r = 0; r < n; ++r) send_count[r] = static_cast<int>(out[r].size());
-  MPI_Alltoall(send_count.data(), 1, MPI_INT, receive_count.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  std::vector<std::uint64_t> send_count(n), receive_count(n);
+  for (int r = 0; r < n; ++r) send_count[r] = out[r].size();
+  MPI_Alltoall(send_count.data(), 1, MPI_UINT64_T, receive_count.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
   for (int r = 0; r < n; ++r) in_sizes[r] = static_cast<std::size_t>(receive_count[r]);
 #endif
   return swap(out, in_sizes);
@@ -96,36 +128,47 @@ std::vector<Bytes> RanksExchange::swap(const std::vector<Bytes>& out, const std:
   if (n == 1) return {out[0]};
   std::vector<Bytes> in(n);
 #ifdef MESOCRACK_MPI
-  std::vector<MPI_Request> requests;
+  std::vector<std::pair<int, const Bytes*>> sends;
+  std::vector<std::pair<int, Bytes*>> receives;
   for (int r = 0; r < n; ++r) {
-    if (in_sizes[r] == 0) continue;
-    in[r].resize(in_sizes[r]);
-    requests.emplace_back();
-    MPI_Irecv(in[r].data(), static_cast<int>(in_sizes[r]), MPI_BYTE, r, 0, MPI_COMM_WORLD, &requests.back());
+    if (in_sizes[r] > 0) in[r].resize(in_sizes[r]), receives.push_back({r, &in[r]});
+    if (!out[r].empty()) sends.push_back({r, &out[r]});
   }
-  for (int r = 0; r < n; ++r) {
-    if (out[r].empty()) continue;
-    requests.emplace_back();
-    MPI_Isend(out[r].data(), static_cast<int>(out[r].size()), MPI_BYTE, r, 0, MPI_COMM_WORLD, &requests.back());
-  }
-  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  send_and_receive(sends, receives);
 #endif
   return in;
 }
 
+// MPI_Allgatherv while the total fits its int counts; else (a checkpoint of millions of particles, shared for a
+// resume) every rank's bytes to every other, in pieces.
 std::vector<Bytes> RanksExchange::all_gather(const Bytes& mine) const {
   const int n = size();
   if (n == 1) return {mine};
   std::vector<Bytes> all(n);
 #ifdef MESOCRACK_MPI
-  const int count = static_cast<int>(mine.size());
-  std::vector<int> counts(n), at(n);
-  MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
-  int total = 0;
-  for (int r = 0; r < n; ++r) at[r] = total, total += counts[r];
-  Bytes joined(total);
-  MPI_Allgatherv(mine.data(), count, MPI_BYTE, joined.data(), counts.data(), at.data(), MPI_BYTE, MPI_COMM_WORLD);
-  for (int r = 0; r < n; ++r) all[r].assign(joined.begin() + at[r], joined.begin() + at[r] + counts[r]);
+  const std::uint64_t count = mine.size();
+  std::vector<std::uint64_t> counts(n);
+  MPI_Allgather(&count, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
+  std::uint64_t total = 0;
+  for (std::uint64_t c : counts) total += c;
+  if (total < (std::uint64_t(1) << 31)) {
+    std::vector<int> sizes(n), at(n);
+    int sum = 0;
+    for (int r = 0; r < n; ++r) sizes[r] = static_cast<int>(counts[r]), at[r] = sum, sum += sizes[r];
+    Bytes joined(total);
+    MPI_Allgatherv(mine.data(), static_cast<int>(count), MPI_BYTE, joined.data(), sizes.data(), at.data(), MPI_BYTE,
+                   MPI_COMM_WORLD);
+    for (int r = 0; r < n; ++r) all[r].assign(joined.begin() + at[r], joined.begin() + at[r] + sizes[r]);
+    return all;
+  }
+  std::vector<std::pair<int, const Bytes*>> sends;
+  std::vector<std::pair<int, Bytes*>> receives;
+  for (int r = 0; r < n; ++r) {
+    all[r].resize(counts[r]);
+    if (counts[r] > 0) receives.push_back({r, &all[r]});
+    if (count > 0) sends.push_back({r, &mine});
+  }
+  send_and_receive(sends, receives);
 #endif
   return all;
 }
