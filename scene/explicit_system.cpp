@@ -53,7 +53,9 @@ void ExplicitSystem<D>::split() {
 // whole world's, on each process alike.
 template <int D>
 void ExplicitSystem<D>::before_row() {
-  if (!splits()) return;
+  // Only groups, probes and analyses read the view.
+  const bool viewed = !scene_.groups.empty() || !scene_.probes.empty() || !scene_.analyses.empty();
+  if (!splits() || !viewed) return;
   const auto& p = world_.particles;
   Bytes mine;
   for (int i = 0; i < p.size(); ++i) {
