@@ -9,6 +9,7 @@
 #include <cstddef>
 
 #include "contact_models/parallel_bond.hpp"
+#include "engine/contact_points.hpp"
 #include "engine/contact_set.hpp"
 #include "engine/lanes.hpp"
 
