@@ -300,6 +300,14 @@ std::int64_t World<D>::crack_count(CrackKind kind, CrackMode mode, int phase_a, 
 }
 
 template <int D>
+std::size_t World<D>::whole_count(std::size_t n) const {
+  if (!split_) return n;
+  std::vector<std::int64_t> total{static_cast<std::int64_t>(n)};
+  split_->exchange->sum(total);
+  return static_cast<std::size_t>(total[0]);
+}
+
+template <int D>
 std::size_t World<D>::bond_count() const {
   std::size_t n = 0;
   if (!split_) {
@@ -309,9 +317,7 @@ std::size_t World<D>::bond_count() const {
   // An intact bond is what keeps a pair in the lists (ContactSetBase::persistent).
   for (const auto& s : sets)
     for (std::size_t c = 0; c < s->pairs().size(); ++c) n += !particles.is_ghost(s->pairs()[c][0]) && s->persistent(c);
-  std::vector<std::int64_t> total{static_cast<std::int64_t>(n)};
-  split_->exchange->sum(total);
-  return static_cast<std::size_t>(total[0]);
+  return whole_count(n);
 }
 
 // Gather and law of motion for every particle (Tang 3.11–3.20), with PFC local damping: a force
@@ -532,10 +538,7 @@ std::size_t World<D>::contact_count() const {
   for (std::size_t s = 0; s < sets.size(); ++s)
     for (std::size_t c = 0; c < sets[s]->pairs().size(); ++c)
       if (slots_.f[offset_[s] + c].squaredNorm() > 0 && !particles.is_ghost(sets[s]->pairs()[c][0])) ++n;
-  if (!split_) return n;
-  std::vector<std::int64_t> total{static_cast<std::int64_t>(n)};
-  split_->exchange->sum(total);
-  return static_cast<std::size_t>(total[0]);
+  return whole_count(n);
 }
 
 template <int D>

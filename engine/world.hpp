@@ -143,6 +143,8 @@ class World {
   // What observers need of a split world; its processes call these together, in the same order.
   // Sums taken on each process made the whole world's (nothing to do when the world is whole).
   void agree_sums(std::vector<ExactSum>& sums) const;
+  // A count taken on each process made the whole world's.
+  std::size_t whole_count(std::size_t n) const;
   // Per-particle values of the held particles (`held[k][i]`: array k, particle i), gathered on process 0 in the
   // whole world's order from their owners; the other processes get nothing. A whole world returns them as given.
   std::vector<std::vector<Vec<D>>> gather_whole(const std::vector<const std::vector<Vec<D>>*>& held) const;

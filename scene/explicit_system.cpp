@@ -136,10 +136,12 @@ template <int D>
 void ExplicitSystem<D>::frame(std::vector<double>& x, std::vector<double>& v, std::vector<double>& f) const {
   const auto& p = world_.particles;
   x.clear(), v.clear(), f.clear();
-  // A split world's frame is gathered on process 0 (the others get none).
-  const auto whole = world_.gather_whole({&p.x, &p.v, &p.f});
-  for (std::size_t i = 0; i < whole[0].size(); ++i)
-    for (int k = 0; k < D; ++k) x.push_back(whole[0][i][k]), v.push_back(whole[1][i][k]), f.push_back(whole[2][i][k]);
+  // A split world's frame is gathered on process 0 (the others get none); a whole world's is read in place.
+  const bool split = world_.is_split();
+  const auto gathered = split ? world_.gather_whole({&p.x, &p.v, &p.f}) : std::vector<std::vector<Vec<D>>>{};
+  const auto &xs = split ? gathered[0] : p.x, &vs = split ? gathered[1] : p.v, &fs = split ? gathered[2] : p.f;
+  for (std::size_t i = 0; i < xs.size(); ++i)
+    for (int k = 0; k < D; ++k) x.push_back(xs[i][k]), v.push_back(vs[i][k]), f.push_back(fs[i][k]);
 }
 
 template <int D>
