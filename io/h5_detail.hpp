@@ -1,11 +1,13 @@
-// What the HDF5 wrapper's files share (io/h5_file.cpp, io/h5_file_open.cpp): an owning id, HDF5's error text
+// What the HDF5 wrapper's files share (io/h5_file*.cpp): an owning id, HDF5's error text
 // made readable, and whether a failure came from HDF5 or the system (the file must then not be flushed again).
 // Internal to io/.
 #pragma once
 #include <hdf5.h>
 
+#include <algorithm>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "engine/errors.hpp"
 
@@ -75,5 +77,49 @@ struct File {
     throw IoError(path + ": cannot " + what + (obj.empty() ? "" : " '" + obj + "'") + ": " + reason);
   }
 };
+
+// H5I_DATASET, H5I_GROUP, or H5I_BADID when the object (or one of its parents) is missing.
+inline H5I_type_t kind(File f, const std::string& obj) {
+  const Id o(H5Oopen(f.id, obj.c_str(), H5P_DEFAULT), H5Oclose);
+  return o.ok() ? H5Iget_type(o) : H5I_BADID;
+}
+
+inline Id open_dataset(File f, const std::string& ds, const std::string& what) {
+  if (kind(f, ds) == H5I_BADID) f.fail(what, ds, "no such dataset");
+  Id d(H5Dopen2(f.id, ds.c_str(), H5P_DEFAULT), H5Dclose);
+  if (!d.ok()) f.fail(what, ds, hdf5_reason());
+  return d;
+}
+
+inline Id open_object(File f, const std::string& obj, const std::string& what) {
+  Id o(H5Oopen(f.id, obj.c_str(), H5P_DEFAULT), H5Oclose);
+  if (!o.ok()) f.fail(what, obj, "no such group or dataset");
+  return o;
+}
+
+// Makes room for a new dataset: an old dataset goes, a group is never silently dropped.
+inline void clear_for_dataset(File f, const std::string& ds, const std::string& what) {
+  const H5I_type_t k = kind(f, ds);
+  if (k == H5I_GROUP) f.fail(what, ds, "a group has that path");
+  if (k != H5I_BADID && H5Ldelete(f.id, ds.c_str(), H5P_DEFAULT) < 0) f.fail(what, ds, hdf5_reason());
+}
+
+// Kept in a named variable by callers: closing it clears HDF5's error stack, which must outlive the failure report.
+inline Id parents_created() {
+  Id lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
+  H5Pset_create_intermediate_group(lcpl, 1);
+  return lcpl;
+}
+
+inline std::vector<hsize_t> dims_of(hid_t space) {
+  std::vector<hsize_t> dims(std::max(H5Sget_simple_extent_ndims(space), 0));
+  H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+  return dims;
+}
+
+inline std::vector<hsize_t> dataset_dims(hid_t ds) {
+  const Id space(H5Dget_space(ds), H5Sclose);
+  return dims_of(space);
+}
 
 }  // namespace mc::h5

@@ -4,7 +4,10 @@
 //
 // Crash safety (default file format, no SWMR): a writer killed between two flushes leaves the file as it was
 // at its last flush(), except for objects replaced, removed or truncated since then, whose old bytes HDF5 may
-// already have reused. A writer killed during flush() itself can leave the file unreadable. To keep the flushed
+// already have reused. A writer killed during flush() itself leaves some objects updated and others not: tables
+// of unequal lengths, a chunk index pointing past the file's recorded end, half-rewritten groups. What was
+// complete before that flush still reads (read_leading_*), but the file must not be written again: a resume copies
+// it into a fresh file (copy_*). To keep the flushed
 // state on disk, the metadata cache of a writable file never evicts: the metadata of every object touched stays
 // in memory (some KB per object) until the file is closed.
 // While a process has the file open for writing, HDF5's file lock keeps other processes from opening it
@@ -21,6 +24,7 @@
 #include <hdf5.h>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -80,6 +84,23 @@ class H5File {
   // Shrinks to nrows (drops rows written after a checkpoint); a table shorter than nrows is an IoError.
   void truncate_rows(const std::string& ds, hsize_t nrows);
 
+  // One value of a 1-D numeric dataset, read alone (the rows after it are not touched).
+  double value_at(const std::string& ds, hsize_t row) const;
+
+  // The rows of a table that a killed writer left readable: all of them, or those before the first chunk that
+  // cannot be read (one its unfinished flush pointed to before the chunk's place was in the file).
+  std::vector<double> read_leading_doubles(const std::string& ds) const;
+  std::vector<std::int64_t> read_leading_ints(const std::string& ds) const;
+
+  // Copies from another open file into this one (a resume rewrites the file it resumes: see RunOutput).
+  // A group with everything beneath it, or a dataset, with attributes. Missing parent groups are created.
+  void copy_object(const H5File& from, const std::string& obj);
+  // The attributes of a group or dataset that exists in both files; none may exist here yet.
+  void copy_attrs(const H5File& from, const std::string& obj);
+  // A new table here holding the first `nrows` rows of the table `ds` of `from`, with its type, chunks and
+  // attributes. Only those rows are read: the rest of `from`'s table may be damaged.
+  void copy_rows(const H5File& from, const std::string& ds, hsize_t nrows);
+
   // Scalar attributes on an existing group or dataset, created or overwritten. In this file format an
   // object's attributes share 64 KiB: longer text belongs in a dataset.
   void set_attr(const std::string& obj, const std::string& name, double v);
@@ -96,8 +117,7 @@ class H5File {
  private:
   hid_t fid() const;  // the open file id, with HDF5's error printing off for the calling thread
   // Runs a change to the file; when a call into HDF5 or the system fails in it, the file is abandoned.
-  template <class F>
-  void change(F&& f);
+  void change(const std::function<void()>& f);
   void abandon() noexcept;
   void close() noexcept;
 

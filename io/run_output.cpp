@@ -138,7 +138,7 @@ std::string RunOutput::stored_scene(const std::string& path) {
   return H5File(existing(path), H5File::Mode::ReadOnly).read_string("/scene");
 }
 
-RunOutput::RunOutput(const std::string& path) : file_(existing(path), H5File::Mode::ReadWrite) {
+RunOutput::RunOutput(const std::string& path) : file_(existing(path), H5File::Mode::ReadOnly) {
   if (!file_.has_attr("/", "format") || file_.attr_string("/", "format") != "mesocrack-1")
     throw IoError(path + ": not a mesocrack output file (no format attribute 'mesocrack-1')");
   if (file_.exists("/history")) names_ = file_.list("/history");
@@ -226,7 +226,7 @@ void RunOutput::write_checkpoint(const Archive& a, std::int64_t step) {
   flush();
 }
 
-Archive RunOutput::read_checkpoint() const {
+std::string RunOutput::newest_checkpoint() const {
   std::string best;
   std::int64_t best_step = -1;
   for (const char* s : {"/checkpoint/a", "/checkpoint/b"})
@@ -238,6 +238,11 @@ Archive RunOutput::read_checkpoint() const {
                   ": no complete checkpoint to resume from (a run writes one at step 0, then every "
                   "output.checkpoint_every steps, or every 60 s of wall time when that key is 0): the file is damaged "
                   "or was not written by `mesocrack run`");
+  return best;
+}
+
+Archive RunOutput::read_checkpoint() const {
+  const std::string best = newest_checkpoint();
   Archive a;
   if (file_.exists(best + "/reals"))
     for (const auto& k : file_.list(best + "/reals")) a.reals[k] = file_.read_doubles(best + "/reals/" + k);
@@ -275,13 +280,37 @@ std::int64_t RunOutput::crack_rows() const {
   return file_.exists("/cracks/step") ? static_cast<std::int64_t>(file_.rows("/cracks/step")) : 0;
 }
 
-void RunOutput::truncate(std::int64_t history_rows, std::int64_t frame_rows, std::int64_t crack_rows) {
-  if (file_.exists("/cracks"))
-    for (const auto& n : file_.list("/cracks")) file_.truncate_rows("/cracks/" + n, crack_rows);
-  for (const auto& n : names_) file_.truncate_rows("/history/" + n, history_rows);
-  for (const auto& n : file_.list("/frames")) file_.truncate_rows("/frames/" + n, frame_rows);
+// The tables' rows up to the checkpoint, the checkpoint, and everything else as it is go to <path>.partial, which
+// then replaces <path>. The other checkpoint slot is left behind: it is older, or was being written when the run
+// was killed.
+void RunOutput::rewrite_up_to(std::int64_t history_rows, std::int64_t frame_rows, std::int64_t crack_rows) {
+  const std::string path = file_.path(), checkpoint = newest_checkpoint();
+  H5File fresh(partial_path(path), H5File::Mode::Create);
+  try {
+    fresh.copy_attrs(file_, "/");
+    for (const auto& top : file_.list("/")) {
+      const std::string g = "/" + top;
+      if (top == "history" || top == "frames" || top == "cracks") {
+        const auto rows = static_cast<hsize_t>(top == "history"  ? history_rows
+                                               : top == "frames" ? frame_rows
+                                                                 : crack_rows);
+        fresh.create_group(g);
+        fresh.copy_attrs(file_, g);
+        for (const auto& n : file_.list(g)) fresh.copy_rows(file_, g + "/" + n, rows);
+      } else if (top == "checkpoint") {
+        fresh.copy_object(file_, checkpoint);
+      } else {
+        fresh.copy_object(file_, g);
+      }
+    }
+    fresh.flush();
+    fresh.rename(path);
+  } catch (...) {
+    std::remove(fresh.path().c_str());
+    throw;
+  }
+  file_ = std::move(fresh);
   write_xdmf();
-  flush();
 }
 
 void RunOutput::set_status(const std::string& status, const std::string& message) {

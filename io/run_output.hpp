@@ -3,7 +3,8 @@
 // or the cells moving and their facets' damage); histories as CSV when the run ends.
 // A new file is written as <path>.partial and renamed to <path> by `publish` once its initial contents are flushed:
 // <path> is complete or absent. Everything written after that is flushed at once (`flush`), so a run killed at any
-// moment leaves a readable file.
+// moment leaves a file readable up to its last flush, and up to its last checkpoint when killed during a flush
+// (see H5File); a resume continues it in a fresh copy (`rewrite_up_to`).
 #pragma once
 #include <array>
 #include <string>
@@ -21,7 +22,7 @@ class RunOutput {
   // removes the partial file.
   RunOutput(const std::string& path, const std::string& scene_text, const std::string& scene_file,
             const SpecimenData& s);
-  // An existing file, to resume it.
+  // An existing file, to resume it: read-only until `rewrite_up_to`.
   explicit RunOutput(const std::string& path);
   // The scene text stored in an existing output file, read without opening it for writing.
   static std::string stored_scene(const std::string& path);
@@ -52,8 +53,11 @@ class RunOutput {
   // kill while writing one leaves the other intact.
   void write_checkpoint(const Archive& a, std::int64_t step);
   Archive read_checkpoint() const;  // the newest complete one; IoError if there is none
-  // Drops history rows, frames and cracks written after the checkpoint being resumed.
-  void truncate(std::int64_t history_rows, std::int64_t frame_rows, std::int64_t crack_rows);
+  // Resuming: the file, opened read-only, is rewritten whole into a fresh file that replaces it and is written
+  // from then on, without the history rows, frames and cracks written after the checkpoint being resumed. The file
+  // of a run killed during a flush can be half-updated beyond its checkpoint: readable up to it, but not safely
+  // writable in place. A failed rewrite leaves the file as it was.
+  void rewrite_up_to(std::int64_t history_rows, std::int64_t frame_rows, std::int64_t crack_rows);
 
   void set_status(const std::string& status, const std::string& message = "");
   void set_xy_plots(const std::string& pairs);
@@ -66,7 +70,9 @@ class RunOutput {
   void write_initial(const std::string& scene_text, const std::string& scene_file, const SpecimenData& s);
   void write_cells(const SpecimenData& s);
   void append_frame_row(const std::string& ds, const std::vector<double>& row);
-  void write_xdmf() const;  // <stem>.xdmf, rewritten atomically after each frame once published
+  void write_xdmf() const;
+  std::string newest_checkpoint() const;  // the complete slot of the highest step  // <stem>.xdmf, rewritten atomically
+                                          // after each frame once published
   H5File file_;
   std::vector<std::string> names_;
   bool published_ = true;

@@ -244,10 +244,8 @@ class Runner {
       const std::int64_t hrows = static_cast<std::int64_t>(a.reals.at("runner").at(0));
       const std::int64_t frows = static_cast<std::int64_t>(a.reals.at("runner").at(1));
       a.reals["runner_last"] = {
-          hrows > 0 ? out_->file().read_doubles("/history/step").at(static_cast<std::size_t>(hrows - 1)) : -1.0,
-          frows > 0
-              ? static_cast<double>(out_->file().read_ints("/frames/step").at(static_cast<std::size_t>(frows - 1)))
-              : -1.0,
+          hrows > 0 ? out_->file().value_at("/history/step", static_cast<hsize_t>(hrows - 1)) : -1.0,
+          frows > 0 ? out_->file().value_at("/frames/step", static_cast<hsize_t>(frows - 1)) : -1.0,
           change.stops_changed ? 1.0 : 0.0};
     }
     if (split_) a = archive_of(split_->all_gather(writer_ ? archive_bytes(a) : Bytes{})[0]);
@@ -278,8 +276,8 @@ class Runner {
     if (frows > 0) last_frame_step_ = static_cast<std::int64_t>(last[1]);
     first_step_ = system_->step_count();
     if (!writer_) return;
+    out_->rewrite_up_to(hrows, frows, crows);
     out_->create_histories(names, units);
-    out_->truncate(hrows, frows, crows);
     out_->set_status("running");
     out_->flush();
   }

@@ -12,8 +12,10 @@ namespace {
 
 // The names in /history's `order` attribute (the scene's order), each a series present in the file with as many
 // rows as `time`; IoError naming the file and the entry otherwise. A file lacking them is damaged, or was not
-// written by `mesocrack run`.
-Histories read_histories(const H5File& f) {
+// written by `mesocrack run`. A run killed while it flushed a row (status still "running") may have written the row
+// to some series only, or left a chunk unreadable: its histories are read as far as they can be and cut to the
+// rows every series holds.
+Histories read_histories(const H5File& f, bool killed) {
   const std::string& file = f.path();
   if (!f.exists("/history")) throw IoError(file + ": no /history group: not a complete mesocrack output file");
   const std::string order = f.attr_string("/history", "order");
@@ -21,28 +23,36 @@ Histories read_histories(const H5File& f) {
   for (std::size_t from = 0; from <= order.size();) {
     const std::size_t to = std::min(order.find(';', from), order.size());
     const std::string name = order.substr(from, to - from);
-    if (!name.empty()) h[name] = f.read_doubles("/history/" + name);  // IoError naming it when it is missing
+    const std::string ds = "/history/" + name;  // IoError naming it when it is missing
+    if (!name.empty()) h[name] = killed ? f.read_leading_doubles(ds) : f.read_doubles(ds);
     from = to + 1;
   }
   for (const char* needed : {"time", "step"})
     if (!h.count(needed))
       throw IoError(file + ": /history/" + needed +
                     " is not among the recorded histories ('order' attribute of /history)");
-  const std::size_t rows = h.at("time").size();
-  for (const auto& [name, y] : h)
+  std::size_t rows = h.at("time").size();
+  if (killed)
+    for (auto& [name, y] : h) rows = std::min(rows, y.size());
+  for (auto& [name, y] : h) {
+    if (killed) y.resize(rows);
     if (y.size() != rows)
       throw IoError(file + ": /history/" + name + " has " + std::to_string(y.size()) + " rows, /history/time " +
                     std::to_string(rows) + ": the histories are damaged");
+  }
   return h;
 }
 
-// The crack log (/cracks; none: empty), its tables cut to the shortest (a run killed mid-append).
-std::vector<LoggedCrack> read_cracks(const H5File& f, int dimension) {
+// The crack log (/cracks; none: empty), its tables cut to the shortest (a run killed mid-append, whose tables are read
+// as far as they can be).
+std::vector<LoggedCrack> read_cracks(const H5File& f, int dimension, bool killed) {
   std::vector<LoggedCrack> out;
   if (!f.exists("/cracks/position")) return out;
-  const std::vector<double> time = f.read_doubles("/cracks/time"), pos = f.read_doubles("/cracks/position");
-  const std::vector<std::int64_t> mode = f.read_ints("/cracks/mode"), kind = f.read_ints("/cracks/kind");
-  const std::vector<std::int64_t> pa = f.read_ints("/cracks/phase_a"), pb = f.read_ints("/cracks/phase_b");
+  const auto reals = [&](const char* ds) { return killed ? f.read_leading_doubles(ds) : f.read_doubles(ds); };
+  const auto ints = [&](const char* ds) { return killed ? f.read_leading_ints(ds) : f.read_ints(ds); };
+  const std::vector<double> time = reals("/cracks/time"), pos = reals("/cracks/position");
+  const std::vector<std::int64_t> mode = ints("/cracks/mode"), kind = ints("/cracks/kind");
+  const std::vector<std::int64_t> pa = ints("/cracks/phase_a"), pb = ints("/cracks/phase_b");
   const std::size_t d = static_cast<std::size_t>(dimension);
   const std::size_t n = std::min({time.size(), pos.size() / d, mode.size(), kind.size(), pa.size(), pb.size()});
   out.resize(n);
@@ -75,9 +85,10 @@ StoredRun read_stored_run(const std::string& output_file) {
   if (!f.has_attr("/", "format") || f.attr_string("/", "format") != "mesocrack-1")
     throw IoError(output_file + ": not a mesocrack output file (no format attribute 'mesocrack-1')");
   StoredRun r;
-  r.histories = read_histories(f);
+  const bool killed = f.attr_string("/", "status") == "running";
+  r.histories = read_histories(f, killed);
   r.scene = read_stored_scene(f);
-  r.cracks = read_cracks(f, r.scene.dimension);
+  r.cracks = read_cracks(f, r.scene.dimension, killed);
   for (const auto& s : r.scene.summaries)
     if (!r.histories.count(s.of))
       throw IoError(output_file + ": /history/" + s.of + ", which the scene's [[summary]] '" + s.name +
