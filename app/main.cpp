@@ -42,7 +42,7 @@ std::string shell_quote(const std::string& s) {
 }
 
 int run(const std::string& scene_file, std::string output, const std::vector<std::string>& sets, int threads,
-        const std::string& resume) {
+        const std::string& resume, double rebalance) {
   if (!resume.empty()) {
     if (!output.empty() && std::filesystem::path(output) != std::filesystem::path(resume))
       throw mc::InputError("--resume " + resume + " continues that file; -o " + output +
@@ -56,6 +56,7 @@ int run(const std::string& scene_file, std::string output, const std::vector<std
   mc::RunOptions opt;
   opt.output = output;
   opt.resume = !resume.empty();
+  opt.imbalance_limit = rebalance;
   // Under mpirun the ranks run the one specimen split across them; rank 0 writes the output and reports.
   const mc::Ranks& ranks = mc::Ranks::world();
   const mc::RanksExchange exchange(ranks);
@@ -64,7 +65,7 @@ int run(const std::string& scene_file, std::string output, const std::vector<std
   if (!ranks.root()) return 0;
   std::fprintf(stderr, "%s after %lld steps, t = %.6g s, %.1f s wall time -> %s", r.status.c_str(),
                static_cast<long long>(r.steps), r.time, r.wall_seconds, output.c_str());
-  if (ranks.size() > 1) std::fprintf(stderr, " (split across %d ranks)", ranks.size());
+  if (ranks.size() > 1) std::fprintf(stderr, " (split across %d ranks: %s)", ranks.size(), r.balance.c_str());
   std::fputc('\n', stderr);
   return 0;
 }
@@ -220,6 +221,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> sets;
   int threads = 0, n_realizations = 1, max_iterations = 12;
   double tolerance = mc::kNaN;  // the procedure's default
+  double rebalance = 0;         // never
   std::string targets, compression;
   auto* run_cmd = app.add_subcommand("run", "run a scene");
   run_cmd->add_option("scene", scene, "scene file (TOML)")->required();
@@ -228,10 +230,16 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(threads_check);
   run_cmd->add_option("--resume", resume, "continue this output file from its last checkpoint");
   run_cmd
+      ->add_option("--rebalance", rebalance,
+                   "under mpirun, one specimen split across the ranks: draw the regions afresh when the most loaded "
+                   "rank owns this fraction more particles than the mean (default: never)")
+      ->check(finite_number(1e-3, 10, "the imbalance that redraws the regions; 0.1 is 10 % over the mean"));
+  run_cmd
       ->add_option("--realizations", n_realizations,
                    "run N packings (seeds seed..seed+N-1) into OUT_rK.h5 and report mean, std and CV of E, nu, UCS")
       ->check(whole_number(1, kAnyCount, "the number of packings"))
-      ->excludes("--resume");
+      ->excludes("--resume")
+      ->excludes("--rebalance");
   auto* calibrate_cmd = app.add_subcommand(
       "calibrate",
       "find micro-parameters matching target E, nu, UCS (bonds in compression, Tang 6.3), E, nu, ft, Gf (bonds in "
@@ -273,7 +281,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (*run_cmd && n_realizations > 1) return realizations(scene, output, sets, threads, n_realizations);
-    if (*run_cmd) return run(scene, output, sets, threads, resume);
+    if (*run_cmd) return run(scene, output, sets, threads, resume, rebalance);
     if (*calibrate_cmd) return calibrate(scene, output, sets, threads, targets, tolerance, max_iterations, compression);
     if (*generate_cmd) return generate(scene, output, sets, threads);
     if (*summary_cmd) {

@@ -124,6 +124,9 @@ class System {
   // The complete dynamic state: restoring it and stepping on gives the same bits as never stopping.
   virtual void save(Archive& a) const = 0;
   virtual void restore(const Archive& a) = 0;
+  // A run split across processes: how many particles each owned when split and at the end, and how often the
+  // regions were drawn afresh (for the closing line). "" for a run in one process. Every process calls it.
+  virtual std::string balance_report() const { return ""; }
 };
 
 }  // namespace mc

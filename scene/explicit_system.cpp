@@ -1,6 +1,8 @@
 #include "scene/explicit_system.hpp"
 
 #include <algorithm>
+#include <cstdio>
+#include <numeric>
 #include <sstream>
 
 #include "engine/errors.hpp"
@@ -30,8 +32,9 @@ void with_scene_timestep(const Scene& s, F&& f) {
 }  // namespace
 
 template <int D>
-ExplicitSystem<D>::ExplicitSystem(const Scene& scene, const Exchange* exchange)
+ExplicitSystem<D>::ExplicitSystem(const Scene& scene, const Exchange* exchange, double imbalance_limit)
     : scene_(scene), exchange_(exchange), world_(build_world<D>(scene, info_)), obs_(scene) {
+  world_.imbalance_limit = imbalance_limit;
   world_.ids = info_.ids;  // the engine's messages name particles as the specimen does
   check_probes();
   if (splits()) view_ = world_.particles, view_gauges_ = world_.gauges;
@@ -47,6 +50,37 @@ void ExplicitSystem<D>::split() {
   view_ = world_.particles;
   view_gauges_ = world_.gauges;
   world_.split(*exchange_);
+  split_counts_ = own_counts();
+}
+
+// The particles each process owns now, by process (collective).
+template <int D>
+std::vector<std::int64_t> ExplicitSystem<D>::own_counts() const {
+  Bytes mine;
+  put_bytes(mine, static_cast<std::int64_t>(world_.own_count()));
+  std::vector<std::int64_t> counts;
+  for (const Bytes& b : exchange_->all_gather(mine)) {
+    std::size_t at = 0;
+    counts.push_back(take_bytes<std::int64_t>(b, at));
+  }
+  return counts;
+}
+
+template <int D>
+std::string ExplicitSystem<D>::balance_report() const {
+  if (!splits()) return "";
+  const auto range = [](const std::vector<std::int64_t>& c) {
+    const auto [lo, hi] = std::minmax_element(c.begin(), c.end());
+    const double mean = static_cast<double>(std::accumulate(c.begin(), c.end(), std::int64_t{0})) / c.size();
+    char text[96];
+    std::snprintf(text, sizeof text, "%lld-%lld (most %.1f %% over the mean)", static_cast<long long>(*lo),
+                  static_cast<long long>(*hi), 100 * (*hi / mean - 1));
+    return std::string(text);
+  };
+  const std::int64_t n = world_.rebalances();
+  return "particles owned per rank " + range(split_counts_) + " when split, " + range(own_counts()) + " at the end; " +
+         std::to_string(n) + (n == 1 ? " rebalance" : " rebalances") +
+         (world_.imbalance_limit > 0 ? "" : " (--rebalance not given)");
 }
 
 // Every process sends every other the motion and forces of the particles it owns: the whole view is then the

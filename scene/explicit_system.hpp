@@ -15,8 +15,8 @@ class ExplicitSystem final : public System {
   // Builds the world (a generated specimen is generated here). The scene must outlive the system. With an
   // exchange of more than one process, every process builds the whole world and splits it once it starts or is
   // restored (World::split): the processes then step, observe and save together, and process 0 gets the frames
-  // and the checkpoints. The exchange must outlive the system.
-  explicit ExplicitSystem(const Scene& scene, const Exchange* exchange = nullptr);
+  // and the checkpoints. The exchange must outlive the system. imbalance_limit: World::imbalance_limit.
+  explicit ExplicitSystem(const Scene& scene, const Exchange* exchange = nullptr, double imbalance_limit = 0);
   ExplicitSystem(const ExplicitSystem&) = delete;  // the history samplers point into it
   ExplicitSystem& operator=(const ExplicitSystem&) = delete;
 
@@ -36,6 +36,7 @@ class ExplicitSystem final : public System {
   CrackRows cracks(std::size_t first) const override;
   void save(Archive& a) const override;
   void restore(const Archive& a) override;
+  std::string balance_report() const override;
 
   const World<D>& world() const { return world_; }
   const SpecimenInfo& info() const { return info_; }
@@ -46,6 +47,7 @@ class ExplicitSystem final : public System {
   bool splits() const { return exchange_ && exchange_->size() > 1; }
   // The whole world at the start (or at a restore), then split: the whole view starts as a copy of it.
   void split();
+  std::vector<std::int64_t> own_counts() const;
 
   const Scene& scene_;
   const Exchange* exchange_;
@@ -57,6 +59,7 @@ class ExplicitSystem final : public System {
   Particles<D> view_;
   std::vector<OpeningGauge<D>> view_gauges_;
   SpecimenData specimen_;
+  std::vector<std::int64_t> split_counts_;  // the particles each process owned when the world was split
   std::vector<Series> series_;
 };
 

@@ -8,7 +8,7 @@
 
 namespace mc {
 
-std::unique_ptr<System> make_system(const Scene& scene, const Exchange* exchange) {
+std::unique_ptr<System> make_system(const Scene& scene, const Exchange* exchange, double imbalance_limit) {
   if (scene.rigid_cell && exchange && exchange->size() > 1)
     throw InputError(scene.file +
                      ": [rigid_cell]: a rigid-cell specimen runs in one process (its solver factorises "
@@ -22,8 +22,8 @@ std::unique_ptr<System> make_system(const Scene& scene, const Exchange* exchange
                      "configure with -DMESOCRACK_RIGID_CELL=ON");
 #endif
   }
-  if (scene.dimension == 2) return std::make_unique<ExplicitSystem<2>>(scene, exchange);
-  return std::make_unique<ExplicitSystem<3>>(scene, exchange);
+  if (scene.dimension == 2) return std::make_unique<ExplicitSystem<2>>(scene, exchange, imbalance_limit);
+  return std::make_unique<ExplicitSystem<3>>(scene, exchange, imbalance_limit);
 }
 
 }  // namespace mc

@@ -10,7 +10,8 @@
 namespace mc {
 
 // Builds the system (a generated specimen is generated here). The scene must outlive it. With an exchange of more
-// than one process, the processes run one specimen split across them (the explicit family; ExplicitSystem).
-std::unique_ptr<System> make_system(const Scene& scene, const Exchange* exchange = nullptr);
+// than one process, the processes run one specimen split across them (the explicit family; ExplicitSystem), and
+// draw their regions afresh when the most loaded owns more than (1 + imbalance_limit) times the mean (0: never).
+std::unique_ptr<System> make_system(const Scene& scene, const Exchange* exchange = nullptr, double imbalance_limit = 0);
 
 }  // namespace mc

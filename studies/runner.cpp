@@ -84,7 +84,7 @@ class Runner {
         opt_(o),
         split_(o.exchange && o.exchange->size() > 1 ? o.exchange : nullptr),
         writer_(!split_ || split_->rank() == 0),
-        system_(make_system(s, split_)) {
+        system_(make_system(s, split_, o.imbalance_limit)) {
     for (const auto& st : s.stops) stops_.push_back({st, column_of(st.quantity)});
     buffer_.resize(system_->histories().size());
   }
@@ -110,6 +110,7 @@ class Runner {
     r.steps = system_->step_count();
     r.time = system_->time();
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    r.balance = system_->balance_report();
     return r;
   }
 

@@ -18,12 +18,16 @@ struct RunOptions {
   // The processes of a launch that run one specimen split across them (more than one; World::split): each calls
   // run_scene alike, and process 0 writes the output. Null: this process runs the scene alone.
   const Exchange* exchange = nullptr;
+  // A split run draws its regions afresh when the most loaded process owns more than (1 + imbalance_limit) times
+  // the mean particle count (0: never; World::imbalance_limit).
+  double imbalance_limit = 0;
 };
 
 struct RunResult {
   std::string status;  // "finished", "stopped: <condition>", "unstable: <message>"
   std::int64_t steps = 0;
   double time = 0, wall_seconds = 0;
+  std::string balance;  // a split run's System::balance_report
 };
 
 // Throws InputError / IoError before anything runs; InstabilityError after recording it in the file.

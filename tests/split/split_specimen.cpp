@@ -81,6 +81,39 @@ TEST_CASE("split_run_of_a_bonded_block_pulled_to_failure_writes_the_serial_file_
   CHECK(j["final"]["wall.side.stress"].number > 0);  // the servo wall presses on the block
 }
 
+// --rebalance: spheres settling under gravity (scenes/deposition_3d.toml, 10 000 steps) cross from the upper
+// region into the lower one, which redraws the regions; the file is still the serial run's, and the closing line
+// says how many particles each rank owned and how often the regions were redrawn.
+TEST_CASE("split_run_with_rebalance_redraws_the_regions_of_a_settling_deposit_and_writes_the_serial_file") {
+  const TempDir d;
+  const std::vector<std::string> args{
+      "run",           (kScenes / "deposition_3d.toml").string(), "--threads", "1", "--set", "run.steps=10000", "--set",
+      "run.duration=0"};
+  auto with = [&](std::vector<std::string> extra) {
+    auto a = args;
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  const Result serial = mesocrack(with({"-o", "serial.h5"}), d.dir);
+  REQUIRE_MESSAGE(serial.code == 0, serial.describe());
+  const Result r = on_ranks(2, with({"-o", "rebalanced.h5", "--rebalance", "0.01"}), d.dir);
+  REQUIRE_MESSAGE(r.code == 0, r.describe());
+  check_same_run(d / "serial.h5", d / "rebalanced.h5");
+  check_same_checkpoints(d / "serial.h5", d / "rebalanced.h5");
+  const auto at = r.err.find("particles owned per rank ");
+  REQUIRE_MESSAGE(at != std::string::npos, r.err);
+  long long split_lo = 0, split_hi = 0, end_lo = 0, end_hi = 0, rebalances = -1;
+  REQUIRE_MESSAGE(std::sscanf(r.err.c_str() + at,
+                              "particles owned per rank %lld-%lld (most %*f %% over the mean) when split, "
+                              "%lld-%lld (most %*f %% over the mean) at the end; %lld",
+                              &split_lo, &split_hi, &end_lo, &end_hi, &rebalances) == 5,
+                  r.err);
+  const double n = summary_of("serial.h5", d.dir)["particles"].number;
+  CHECK(split_lo + split_hi == n);  // two ranks own every particle once
+  CHECK(end_lo + end_hi == n);
+  CHECK(rebalances >= 1);
+}
+
 // Šmilauer's CPM tension test (scenes/cpm_uniax_tension.toml) pulled ten times faster, to 40 % of its peak
 // stress after it: the damage of CPM's bonds, which reach beyond contact (R_I = 1.5), split over the ranks (one
 // rank, which does not split, is checked on the bonded block above).
