@@ -309,12 +309,10 @@ TEST_CASE("resume_extends_a_finished_run_like_one_long_run") {
 // ================================================================ 6. resume with servo walls
 
 // Four servo walls squeezing a small box of discs, in contact with the discs from a few hundred steps on.
-// KNOWN BUG (engine/world.cpp, not the run path): World::save/restore do not carry the contact forces of the
-// last step (slots_.f). When a run resumes at a step where the timestep is refreshed (step % timestep.every
-// == 0; every checkpoint at a multiple of 10 steps with the default every = 10), critical_timestep() recomputes
-// each wall's contact_kn from those forces, finds no touching contact, and the servo drives the walls at
-// max_speed for up to `every` steps: the resumed run departs from the uninterrupted one. The test passes once
-// the slot forces (or the touching flags) are checkpointed.
+// A checkpoint must carry the contact forces of the last step (World::save, "slot_f"): a run resumed at a step where
+// the timestep is refreshed (step % timestep.every == 0; every checkpoint at a multiple of 10 steps with the
+// default every = 10) recomputes each wall's contact_kn from those forces, and without them would find no touching
+// contact and drive the walls at max_speed for up to `every` steps, departing from the uninterrupted run.
 TEST_CASE("resume_with_servo_walls_in_contact_matches_uninterrupted_run") {
   const TempDir d;
   std::string walls;
