@@ -4,7 +4,8 @@
 //   mpirun -np 2 build/benchmarks/split_scaling --threads 1      (2 ranks × 1 thread)
 //   build/benchmarks/split_scaling --threads 2                   (1 rank × 2 threads: the whole world, not split)
 // It prints one row of the table in README ("One specimen across ranks"). The block is the bonded-scaling one of
-// `throughput` (parallel bonds that do not break, the particles near the faces held).
+// `throughput` (parallel bonds that do not break, the particles near the faces held); with --specimen n10k (or
+// n50k) and --model parallel (or cpm, linear), the shared specimen loaded as `throughput` loads it.
 #include <omp.h>
 
 #include <chrono>
@@ -16,6 +17,7 @@
 
 #include "benchmarks/dense_assembly.hpp"
 #include "benchmarks/run_timing.hpp"
+#include "benchmarks/throughput_shared.hpp"
 #include "benchmarks/throughput_world.hpp"
 #include "studies/ranks.hpp"
 
@@ -63,10 +65,50 @@ class TimedExchange final : public Exchange {
   const Exchange& inner_;
 };
 
-int option(int argc, char** argv, const std::string& name, int fallback) {
+std::string option(int argc, char** argv, const std::string& name, const std::string& fallback) {
   for (int k = 1; k + 1 < argc; ++k)
-    if (argv[k] == name) return std::atoi(argv[k + 1]);
+    if (argv[k] == name) return argv[k + 1];
   return fallback;
+}
+
+int option(int argc, char** argv, const std::string& name, int fallback) {
+  const std::string text = option(argc, argv, name, std::string());
+  return text.empty() ? fallback : std::atoi(text.c_str());
+}
+
+// The bonded-scaling block of about `target` particles.
+World<3> block(int target) {
+  const Assembly<3> a = tile(cell_for_dim<3>(false), kR0, target, false);
+  Material mat;
+  mat.bonded = true;
+  World<3> w = make_world<3>(a.x, a.r, mat);
+  for (std::size_t i = 0; i < a.x.size(); ++i)
+    if (a.edge[i]) w.particles.fix[i] = 0x3f;
+  w.init();
+  w.install_bonds(0.1, 1);
+  return w;
+}
+
+// The shared specimen `name` (benchmarks/specimens) under the shared loading, with the README's step when the
+// engine accepts it, as `throughput` runs it.
+World<3> shared(const std::string& name, const std::string& model) {
+  Material mat;
+  mat.bonded = model == "parallel";
+  mat.cpm = model == "cpm";
+  const SphereList<3> s = read_in_morton_order(std::string(MESOCRACK_SPECIMEN_DIR) + "/" + name + ".spheres");
+  double zlo = kInf, zhi = -kInf, radius = 0;
+  for (int i = 0; i < s.size(); ++i) {
+    radius = std::max(radius, s.radius[i]);
+    zlo = std::min(zlo, s.x[i][2] - s.radius[i]);
+    zhi = std::max(zhi, s.x[i][2] + s.radius[i]);
+  }
+  std::vector<int> top;
+  try {
+    return shared_world(s, mat, 0.3 * radius * std::sqrt(mat.density / mat.modulus), zhi - zlo, &top);
+  } catch (const InputError&) {
+    top.clear();
+    return shared_world(s, mat, 0.0, zhi - zlo, &top);
+  }
 }
 
 }  // namespace
@@ -77,16 +119,11 @@ int main(int argc, char** argv) {
   const int target = option(argc, argv, "--particles", 1000000);
   const int threads = option(argc, argv, "--threads", 1);
   const int steps = option(argc, argv, "--steps", 200);
+  const std::string specimen = option(argc, argv, "--specimen", std::string());
+  const std::string model = option(argc, argv, "--model", std::string("parallel"));
   omp_set_num_threads(threads);
-  const Assembly<3> a = tile(cell_for_dim<3>(false), kR0, target, false);
-  const int n = static_cast<int>(a.x.size());
-  Material mat;
-  mat.bonded = true;
-  World<3> w = make_world<3>(a.x, a.r, mat);
-  for (int i = 0; i < n; ++i)
-    if (a.edge[i]) w.particles.fix[i] = 0x3f;
-  w.init();
-  const std::size_t bonds = w.install_bonds(0.1, 1);
+  World<3> w = specimen.empty() ? block(target) : shared(specimen, model);
+  const int n = w.particles.size();
   const RanksExchange launch(ranks);
   const TimedExchange exchange(launch);
   if (ranks.size() > 1) w.split(exchange);
@@ -134,6 +171,6 @@ int main(int argc, char** argv) {
               n, 1e9 * slowest / (static_cast<double>(n) * steps) * ranks.size() * threads,
               1e9 * slowest / (static_cast<double>(n) * steps), slowest / steps * 1e3, 100 * share_max, own.c_str(),
               100 * ghost_max, sent_max / 1024, static_cast<long long>(w.rebuilds - rebuilds));
-  std::fprintf(stderr, "%zu bonds, %d steps\n", bonds, steps);
+  std::fprintf(stderr, "%s, %d steps\n", specimen.empty() ? "bonded block" : (specimen + ", " + model).c_str(), steps);
   return 0;
 }

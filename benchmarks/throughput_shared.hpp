@@ -47,9 +47,10 @@ struct SharedRun {
 
 inline constexpr int kSharedWarmup = 10;
 
-// One repetition on a fresh world. Throws InputError if the engine refuses the fixed step.
-inline Timing shared_once(const SphereList<3>& s, const Material& mat, double dt_fixed, double height, int steps,
-                          double* strain) {
+// The shared specimen as the README loads it, on a fresh world: bonds (or CPM's cohesive contacts) installed, tag 1
+// held, tag 2 moved down (its indices in *top). Throws InputError if the engine refuses the fixed step.
+inline World<3> shared_world(const SphereList<3>& s, const Material& mat, double dt_fixed, double height,
+                             std::vector<int>* top) {
   World<3> w = make_world<3>(s.x, s.radius, mat);
   const FixMask all = static_cast<FixMask>((1u << (3 + Dim<3>::rot)) - 1);  // every translation and rotation
   w.timestep.fixed = dt_fixed;
@@ -60,15 +61,22 @@ inline Timing shared_once(const SphereList<3>& s, const Material& mat, double dt
   // Loading (README): tag 1 held, tag 2 moved down at constant velocity so that the strain along z is 1e-4
   // after 2010 steps. The velocity follows from the step actually used.
   const double v = 1e-4 * height / (2010.0 * w.dt);
-  std::vector<int> top;
   for (int i = 0; i < s.size(); ++i) {
     if (s.tag[i] == 1) w.particles.fix[i] = all;
     if (s.tag[i] == 2) {
       w.particles.v[i] = Vec<3>(0, 0, -v);
       w.particles.fix[i] = all;
-      top.push_back(i);
+      top->push_back(i);
     }
   }
+  return w;
+}
+
+// One repetition on a fresh world. Throws InputError if the engine refuses the fixed step.
+inline Timing shared_once(const SphereList<3>& s, const Material& mat, double dt_fixed, double height, int steps,
+                          double* strain) {
+  std::vector<int> top;
+  World<3> w = shared_world(s, mat, dt_fixed, height, &top);
   Timing t = time_steps(w, kSharedWarmup, steps);
   double dz = 0;
   for (int i : top) dz += s.x[i][2] - w.particles.x[i][2];
