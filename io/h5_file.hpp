@@ -45,6 +45,8 @@ class H5File {
   // After it the file on disk is complete and readable (it reaches the OS, not necessarily the platter). The disk
   // space the flush needs is reserved first: a full disk fails it before anything is written.
   void flush();
+  // Closes the file and opens it again in another mode (a file read first, then written).
+  void reopen(Mode mode);
   // Renames the open file (std::filesystem::rename: atomic within a directory, replacing any file there).
   void rename(const std::string& to);
   // True after a failed change (see above).

@@ -72,6 +72,12 @@ H5File::H5File(const std::string& path, Mode mode) : path_(path), writable_(mode
 
 H5File::~H5File() { close(); }
 
+void H5File::reopen(Mode mode) {
+  fid();  // refuses an abandoned or moved-from file
+  close();
+  *this = H5File(path_, mode);
+}
+
 H5File::H5File(H5File&& other) noexcept
     : path_(std::move(other.path_)),
       file_(std::exchange(other.file_, H5I_INVALID_HID)),

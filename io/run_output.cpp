@@ -280,6 +280,17 @@ std::int64_t RunOutput::crack_rows() const {
   return file_.exists("/cracks/step") ? static_cast<std::int64_t>(file_.rows("/cracks/step")) : 0;
 }
 
+void RunOutput::resume_at(std::int64_t history_rows, std::int64_t frame_rows, std::int64_t crack_rows) {
+  if (file_.attr_string("/", "status") == "running") return rewrite_up_to(history_rows, frame_rows, crack_rows);
+  file_.reopen(H5File::Mode::ReadWrite);
+  if (file_.exists("/cracks"))
+    for (const auto& n : file_.list("/cracks")) file_.truncate_rows("/cracks/" + n, crack_rows);
+  for (const auto& n : names_) file_.truncate_rows("/history/" + n, history_rows);
+  for (const auto& n : file_.list("/frames")) file_.truncate_rows("/frames/" + n, frame_rows);
+  write_xdmf();
+  flush();
+}
+
 // The tables' rows up to the checkpoint, the checkpoint, and everything else as it is go to <path>.partial, which
 // then replaces <path>. The other checkpoint slot is left behind: it is older, or was being written when the run
 // was killed.
@@ -316,6 +327,12 @@ void RunOutput::rewrite_up_to(std::int64_t history_rows, std::int64_t frame_rows
 void RunOutput::set_status(const std::string& status, const std::string& message) {
   file_.set_attr("/", "status", status);
   file_.set_attr("/", "status_message", message);
+}
+
+void RunOutput::end_with_status(const std::string& status, const std::string& message) {
+  flush();
+  set_status(status, message);
+  flush();
 }
 
 void RunOutput::set_xy_plots(const std::string& pairs) { file_.set_attr("/history", "xy_plots", pairs); }

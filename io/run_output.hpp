@@ -53,13 +53,17 @@ class RunOutput {
   // kill while writing one leaves the other intact.
   void write_checkpoint(const Archive& a, std::int64_t step);
   Archive read_checkpoint() const;  // the newest complete one; IoError if there is none
-  // Resuming: the file, opened read-only, is rewritten whole into a fresh file that replaces it and is written
-  // from then on, without the history rows, frames and cracks written after the checkpoint being resumed. The file
-  // of a run killed during a flush can be half-updated beyond its checkpoint: readable up to it, but not safely
-  // writable in place. A failed rewrite leaves the file as it was.
-  void rewrite_up_to(std::int64_t history_rows, std::int64_t frame_rows, std::int64_t crack_rows);
+  // Resuming: drops the history rows, frames and cracks written after the checkpoint being resumed, and opens the
+  // file for writing. A file its run closed (any status but "running") is truncated in place. The file of a run
+  // that was killed may have been killed during a flush, half-updated beyond its checkpoint: readable up to it but
+  // not safely writable, so it is rewritten into a fresh file that replaces it (a copy of the whole file). A failed
+  // rewrite leaves the file as it was.
+  void resume_at(std::int64_t history_rows, std::int64_t frame_rows, std::int64_t crack_rows);
 
   void set_status(const std::string& status, const std::string& message = "");
+  // The run's last word: everything flushed, then the status alone in a flush of its own, so that a file whose
+  // status is not "running" was complete before it (resume_at writes into it in place).
+  void end_with_status(const std::string& status, const std::string& message);
   void set_xy_plots(const std::string& pairs);
   void flush();
   void write_csv() const;  // <stem>_history.csv
@@ -71,8 +75,10 @@ class RunOutput {
   void write_cells(const SpecimenData& s);
   void append_frame_row(const std::string& ds, const std::vector<double>& row);
   void write_xdmf() const;
-  std::string newest_checkpoint() const;  // the complete slot of the highest step  // <stem>.xdmf, rewritten atomically
-                                          // after each frame once published
+  std::string newest_checkpoint() const;  // the complete slot of the highest step
+  void rewrite_up_to(std::int64_t history_rows, std::int64_t frame_rows,
+                     std::int64_t crack_rows);  // <stem>.xdmf, rewritten atomically
+                                                // after each frame once published
   H5File file_;
   std::vector<std::string> names_;
   bool published_ = true;

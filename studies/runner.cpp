@@ -124,8 +124,7 @@ class Runner {
     if (last_frame_step_ != system_->step_count()) frame();
     checkpoint();
     if (!writer_) return;
-    out_->set_status(status == "finished" ? "finished" : "stopped", status);
-    out_->flush();
+    out_->end_with_status(status == "finished" ? "finished" : "stopped", status);
     out_->write_csv();
     if (progress_shown_) std::fputc('\n', stderr);
   }
@@ -140,8 +139,7 @@ class Runner {
     try {
       if (writer_ && out_) {
         flush_history();
-        out_->set_status(status, why);
-        out_->flush();
+        out_->end_with_status(status, why);
         out_->write_csv();
       }
     } catch (const IoError& e) {
@@ -277,7 +275,7 @@ class Runner {
     if (frows > 0) last_frame_step_ = static_cast<std::int64_t>(last[1]);
     first_step_ = system_->step_count();
     if (!writer_) return;
-    out_->rewrite_up_to(hrows, frows, crows);
+    out_->resume_at(hrows, frows, crows);
     out_->create_histories(names, units);
     out_->set_status("running");
     out_->flush();
