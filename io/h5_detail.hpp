@@ -122,4 +122,16 @@ inline std::vector<hsize_t> dataset_dims(hid_t ds) {
   return dims_of(space);
 }
 
+// The names of the attributes of the open object `o` (the object `obj` of `f`), sorted.
+inline std::vector<std::string> attr_names(File f, hid_t o, const std::string& obj, const std::string& what) {
+  std::vector<std::string> names;
+  auto collect = [](hid_t, const char* name, const H5A_info_t*, void* out) -> herr_t {
+    static_cast<std::vector<std::string>*>(out)->push_back(name);
+    return 0;
+  };
+  hsize_t next = 0;
+  if (H5Aiterate2(o, H5_INDEX_NAME, H5_ITER_INC, &next, collect, &names) < 0) f.fail(what, obj, hdf5_reason());
+  return names;
+}
+
 }  // namespace mc::h5

@@ -408,15 +408,8 @@ std::vector<std::pair<std::string, double>> H5File::number_attrs(const std::stri
   const File f{fid(), path_};
   const std::string what = "list the attributes of";
   const Id o = open_object(f, obj, what);
-  std::vector<std::string> names;
-  auto collect = [](hid_t, const char* name, const H5A_info_t*, void* out) -> herr_t {
-    static_cast<std::vector<std::string>*>(out)->push_back(name);
-    return 0;
-  };
-  hsize_t next = 0;
-  if (H5Aiterate2(o, H5_INDEX_NAME, H5_ITER_INC, &next, collect, &names) < 0) f.fail(what, obj, hdf5_reason());
   std::vector<std::pair<std::string, double>> out;
-  for (const auto& name : names) {
+  for (const auto& name : attr_names(f, o, obj, what)) {
     const Id a = open_attr(f, obj, name, what);
     const Id type(H5Aget_type(a), H5Tclose);
     const H5T_class_t c = H5Tget_class(type);

@@ -80,14 +80,7 @@ void H5File::copy_attrs(const H5File& from, const std::string& obj) {
     const File src{from.fid(), from.path()}, dst{fid(), path_};
     const std::string what = "copy the attributes of";
     const Id in = open_object(src, obj, what), out = open_object(dst, obj, what);
-    std::vector<std::string> names;
-    auto collect = [](hid_t, const char* name, const H5A_info_t*, void* to) -> herr_t {
-      static_cast<std::vector<std::string>*>(to)->push_back(name);
-      return 0;
-    };
-    hsize_t next = 0;
-    if (H5Aiterate2(in, H5_INDEX_NAME, H5_ITER_INC, &next, collect, &names) < 0) src.fail(what, obj, hdf5_reason());
-    for (const auto& name : names) {
+    for (const auto& name : attr_names(src, in, obj, what)) {
       const Id a(H5Aopen(in, name.c_str(), H5P_DEFAULT), H5Aclose);
       if (!a.ok()) src.fail(what, obj, hdf5_reason());
       const Id type(H5Aget_type(a), H5Tclose), space(H5Aget_space(a), H5Sclose);
