@@ -64,6 +64,20 @@ def open_run(path):
     return f
 
 
+def leading(d, n=None):
+    """The first n rows of a table (all of them without n) that a killed run left readable: read chunk by chunk, up
+    to the first chunk its unfinished flush pointed to before the chunk was in the file."""
+    n = d.shape[0] if n is None else min(n, d.shape[0])
+    step = d.chunks[0] if d.chunks else max(n, 1)
+    parts = []
+    for first in range(0, n, step):
+        try:
+            parts.append(np.asarray(d[first:min(first + step, n)]))
+        except OSError:
+            break
+    return np.concatenate(parts) if parts else np.asarray(d[:0])
+
+
 def read_run(f):
     """Everything the plots need, as numpy arrays (the file is closed afterwards)."""
     run = {"dimension": int(f.attrs.get("dimension", 2)),
@@ -76,12 +90,13 @@ def read_run(f):
 
     hist = f.get("history")
     if isinstance(hist, h5py.Group):
-        series = {k: d for k, d in hist.items() if isinstance(d, h5py.Dataset) and d.ndim == 1}
+        datasets = {k: d for k, d in hist.items() if isinstance(d, h5py.Dataset) and d.ndim == 1}
+        series = {k: leading(d) for k, d in datasets.items()}
         # A running engine appends series one by one: cut all to the common length.
-        S = min((d.shape[0] for d in series.values()), default=0)
+        S = min((len(y) for y in series.values()), default=0)
         if "time" in series and S > 0:
-            for name, d in series.items():
-                run["history"][name] = {"data": np.asarray(d[:S], dtype=float),
+            for name, d in datasets.items():
+                run["history"][name] = {"data": np.asarray(series[name][:S], dtype=float),
                                         "unit": text(d.attrs.get("unit", "")),
                                         "label": text(d.attrs["label"]) if "label" in d.attrs else None}
         pairs = text(hist.attrs.get("xy_plots", ""))
@@ -104,13 +119,18 @@ def read_run(f):
     if isinstance(frames, h5py.Group) and "time" in frames and "x" in frames:
         rows = [frames[k].shape[0] for k in ("time", "x", "force") if k in frames]
         F = min(rows)
-        if F > 0:  # only the last complete row is read: 50k particles x many frames is large
-            k = F - 1
-            run["frame"] = {"index": k, "count": F, "time": float(frames["time"][k]),
-                            "step": int(frames["step"][k]) if "step" in frames else None,
-                            "x": np.asarray(frames["x"][k], dtype=float).reshape(-1, D),
-                            "force": (np.asarray(frames["force"][k], dtype=float).reshape(-1, D)
-                                      if "force" in frames else None)}
+        # Only the last complete row is read (50k particles x many frames is large); in a killed run's file, the
+        # last that reads.
+        for k in range(F - 1, -1, -1):
+            try:
+                run["frame"] = {"index": k, "count": F, "time": float(frames["time"][k]),
+                                "step": int(frames["step"][k]) if "step" in frames else None,
+                                "x": np.asarray(frames["x"][k], dtype=float).reshape(-1, D),
+                                "force": (np.asarray(frames["force"][k], dtype=float).reshape(-1, D)
+                                          if "force" in frames else None)}
+                break
+            except OSError:
+                continue
     return run
 
 
@@ -168,19 +188,20 @@ def read_cracks(f, D, spec):
     g = f.get("cracks")
     if not isinstance(g, h5py.Group) or "position" not in g:
         return None
-    n = min(g[k].shape[0] for k in ("position", "normal", "mode", "kind", "phase_a", "phase_b", "id_a", "id_b",
-                                     "time"))
-    c = {"position": np.asarray(g["position"][:n], dtype=float).reshape(-1, D),
-         "normal": np.asarray(g["normal"][:n], dtype=float).reshape(-1, D),
-         "mode": np.asarray(g["mode"][:n], dtype=int), "kind": np.asarray(g["kind"][:n], dtype=int),
-         "phase_a": np.asarray(g["phase_a"][:n], dtype=int), "phase_b": np.asarray(g["phase_b"][:n], dtype=int),
-         "time": np.asarray(g["time"][:n], dtype=float),
+    t = {k: leading(g[k]) for k in ("position", "normal", "mode", "kind", "phase_a", "phase_b", "id_a", "id_b",
+                                    "time")}
+    n = min(len(v) for v in t.values())
+    c = {"position": np.asarray(t["position"][:n], dtype=float).reshape(-1, D),
+         "normal": np.asarray(t["normal"][:n], dtype=float).reshape(-1, D),
+         "mode": np.asarray(t["mode"][:n], dtype=int), "kind": np.asarray(t["kind"][:n], dtype=int),
+         "phase_a": np.asarray(t["phase_a"][:n], dtype=int), "phase_b": np.asarray(t["phase_b"][:n], dtype=int),
+         "time": np.asarray(t["time"][:n], dtype=float),
          "size": np.zeros(n)}
     if spec is not None and "id" in f["specimen"]:
         ids = np.asarray(f["specimen"]["id"], dtype=np.int64)
         order = np.argsort(ids)
         radius_of = lambda q: spec["radius"][order[np.searchsorted(ids, q, sorter=order)]]
-        c["size"] = 2 * np.minimum(radius_of(np.asarray(g["id_a"][:n])), radius_of(np.asarray(g["id_b"][:n])))
+        c["size"] = 2 * np.minimum(radius_of(np.asarray(t["id_a"][:n])), radius_of(np.asarray(t["id_b"][:n])))
     return c
 
 
