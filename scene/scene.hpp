@@ -67,6 +67,9 @@ struct SpecimenSpec {
     int phase = 0;
   };
   std::vector<Region> regions;
+  // Not a key: set for a run resumed from the output file named here, whose /specimen holds what this scene's
+  // genesis made (Packing): it is read back instead of run again (the checkpoint then restores the state).
+  std::string genesis_from;
 };
 
 // Coarse aggregate laid over the specimen (Tang ch. 4): particles of the mortar phase whose centres fall in an

@@ -89,6 +89,36 @@ void add_output(const Scene& s, Particles<D>& p, std::vector<int>& tags) {
   }
 }
 
+// What a Packing specimen's genesis made, read back from the output file of the run being resumed: its particles
+// in the order the genesis made them (their ids; a cut's gaps stay), at their initial places. Cut again, sorted
+// again and given their phases again, they become the run's specimen as it was; the genesis's facts are already in
+// the file.
+template <int D>
+void add_stored_genesis(const Scene& s, Particles<D>& p, std::vector<int>& tags, std::vector<std::int64_t>& ids) {
+  const SpecimenSpec& sp = s.specimen;
+  std::vector<double> radius, x;
+  std::vector<std::int64_t> stored_ids;
+  {
+    const H5File f(sp.genesis_from, H5File::Mode::ReadOnly);
+    radius = f.read_doubles("/specimen/radius");
+    x = f.read_doubles("/specimen/x");
+    stored_ids = f.read_ints("/specimen/id");
+  }
+  if (x.size() != radius.size() * D || stored_ids.size() != radius.size())
+    throw IoError(sp.genesis_from + ": /specimen: " + std::to_string(radius.size()) + " radii, " +
+                  std::to_string(x.size()) + " coordinates and " + std::to_string(stored_ids.size()) +
+                  " ids do not make one specimen in " + std::to_string(D) + "D");
+  std::vector<std::size_t> order(radius.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return stored_ids[a] < stored_ids[b]; });
+  const double density = s.phases[sp.phase].density;
+  for (const std::size_t i : order) {
+    p.add(Vec<D>(Eigen::Map<const Vec<D>>(x.data() + D * i)), radius[i], density, sp.phase);
+    tags.push_back(0);
+    ids.push_back(stored_ids[i]);
+  }
+}
+
 // PFC material genesis (preprocess/dense_packing.hpp); what it measured goes to the facts.
 template <int D>
 Packing<D> genesis(const Scene& s, std::vector<std::pair<std::string, double>>& facts) {
@@ -239,6 +269,8 @@ void add_specimen(const Scene& s, Particles<D>& p, std::vector<int>& tags, Speci
     add_sphere_list<D>(s, p, tags, info.ids);
   } else if (sp.kind == K::Output) {
     add_output<D>(s, p, tags);
+  } else if (sp.kind == K::Packing && !sp.genesis_from.empty()) {
+    add_stored_genesis<D>(s, p, tags, info.ids);
   } else {
     const Packing<D> pk = generated<D>(s, info.facts);
     const double density = s.phases[sp.phase].density;

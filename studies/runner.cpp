@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "engine/errors.hpp"
+#include "io/h5_file.hpp"
 #include "io/run_output.hpp"
 #include "scene/make_system.hpp"
 #include "scene/resume_check.hpp"
@@ -68,6 +69,24 @@ Archive archive_of(const Bytes& in) {
   return a;
 }
 
+// The scene a run builds its system from. A resumed Packing specimen is read back from the output file instead of
+// made again (its genesis can take minutes; the checkpoint restores everything after it), when the file is one
+// `mesocrack run` wrote. A split run makes it again on every process: a process reading the file while process 0
+// opens it for writing would hold HDF5's file lock against it.
+Scene scene_to_build(const Scene& s, const RunOptions& o) {
+  Scene built = s;
+  if (!o.resume || s.specimen.kind != SpecimenSpec::Kind::Packing || (o.exchange && o.exchange->size() > 1))
+    return built;
+  try {
+    const H5File f(o.output, H5File::Mode::ReadOnly);
+    if (f.has_attr("/", "format") && f.attr_string("/", "format") == "mesocrack-1" && f.exists("/specimen/id"))
+      built.specimen.genesis_from = o.output;
+  } catch (const IoError&) {
+    // Not a file to resume: the resume itself says why, after the build.
+  }
+  return built;
+}
+
 // A stop condition and what it remembers (the peak, for post-peak conditions).
 struct StopState {
   StopSpec spec;
@@ -84,7 +103,8 @@ class Runner {
         opt_(o),
         split_(o.exchange && o.exchange->size() > 1 ? o.exchange : nullptr),
         writer_(!split_ || split_->rank() == 0),
-        system_(make_system(s, split_, o.imbalance_limit)) {
+        built_(scene_to_build(s, o)),
+        system_(make_system(built_, split_, o.imbalance_limit)) {
     for (const auto& st : s.stops) stops_.push_back({st, column_of(st.quantity)});
     buffer_.resize(system_->histories().size());
   }
@@ -426,6 +446,7 @@ class Runner {
   RunOptions opt_;
   const Exchange* split_;  // the processes of a split world (null: this one alone)
   bool writer_;            // this process writes the output (process 0 of a split world)
+  const Scene built_;      // the scene the system is built from (it refers to it)
   std::unique_ptr<System> system_;
   std::vector<std::vector<double>> buffer_;
   std::vector<StopState> stops_;
