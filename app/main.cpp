@@ -65,7 +65,9 @@ int run(const std::string& scene_file, std::string output, const std::vector<std
   if (!ranks.root()) return 0;
   std::fprintf(stderr, "%s after %lld steps, t = %.6g s, %.1f s wall time -> %s", r.status.c_str(),
                static_cast<long long>(r.steps), r.time, r.wall_seconds, output.c_str());
-  if (ranks.size() > 1) std::fprintf(stderr, " (split across %d ranks: %s)", ranks.size(), r.balance.c_str());
+  if (ranks.size() > 1)
+    std::fprintf(stderr, " (split across %d ranks: %s%s)", ranks.size(), r.balance.c_str(),
+                 rebalance > 0 ? "" : ", --rebalance not given");
   std::fputc('\n', stderr);
   return 0;
 }

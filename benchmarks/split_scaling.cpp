@@ -96,18 +96,13 @@ World<3> shared(const std::string& name, const std::string& model) {
   mat.bonded = model == "parallel";
   mat.cpm = model == "cpm";
   const SphereList<3> s = read_in_morton_order(std::string(MESOCRACK_SPECIMEN_DIR) + "/" + name + ".spheres");
-  double zlo = kInf, zhi = -kInf, radius = 0;
-  for (int i = 0; i < s.size(); ++i) {
-    radius = std::max(radius, s.radius[i]);
-    zlo = std::min(zlo, s.x[i][2] - s.radius[i]);
-    zhi = std::max(zhi, s.x[i][2] + s.radius[i]);
-  }
+  const SharedSize size = shared_size(s);
   std::vector<int> top;
   try {
-    return shared_world(s, mat, 0.3 * radius * std::sqrt(mat.density / mat.modulus), zhi - zlo, &top);
+    return shared_world(s, mat, size.dt_readme(mat), size.height, &top);
   } catch (const InputError&) {
     top.clear();
-    return shared_world(s, mat, 0.0, zhi - zlo, &top);
+    return shared_world(s, mat, 0.0, size.height, &top);
   }
 }
 

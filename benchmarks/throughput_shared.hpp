@@ -84,6 +84,26 @@ inline Timing shared_once(const SphereList<3>& s, const Material& mat, double dt
   return t;
 }
 
+// The shared specimen's largest radius and its height (from the lowest sphere's bottom to the highest one's top).
+struct SharedSize {
+  double radius = 0, height = 0;
+  double dt_readme(const Material& mat) const {  // README: dt = 0.3 r sqrt(ρ/E)
+    return 0.3 * radius * std::sqrt(mat.density / mat.modulus);
+  }
+};
+
+inline SharedSize shared_size(const SphereList<3>& s) {
+  SharedSize size;
+  double zlo = kInf, zhi = -kInf;
+  for (int i = 0; i < s.size(); ++i) {
+    size.radius = std::max(size.radius, s.radius[i]);
+    zlo = std::min(zlo, s.x[i][2] - s.radius[i]);
+    zhi = std::max(zhi, s.x[i][2] + s.radius[i]);
+  }
+  size.height = zhi - zlo;
+  return size;
+}
+
 // Numbered along a Morton curve, as `mesocrack run` loads a sphere list (engine/build_world.cpp).
 inline SphereList<3> read_in_morton_order(const std::string& path) {
   SphereList<3> s = read_sphere_list<3>(path);
@@ -102,14 +122,10 @@ inline SharedRun run_shared(const std::string& path, const std::string& name, co
   const SphereList<3> s = read_in_morton_order(path);
   run.read_seconds = std::chrono::duration<double>(Clock::now() - r0).count();
   run.n = s.size();
-  double zlo = kInf, zhi = -kInf;
-  for (int i = 0; i < s.size(); ++i) {
-    run.radius = std::max(run.radius, s.radius[i]);
-    zlo = std::min(zlo, s.x[i][2] - s.radius[i]);
-    zhi = std::max(zhi, s.x[i][2] + s.radius[i]);
-  }
-  run.height = zhi - zlo;
-  run.dt_readme = 0.3 * run.radius * std::sqrt(mat.density / mat.modulus);  // README: dt = 0.3 r sqrt(ρ/E)
+  const SharedSize size = shared_size(s);
+  run.radius = size.radius;
+  run.height = size.height;
+  run.dt_readme = size.dt_readme(mat);
   run.rss_before_kib = status_kib("VmRSS");
   run.hwm_reset = reset_peak_rss();
   for (int ti = 0; ti < 2; ++ti) {
@@ -267,21 +283,16 @@ inline void one_shared(const Options& opt) {
   mat.bonded = opt.one_model == "parallel";
   mat.cpm = opt.one_model == "cpm";
   const SphereList<3> s = read_in_morton_order(opt.specimen_dir + "/" + opt.one_specimen + ".spheres");
-  double zlo = kInf, zhi = -kInf, radius = 0;
-  for (int i = 0; i < s.size(); ++i) {
-    radius = std::max(radius, s.radius[i]);
-    zlo = std::min(zlo, s.x[i][2] - s.radius[i]);
-    zhi = std::max(zhi, s.x[i][2] + s.radius[i]);
-  }
+  const SharedSize size = shared_size(s);
   omp_set_num_threads(opt.one_threads);
   const int steps = 2000;
   double strain = kNaN;
   Timing t;
   try {
-    t = shared_once(s, mat, 0.3 * radius * std::sqrt(mat.density / mat.modulus), zhi - zlo, steps, &strain);
+    t = shared_once(s, mat, size.dt_readme(mat), size.height, steps, &strain);
   } catch (const InputError&) {
     // As in section_shared: the engine's critical estimate refuses the README step; its own step, same step count.
-    t = shared_once(s, mat, 0.0, zhi - zlo, steps, &strain);
+    t = shared_once(s, mat, 0.0, size.height, steps, &strain);
   }
   std::printf(
       "RESULT engine=mesocrack model=%s particles=%d threads=%d steps=%d dt=%.4g wall_s=%.3f "

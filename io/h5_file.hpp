@@ -86,9 +86,6 @@ class H5File {
   // Shrinks to nrows (drops rows written after a checkpoint); a table shorter than nrows is an IoError.
   void truncate_rows(const std::string& ds, hsize_t nrows);
 
-  // One value of a 1-D numeric dataset, read alone (the rows after it are not touched).
-  double value_at(const std::string& ds, hsize_t row) const;
-
   // The rows of a table that a killed writer left readable: all of them, or those before the first chunk that
   // cannot be read (one its unfinished flush pointed to before the chunk's place was in the file).
   std::vector<double> read_leading_doubles(const std::string& ds) const;

@@ -1,5 +1,5 @@
-// The parts of H5File that read or copy part of a file: one value, the rows of a table a killed writer left readable,
-// and objects, attributes and leading rows copied into another file (a resume rewrites the file it resumes).
+// The parts of H5File that read or copy part of a file: the rows of a table a killed writer left readable, and
+// objects, attributes and leading rows copied into another file (a resume rewrites the file it resumes).
 #include <algorithm>
 #include <functional>
 #include <numeric>
@@ -12,23 +12,23 @@ namespace mc {
 
 using namespace h5;
 
-double H5File::value_at(const std::string& ds, hsize_t row) const {
-  const File f{fid(), path_};
-  const std::string what = "read a value of dataset";
-  const Id d = open_dataset(f, ds, what);
-  const Id space(H5Dget_space(d), H5Sclose);
-  const std::vector<hsize_t> dims = dims_of(space);
-  if (dims.size() != 1) f.fail(what, ds, "not a 1-D dataset");
-  if (row >= dims[0]) f.fail(what, ds, "row " + std::to_string(row) + " of " + std::to_string(dims[0]));
-  const hsize_t one = 1;
-  H5Sselect_hyperslab(space, H5S_SELECT_SET, &row, nullptr, &one, nullptr);
-  const Id mem = Id(H5Screate_simple(1, &one, nullptr), H5Sclose);
-  double value = 0;
-  if (H5Dread(d, H5T_NATIVE_DOUBLE, mem, space, H5P_DEFAULT, &value) < 0) f.fail(what, ds, hdf5_reason());
-  return value;
+namespace {
+
+// Values in one row of a table of shape `dims`.
+hsize_t row_width(const std::vector<hsize_t>& dims) {
+  return std::accumulate(dims.begin() + 1, dims.end(), hsize_t{1}, std::multiplies<>());
 }
 
-namespace {
+// Selects rows [first, first + count) of a table of shape `dims` in each of `spaces`; returns the memory space
+// they fill.
+Id select_rows(const std::vector<hid_t>& spaces, const std::vector<hsize_t>& dims, hsize_t first, hsize_t count) {
+  std::vector<hsize_t> start(dims.size(), 0), extent = dims;
+  start[0] = first;
+  extent[0] = count;
+  for (const hid_t space : spaces)
+    H5Sselect_hyperslab(space, H5S_SELECT_SET, start.data(), nullptr, extent.data(), nullptr);
+  return Id(H5Screate_simple(static_cast<int>(extent.size()), extent.data(), nullptr), H5Sclose);
+}
 
 // The table's rows chunk by chunk, up to the first chunk that cannot be read.
 template <class T>
@@ -41,15 +41,11 @@ std::vector<T> leading_rows(File f, const std::string& ds, hid_t mem_type) {
   std::vector<hsize_t> chunk(dims.size(), 0);
   if (H5Pget_layout(dcpl) != H5D_CHUNKED || H5Pget_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data()) < 0)
     chunk[0] = std::max<hsize_t>(dims[0], 1);
-  const hsize_t width = std::accumulate(dims.begin() + 1, dims.end(), hsize_t{1}, std::multiplies<>());
   std::vector<T> out;
   for (hsize_t first = 0; first < dims[0]; first += chunk[0]) {
-    std::vector<hsize_t> start(dims.size(), 0), count = dims;
-    start[0] = first;
-    count[0] = std::min(chunk[0], dims[0] - first);
-    std::vector<T> rows(count[0] * width);
-    H5Sselect_hyperslab(space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
-    const Id mem(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose);
+    const hsize_t count = std::min(chunk[0], dims[0] - first);
+    std::vector<T> rows(count * row_width(dims));
+    const Id mem = select_rows({space}, dims, first, count);
     if (H5Dread(d, mem_type, mem, space, H5P_DEFAULT, rows.data()) < 0) break;
     out.insert(out.end(), rows.begin(), rows.end());
   }
@@ -114,18 +110,13 @@ void H5File::copy_rows(const H5File& from, const std::string& ds, hsize_t nrows)
     Id out(H5Dcreate2(dst.id, ds.c_str(), type, out_space, lcpl, dcpl, H5P_DEFAULT), H5Dclose);
     if (!out.ok()) dst.fail(what, ds, hdf5_reason());
     // In blocks of about 64 MB: a frame table can be far larger than memory should hold at once.
-    const hsize_t row_bytes =
-        std::max<hsize_t>(1, H5Tget_size(type) * (dims.size() > 1 ? dims[1] : 1) * (dims.size() > 2 ? dims[2] : 1));
+    const hsize_t row_bytes = std::max<hsize_t>(1, H5Tget_size(type) * row_width(dims));
     const hsize_t block = std::max<hsize_t>(1, (64u << 20) / row_bytes);
     std::vector<unsigned char> bytes;
     for (hsize_t first = 0; first < nrows; first += block) {
-      std::vector<hsize_t> start(dims.size(), 0), count = dims;
-      start[0] = first;
-      count[0] = std::min(block, nrows - first);
-      bytes.resize(count[0] * row_bytes);
-      H5Sselect_hyperslab(in_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
-      H5Sselect_hyperslab(out_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
-      const Id mem(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), H5Sclose);
+      const hsize_t count = std::min(block, nrows - first);
+      bytes.resize(count * row_bytes);
+      const Id mem = select_rows({in_space, out_space}, dims, first, count);
       if (H5Dread(in, type, mem, in_space, H5P_DEFAULT, bytes.data()) < 0) src.fail(what, ds, hdf5_reason());
       if (H5Dwrite(out, type, mem, out_space, H5P_DEFAULT, bytes.data()) < 0) dst.fail(what, ds, hdf5_reason());
     }

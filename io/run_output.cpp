@@ -280,8 +280,10 @@ std::int64_t RunOutput::crack_rows() const {
   return file_.exists("/cracks/step") ? static_cast<std::int64_t>(file_.rows("/cracks/step")) : 0;
 }
 
+bool killed_run(const H5File& f) { return f.attr_string("/", "status") == "running"; }
+
 void RunOutput::resume_at(std::int64_t history_rows, std::int64_t frame_rows, std::int64_t crack_rows) {
-  if (file_.attr_string("/", "status") == "running") return rewrite_up_to(history_rows, frame_rows, crack_rows);
+  if (killed_run(file_)) return rewrite_up_to(history_rows, frame_rows, crack_rows);
   file_.reopen(H5File::Mode::ReadWrite);
   if (file_.exists("/cracks"))
     for (const auto& n : file_.list("/cracks")) file_.truncate_rows("/cracks/" + n, crack_rows);

@@ -16,6 +16,10 @@
 
 namespace mc {
 
+// The run that wrote `f` was killed: its status still says "running". Its tables may be half-written past its last
+// complete flush (see H5File): read them with read_leading_*, and never write into the file.
+bool killed_run(const H5File& f);
+
 class RunOutput {
  public:
   // A new file, <path>.partial until `publish` (an existing <path> stays until then). Destroyed unpublished, it

@@ -79,8 +79,7 @@ std::string ExplicitSystem<D>::balance_report() const {
   };
   const std::int64_t n = world_.rebalances();
   return "particles owned per rank " + range(split_counts_) + " when split, " + range(own_counts()) + " at the end; " +
-         std::to_string(n) + (n == 1 ? " rebalance" : " rebalances") +
-         (world_.imbalance_limit > 0 ? "" : " (--rebalance not given)");
+         std::to_string(n) + (n == 1 ? " rebalance" : " rebalances");
 }
 
 // Every process sends every other the motion and forces of the particles it owns: the whole view is then the

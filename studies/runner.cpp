@@ -99,15 +99,16 @@ struct StopState {
 class Runner {
  public:
   Runner(const Scene& s, const RunOptions& o)
-      : scene_(s),
+      : scene_(scene_to_build(s, o)),
         opt_(o),
         split_(o.exchange && o.exchange->size() > 1 ? o.exchange : nullptr),
         writer_(!split_ || split_->rank() == 0),
-        built_(scene_to_build(s, o)),
-        system_(make_system(built_, split_, o.imbalance_limit)) {
+        system_(make_system(scene_, split_, o.imbalance_limit)) {
     for (const auto& st : s.stops) stops_.push_back({st, column_of(st.quantity)});
     buffer_.resize(system_->histories().size());
   }
+  Runner(const Runner&) = delete;  // the system refers to scene_
+  Runner& operator=(const Runner&) = delete;
 
   RunResult run() {
     start_or_resume();
@@ -263,8 +264,8 @@ class Runner {
       const std::int64_t hrows = static_cast<std::int64_t>(a.reals.at("runner").at(0));
       const std::int64_t frows = static_cast<std::int64_t>(a.reals.at("runner").at(1));
       a.reals["runner_last"] = {
-          hrows > 0 ? out_->file().value_at("/history/step", static_cast<hsize_t>(hrows - 1)) : -1.0,
-          frows > 0 ? out_->file().value_at("/frames/step", static_cast<hsize_t>(frows - 1)) : -1.0,
+          hrows > 0 ? out_->file().read_leading_doubles("/history/step").at(static_cast<std::size_t>(hrows - 1)) : -1.0,
+          frows > 0 ? out_->file().read_leading_doubles("/frames/step").at(static_cast<std::size_t>(frows - 1)) : -1.0,
           change.stops_changed ? 1.0 : 0.0};
     }
     if (split_) a = archive_of(split_->all_gather(writer_ ? archive_bytes(a) : Bytes{})[0]);
@@ -442,11 +443,10 @@ class Runner {
     progress_shown_ = true;
   }
 
-  const Scene& scene_;
+  const Scene scene_;  // the scene as run (scene_to_build); the system refers to it
   RunOptions opt_;
   const Exchange* split_;  // the processes of a split world (null: this one alone)
   bool writer_;            // this process writes the output (process 0 of a split world)
-  const Scene built_;      // the scene the system is built from (it refers to it)
   std::unique_ptr<System> system_;
   std::vector<std::vector<double>> buffer_;
   std::vector<StopState> stops_;

@@ -4,6 +4,7 @@
 
 #include "engine/errors.hpp"
 #include "io/h5_file.hpp"
+#include "io/run_output.hpp"
 #include "scene/toml_reader.hpp"
 
 namespace mc {
@@ -85,7 +86,7 @@ StoredRun read_stored_run(const std::string& output_file) {
   if (!f.has_attr("/", "format") || f.attr_string("/", "format") != "mesocrack-1")
     throw IoError(output_file + ": not a mesocrack output file (no format attribute 'mesocrack-1')");
   StoredRun r;
-  const bool killed = f.attr_string("/", "status") == "running";
+  const bool killed = killed_run(f);
   r.histories = read_histories(f, killed);
   r.scene = read_stored_scene(f);
   r.cracks = read_cracks(f, r.scene.dimension, killed);
