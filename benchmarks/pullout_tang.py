@@ -1,14 +1,15 @@
 #!/usr/bin/python3
 """Tang (2013) ch. 8: the FRP-to-concrete single-shear pull test, its rate, bonded-length and free-zone studies.
 
-Runs, each single-threaded through the real `mesocrack run` on scenes/pull_tang_2d.toml (--set overrides that
-move the bonded length's ends, the sheet's end, the unglued free zone, the prism's length and the slip probe):
+Runs, each single-threaded through the real `mesocrack run` on scenes/pull_tang_2d.toml or the --scene given with
+its geometry (--set overrides that move the bonded length's ends, the sheet's end, the unglued free zone, the
+prism's length and the slip probe); --speed sets the bonded-length and free-zone studies' grip speed (50 mm/s):
   rate     the reference (free zone 100 mm, bonded 50 mm) at grip speeds 200, 100, 50, 25 and 12.5 mm/s (the
            scene's own: 50 mm/s; the run's time limit stretches with 1/speed): capacity and slip at capacity
            against the slowest, with the CPU seconds of each run (the accuracy-versus-time method of
            benchmarks/uniaxial_accuracy.py); --damping sets the local damping (the scene's: 0.1), a row's key
-  bonded   bonded lengths 25-300 mm, free zone 100 mm: capacity against the energy solution
-           P∞ = b_f √(2 G_f E_p t_p) and Chen & Teng's (2001) model with its effective bond length
+  bonded   bonded lengths 25-300 mm (--bonded), free zone 100 mm: capacity against the energy solution
+           P∞ = b_f √(2 G E_p t_p), for Table 8.1's G_f and for the G the run spent, and Chen & Teng's (2001) model with its effective bond length
            L_e = √(E_p t_p / √f'_c) [mm, MPa]
   free     free zones 0, 25, 50 and 100 mm, bonded 50 mm: the early wedge failure at zero free zone (Figs. 8.14-8.16)
 Output (--out): results.csv (one row per run), pullout.md (the tables), bonded.png and, for the reference, its
@@ -17,6 +18,8 @@ report pictures (load-slip, strain profiles, cracks at 31/60/90/100 % of the cap
   benchmarks/pullout_tang.py --only rate --jobs 2
   benchmarks/pullout_tang.py --only rate --rates 200,100,50,25 --damping 0.7 --jobs 2
   benchmarks/pullout_tang.py --only bonded,free --jobs 2
+  benchmarks/pullout_tang.py --scene scenes/pull_tang_softening_2d.toml --speed 100 --bonded 25,100,150,200 \
+      --out benchmarks/results/pullout_tang_softening --jobs 2
 """
 import math
 import subprocess
@@ -66,8 +69,20 @@ def speed(v, bonded=0.05, free=0.1):
     return [f'groups[2].velocity=["{-v * 1e3:g} mm/s", 0]', f'run.duration="{DURATION * SPEED / v * length:g} s"']
 
 
-def energy_solution():
-    return WIDTH * math.sqrt(2 * G_F * EP_TP)
+def energy_solution(g=G_F):
+    """P∞ = b_f √(2 G E_p t_p): the capacity of a long bond whose interface spends G per debonded area."""
+    return WIDTH * math.sqrt(2 * g * EP_TP)
+
+
+def plateau_and_reach(bonded, share=0.97):
+    """The plateau of the capacity against the bonded length (the mean of the two longest bonds' capacities [kN])
+    and the bonded length [mm] at which the capacity, linear between the runs, first reaches `share` of it."""
+    plateau = sum(r["capacity_kN"] for r in bonded[-2:]) / 2
+    for a, b in zip(bonded, bonded[1:]):
+        if b["capacity_kN"] >= share * plateau > a["capacity_kN"]:
+            t = (share * plateau - a["capacity_kN"]) / (b["capacity_kN"] - a["capacity_kN"])
+            return plateau, a["bonded_mm"] + t * (b["bonded_mm"] - a["bonded_mm"])
+    return plateau, bonded[0]["bonded_mm"] if bonded[0]["capacity_kN"] >= share * plateau else None
 
 
 def chen_teng(bonded_mm):
@@ -80,27 +95,28 @@ def chen_teng(bonded_mm):
     return 0.427 * beta_w * beta_l * math.sqrt(FC) * WIDTH * 1e3 * le, le
 
 
-def plan(only, rates, damping):
+def plan(only, rates, damping, grip, bonded_mm):
+    """The runs: the rate study at `rates` [m/s], the bonded-length (`bonded_mm`) and free-zone studies at `grip`."""
     todo = []
     if "rate" in only:
         for v in rates:
             todo.append((f"rate_{v * 1e3:g}_damping_{damping:g}",
                          geometry(0.1, 0.05) + speed(v) + [f"physics.local_damping={damping:g}"],
                          {"study": "rate", "free_mm": 100, "bonded_mm": 50, "speed": v, "damping": damping},
-                         v == SPEED and damping == DAMPING))
+                         v == grip and damping == DAMPING))
     if "bonded" in only:
-        for b in BONDED:
+        for b in bonded_mm:
             if b != 50:
-                todo.append((f"bonded_{b}", geometry(0.1, b * 1e-3) + speed(SPEED, b * 1e-3),
-                             {"study": "bonded", "free_mm": 100, "bonded_mm": b, "speed": SPEED,
+                todo.append((f"bonded_{b:g}", geometry(0.1, b * 1e-3) + speed(grip, b * 1e-3),
+                             {"study": "bonded", "free_mm": 100, "bonded_mm": b, "speed": grip,
                               "damping": DAMPING}, False))
     if "free" in only:
         for z in FREE:
             if z != 100:
-                todo.append((f"free_{z}", geometry(z * 1e-3, 0.05) + speed(SPEED, 0.05, z * 1e-3),
-                             {"study": "free", "free_mm": z, "bonded_mm": 50, "speed": SPEED,
+                todo.append((f"free_{z}", geometry(z * 1e-3, 0.05) + speed(grip, 0.05, z * 1e-3),
+                             {"study": "free", "free_mm": z, "bonded_mm": 50, "speed": grip,
                               "damping": DAMPING}, z == 0))
-    return sorted(todo, key=lambda t: t[2]["speed"])  # the longest first
+    return sorted(todo, key=lambda t: (t[2]["speed"], -t[2]["free_mm"] - t[2]["bonded_mm"]))  # the longest first
 
 
 FIELDS = ["study", "free_mm", "bonded_mm", "speed", "damping", "capacity_kN", "capacity_beta_w_kN",
@@ -122,11 +138,11 @@ def row_of(s, known, cpu):
             "particles": s["particles"], "steps": s["steps"], "cpu_s": cpu}
 
 
-def run_all(exe, out, jobs, todo, csv_path):
+def run_all(exe, out, jobs, todo, csv_path, scene):
     def one(item):
         key, ov, known, keep = item
         h5 = out / "runs" / f"{key}.h5"
-        s, cpu, _ = timed_run(exe, SCENE, h5, ov, keep=keep)
+        s, cpu, _ = timed_run(exe, scene, h5, ov, keep=keep)
         if keep:  # its report pictures are kept, the run itself is not
             subprocess.run([sys.executable, str(ROOT / "app" / "report.py"), str(h5)], check=True,
                            capture_output=True)
@@ -147,7 +163,7 @@ def fmt(x, spec):
     return "-" if x is None else format(x, spec)
 
 
-def analyse(rows, out):
+def analyse(rows, out, grip):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -171,19 +187,25 @@ def analyse(rows, out):
                          f"{fmt(r['capacity_kN'] / half[0]['capacity_kN'] - 1 if half else None, '+.1%')} | "
                          f"{r['slip_at_capacity_mm']:.4f} | {r['mode']} | {fmt(r['worst_residual'], '.2%')} | "
                          f"{r['steps']:.0f} | {r['cpu_s']:.0f} |")
-    at = lambda study, k: sorted([r for r in rows if r["study"] in (study, "rate") and r["speed"] == SPEED  # noqa
+    at = lambda study, k: sorted([r for r in rows if r["study"] in (study, "rate") and r["speed"] == grip  # noqa
                                   and r["damping"] == DAMPING
                                   and (r["free_mm"] == 100 if k == "bonded_mm" else r["bonded_mm"] == 50)],
                                  key=lambda r: r[k])
     bonded = at("bonded", "bonded_mm")
     if len(bonded) > 1:
         lines += ["\n### Bonded length (free zone 100 mm)\n",
-                  "| bonded [mm] | capacity [kN] | × β_w [kN] | P / P∞ | Chen & Teng [kN] | failure | CPU s |",
-                  "|---|---|---|---|---|---|---|"]
+                  "| bonded [mm] | capacity [kN] | × β_w [kN] | P / P∞ | Chen & Teng [kN] | G_bonds [N/m] | "
+                  "b_f √(2 G_bonds E_p t_p) [kN] | failure | CPU s |", "|---|---|---|---|---|---|---|---|---|"]
         for r in bonded:
+            g = r["G_bonds"]
             lines.append(f"| {r['bonded_mm']:g} | {r['capacity_kN']:.2f} | {r['capacity_beta_w_kN']:.2f} | "
                          f"{r['capacity_kN'] * 1e3 / p_inf:.2f} | {chen_teng(r['bonded_mm'])[0] * 1e-3:.2f} | "
+                         f"{fmt(g, '.0f')} | {fmt(energy_solution(g) * 1e-3 if g else None, '.2f')} | "
                          f"{r['mode']} | {r['cpu_s']:.0f} |")
+        plateau, reach = plateau_and_reach(bonded)
+        lines.append(f"\nPlateau (mean of the two longest bonds): {plateau:.2f} kN = {plateau * 1e3 / p_inf:.3f} P∞; "
+                     f"97 % of it is reached at {fmt(reach, '.0f')} mm (linear between the runs), against Chen & "
+                     f"Teng's L_e = {le:.0f} mm.")
         fig, ax = plt.subplots(figsize=(6, 4))
         ax.plot([r["bonded_mm"] for r in bonded], [r["capacity_kN"] for r in bonded], "o-", label="mesocrack")
         ls = list(range(5, 301, 5))
@@ -211,10 +233,17 @@ def main():
     ap = study_arguments(__doc__, "pullout_tang", "rate,bonded,free")
     ap.add_argument("--rates", default=RATES, help="grip speeds of the rate study [mm/s], comma-separated")
     ap.add_argument("--damping", type=float, default=DAMPING, help="local damping of the rate study's runs")
+    ap.add_argument("--scene", default=str(SCENE), help="the pull test scene (its geometry as pull_tang_2d.toml's)")
+    ap.add_argument("--speed", type=float, default=SPEED * 1e3,
+                    help="grip speed of the bonded-length and free-zone studies [mm/s]")
+    ap.add_argument("--bonded", default=",".join(map(str, BONDED)), help="bonded lengths [mm], comma-separated")
+    known = ap.parse_known_args()[0]
+    scene, grip = Path(known.scene), known.speed * 1e-3
     study_main(ap, FIELDS, ("study", "mode"),
                lambda r: (r["study"], r["free_mm"], r["bonded_mm"], r["speed"], r["damping"]),
-               lambda a: plan(set(a.only.split(",")), [float(r) * 1e-3 for r in a.rates.split(",")], a.damping),
-               lambda t: t[2], run_all, analyse)
+               lambda a: plan(set(a.only.split(",")), [float(r) * 1e-3 for r in a.rates.split(",")], a.damping,
+                              grip, [float(b) for b in a.bonded.split(",")]),
+               lambda t: t[2], lambda *args: run_all(*args, scene), lambda rows, out: analyse(rows, out, grip))
 
 
 if __name__ == "__main__":
