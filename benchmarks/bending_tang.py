@@ -152,7 +152,7 @@ def run_all(exe, out, jobs, todo, csv_path):
         s, cpu, _ = timed_run(exe, ROOT / "scenes" / f"bending_tang_{mortar}_2d.toml", h5, ov, keep=keep)
         if keep:
             curve(h5, out / f"{key}_curve.csv")
-            subprocess.run([sys.executable, str(ROOT / "app" / "report.py"), str(h5)], check=True,
+            subprocess.run([exe, "report", str(h5)], check=True,  # its pictures by /usr/bin/python3
                            capture_output=True)
             for f in h5.parent.glob(h5.stem + "*"):  # the crack pictures at the peak and at the end are kept
                 if f.name in (h5.stem + "_cracks.png", h5.stem + "_cracks_peak.png"):

@@ -144,7 +144,7 @@ def run_all(exe, out, jobs, todo, csv_path, scene):
         h5 = out / "runs" / f"{key}.h5"
         s, cpu, _ = timed_run(exe, scene, h5, ov, keep=keep)
         if keep:  # its report pictures are kept, the run itself is not
-            subprocess.run([sys.executable, str(ROOT / "app" / "report.py"), str(h5)], check=True,
+            subprocess.run([exe, "report", str(h5)], check=True,  # its pictures by /usr/bin/python3
                            capture_output=True)
             for f in h5.parent.glob(h5.stem + "*"):
                 if f.name.startswith(h5.stem + "_pullout"):
