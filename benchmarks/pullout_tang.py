@@ -9,8 +9,8 @@ prism's length and the slip probe); --speed sets the bonded-length and free-zone
            against the slowest, with the CPU seconds of each run (the accuracy-versus-time method of
            benchmarks/uniaxial_accuracy.py); --damping sets the local damping (the scene's: 0.1), a row's key
   bonded   bonded lengths 25-300 mm (--bonded), free zone 100 mm: capacity against the energy solution
-           P∞ = b_f √(2 G E_p t_p), for Table 8.1's G_f and for the G the run spent, and Chen & Teng's (2001) model with its effective bond length
-           L_e = √(E_p t_p / √f'_c) [mm, MPa]
+           P∞ = b_f √(2 G E_p t_p), for Table 8.1's G_f and for the G the run spent, and Chen & Teng's (2001)
+           model with its effective bond length L_e = √(E_p t_p / √f'_c) [mm, MPa]
   free     free zones 0, 25, 50 and 100 mm, bonded 50 mm: the early wedge failure at zero free zone (Figs. 8.14-8.16)
 Output (--out): results.csv (one row per run), pullout.md (the tables), bonded.png and, for the reference, its
 report pictures (load-slip, strain profiles, cracks at 31/60/90/100 % of the capacity).
