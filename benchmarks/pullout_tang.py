@@ -18,7 +18,8 @@ report pictures (load-slip, strain profiles, cracks at 31/60/90/100 % of the cap
   benchmarks/pullout_tang.py --only rate --jobs 2
   benchmarks/pullout_tang.py --only rate --rates 200,100,50,25 --damping 0.7 --jobs 2
   benchmarks/pullout_tang.py --only bonded,free --jobs 2
-  benchmarks/pullout_tang.py --scene scenes/pull_tang_softening_2d.toml --speed 100 --bonded 25,100,150,200 \
+  benchmarks/pullout_tang.py --scene scenes/pull_tang_softening_2d.toml --speed 100 --only rate,bonded \
+      --rates 100,50 --bonded 25,100,150,200 \
       --out benchmarks/results/pullout_tang_softening --jobs 2
 """
 import math
@@ -205,7 +206,8 @@ def analyse(rows, out, grip):
         plateau, reach = plateau_and_reach(bonded)
         lines.append(f"\nPlateau (mean of the two longest bonds): {plateau:.2f} kN = {plateau * 1e3 / p_inf:.3f} P∞; "
                      f"97 % of it is reached at {fmt(reach, '.0f')} mm (linear between the runs), against Chen & "
-                     f"Teng's L_e = {le:.0f} mm.")
+                     f"Teng's L_e = {le:.0f} mm (their β_L reaches 97 % at "
+                     f"{2 * le / math.pi * math.asin(0.97):.0f} mm).")
         fig, ax = plt.subplots(figsize=(6, 4))
         ax.plot([r["bonded_mm"] for r in bonded], [r["capacity_kN"] for r in bonded], "o-", label="mesocrack")
         ls = list(range(5, 301, 5))
