@@ -9,7 +9,8 @@ prism's length and the slip probe); --speed sets the bonded-length and free-zone
            against the slowest, with the CPU seconds of each run (the accuracy-versus-time method of
            benchmarks/uniaxial_accuracy.py); --damping sets the local damping (the scene's: 0.1), a row's key
   bonded   bonded lengths 25-300 mm (--bonded), free zone 100 mm: capacity against the energy solution
-           P∞ = b_f √(2 G E_p t_p), for Table 8.1's G_f and for the G the run spent, and Chen & Teng's (2001)
+           P∞ = b_f √(2 G E_p t_p), for Table 8.1's G_f and for the G the bonds spent (G_bonds; beside it
+           G_damping, what local damping took per bonded area, both to the run's end), and Chen & Teng's (2001)
            model with its effective bond length L_e = √(E_p t_p / √f'_c) [mm, MPa]
   free     free zones 0, 25, 50 and 100 mm, bonded 50 mm: the early wedge failure at zero free zone (Figs. 8.14-8.16)
 Output (--out): results.csv (one row per run), pullout.md (the tables), bonded.png and, for the reference, its
@@ -122,7 +123,7 @@ def plan(only, rates, damping, grip, bonded_mm):
 
 FIELDS = ["study", "free_mm", "bonded_mm", "speed", "damping", "capacity_kN", "capacity_beta_w_kN",
           "slip_at_capacity_mm", "final_load_over_capacity", "mode", "adhesive_breaks", "concrete_breaks",
-          "depth_p90_mm", "G_bonds", "worst_residual", "particles", "steps", "cpu_s"]
+          "depth_p90_mm", "G_bonds", "G_damping", "worst_residual", "particles", "steps", "cpu_s"]
 
 
 def row_of(s, known, cpu):
@@ -130,12 +131,15 @@ def row_of(s, known, cpu):
     f = p.get("failure") or {}
     e = p.get("energy") or {}
     depth = f.get("depth_p90")
+    local = e.get("dissipated_local")
     return {**known, "capacity_kN": p["capacity"] * 1e-3, "capacity_beta_w_kN": p["capacity_beta_w"] * 1e-3,
             "slip_at_capacity_mm": p["slip_at_capacity"] * 1e3,
             "final_load_over_capacity": p["final_load_over_capacity"],
             "mode": f.get("mode"), "adhesive_breaks": f.get("adhesive_breaks"),
             "concrete_breaks": f.get("concrete_breaks"), "depth_p90_mm": depth * 1e3 if depth is not None else None,
-            "G_bonds": e.get("G_bonds"), "worst_residual": e.get("worst_residual_over_work"),
+            "G_bonds": e.get("G_bonds"),
+            "G_damping": local / (known["bonded_mm"] * 1e-3) if local is not None else None,
+            "worst_residual": e.get("worst_residual_over_work"),
             "particles": s["particles"], "steps": s["steps"], "cpu_s": cpu}
 
 
@@ -196,13 +200,14 @@ def analyse(rows, out, grip):
     if len(bonded) > 1:
         lines += ["\n### Bonded length (free zone 100 mm)\n",
                   "| bonded [mm] | capacity [kN] | × β_w [kN] | P / P∞ | Chen & Teng [kN] | G_bonds [N/m] | "
-                  "b_f √(2 G_bonds E_p t_p) [kN] | failure | CPU s |", "|---|---|---|---|---|---|---|---|---|"]
+                  "b_f √(2 G_bonds E_p t_p) [kN] | G_damping [N/m] | failure | CPU s |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
         for r in bonded:
-            g = r["G_bonds"]
+            g, gd = r["G_bonds"], r["G_damping"]
             lines.append(f"| {r['bonded_mm']:g} | {r['capacity_kN']:.2f} | {r['capacity_beta_w_kN']:.2f} | "
                          f"{r['capacity_kN'] * 1e3 / p_inf:.2f} | {chen_teng(r['bonded_mm'])[0] * 1e-3:.2f} | "
                          f"{fmt(g, '.0f')} | {fmt(energy_solution(g) * 1e-3 if g else None, '.2f')} | "
-                         f"{r['mode']} | {r['cpu_s']:.0f} |")
+                         f"{fmt(gd, '.0f')} | {r['mode']} | {r['cpu_s']:.0f} |")
         plateau, reach = plateau_and_reach(bonded)
         lines.append(f"\nPlateau (mean of the two longest bonds): {plateau:.2f} kN = {plateau * 1e3 / p_inf:.3f} P∞; "
                      f"97 % of it is reached at {fmt(reach, '.0f')} mm (linear between the runs), against Chen & "

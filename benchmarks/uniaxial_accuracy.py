@@ -63,8 +63,18 @@ def rows_file(csv_path):
 
 @contextlib.contextmanager
 def appending(path, fields):
-    """A csv.DictWriter appending to `path`, which gets the header if it is new."""
+    """A csv.DictWriter appending to `path`, which gets the header if it is new. A file written with other
+    columns (a study that has since gained one) is first rewritten with `fields`, its rows' missing columns empty."""
     new = not path.exists()
+    if not new:
+        with open(path) as f:
+            reader = csv.DictReader(f)
+            rows = list(reader)
+        if reader.fieldnames != fields:
+            with open(path, "w", newline="") as f:
+                w = csv.DictWriter(f, fieldnames=fields, restval="")
+                w.writeheader()
+                w.writerows({k: r.get(k, "") for k in fields} for r in rows)
     with open(path, "a", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields)
         if new:
@@ -271,13 +281,14 @@ def append_rows(csv_path, fields, jobs, items, one, line):
 
 
 def read_rows(csv_path, fields, texts):
-    """The rows of a study's results.csv: the `texts` columns as strings, the others as floats (None if empty)."""
+    """The rows of a study's results.csv: the `texts` columns as strings, the others as floats (None if empty or
+    missing: a column the study gained after the row was written)."""
     rows = []
     for path in result_files(csv_path):
         with open(path) as f:
             for r in csv.DictReader(f):
-                rows.append({k: (r[k] if k in texts else float(r[k]) if r[k] not in ("", "None") else None)
-                             for k in fields})
+                rows.append({k: (r.get(k) if k in texts else float(r[k]) if r.get(k) not in (None, "", "None")
+                                 else None) for k in fields})
     return rows
 
 
