@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """Tang (2013) ch. 8: the FRP-to-concrete single-shear pull test, its rate, bonded-length and free-zone studies.
 
-Runs, each single-threaded through the real `mesocrack run` on scenes/pull_tang_2d.toml or the --scene given with
-its geometry (--set overrides that move the bonded length's ends, the sheet's end, the unglued free zone, the
-prism's length and the slip probe); --speed sets the bonded-length and free-zone studies' grip speed (50 mm/s):
+Runs, each single-threaded (--threads for more) through the real `mesocrack run` on scenes/pull_tang_2d.toml or
+the --scene given with its geometry (--set overrides that move the bonded length's ends, the sheet's end, the
+unglued free zone, the prism's length and the slip probe); --speed sets the bonded-length and free-zone studies'
+grip speed (50 mm/s):
   rate     the reference (free zone 100 mm, bonded 50 mm) at grip speeds 200, 100, 50, 25 and 12.5 mm/s (the
            scene's own: 50 mm/s; the run's time limit stretches with 1/speed): capacity and slip at capacity
            against the slowest, with the CPU seconds of each run (the accuracy-versus-time method of
@@ -143,11 +144,11 @@ def row_of(s, known, cpu):
             "particles": s["particles"], "steps": s["steps"], "cpu_s": cpu}
 
 
-def run_all(exe, out, jobs, todo, csv_path, scene):
+def run_all(exe, out, jobs, todo, csv_path, scene, threads):
     def one(item):
         key, ov, known, keep = item
         h5 = out / "runs" / f"{key}.h5"
-        s, cpu, _ = timed_run(exe, scene, h5, ov, keep=keep)
+        s, cpu, _ = timed_run(exe, scene, h5, ov, keep=keep, threads=threads)
         if keep:  # its report pictures are kept, the run itself is not
             subprocess.run([exe, "report", str(h5)], check=True,  # its pictures by /usr/bin/python3
                            capture_output=True)
@@ -244,13 +245,15 @@ def main():
     ap.add_argument("--speed", type=float, default=SPEED * 1e3,
                     help="grip speed of the bonded-length and free-zone studies [mm/s]")
     ap.add_argument("--bonded", default=",".join(map(str, BONDED)), help="bonded lengths [mm], comma-separated")
+    ap.add_argument("--threads", type=int, default=1,
+                    help="threads of each run (the results do not depend on it; its CPU s counts every thread)")
     known = ap.parse_known_args()[0]
-    scene, grip = Path(known.scene), known.speed * 1e-3
+    scene, grip, threads = Path(known.scene), known.speed * 1e-3, known.threads
     study_main(ap, FIELDS, ("study", "mode"),
                lambda r: (r["study"], r["free_mm"], r["bonded_mm"], r["speed"], r["damping"]),
                lambda a: plan(set(a.only.split(",")), [float(r) * 1e-3 for r in a.rates.split(",")], a.damping,
                               grip, [float(b) for b in a.bonded.split(",")]),
-               lambda t: t[2], lambda *args: run_all(*args, scene), lambda rows, out: analyse(rows, out, grip))
+               lambda t: t[2], lambda *args: run_all(*args, scene, threads), lambda rows, out: analyse(rows, out, grip))
 
 
 if __name__ == "__main__":

@@ -208,15 +208,17 @@ def plan(full, dims, only, seeds):
     return runs
 
 
-def timed_run(exe, scene, h5, overrides, keep=False):
-    """`mesocrack run scene -o h5` on one thread with --set overrides; its summary (JSON as a dict), and the CPU
-    seconds (user + system of the child: the cost on one core, robust to whatever else the machine is doing) and
-    wall seconds it took. The output files are deleted unless `keep`: the numbers are in the summary."""
-    cmd = [exe, "run", str(scene), "-o", str(h5), "--threads", "1"]
+def timed_run(exe, scene, h5, overrides, keep=False, threads=1):
+    """`mesocrack run scene -o h5` on `threads` threads (one by default) with --set overrides; its summary (JSON as
+    a dict), and the CPU seconds (user + system of the child: the cost on one core, robust to whatever else the
+    machine is doing) and wall seconds it took. The output files are deleted unless `keep`: the numbers are in the
+    summary."""
+    cmd = [exe, "run", str(scene), "-o", str(h5), "--threads", str(threads)]
     for o in overrides:
         cmd += ["--set", o]
     t0 = time.monotonic()
-    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env={**os.environ, "OMP_NUM_THREADS": "1"})
+    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                         env={**os.environ, "OMP_NUM_THREADS": str(threads)})
     _, status, usage = os.wait4(p.pid, 0)
     err = p.stderr.read().decode()
     code = os.waitstatus_to_exitcode(status)
