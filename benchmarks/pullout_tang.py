@@ -21,8 +21,9 @@ report pictures (load-slip, strain profiles, cracks at 31/60/90/100 % of the cap
   benchmarks/pullout_tang.py --only rate --rates 200,100,50,25 --damping 0.7 --jobs 2
   benchmarks/pullout_tang.py --only bonded,free --jobs 2
   benchmarks/pullout_tang.py --scene scenes/pull_tang_softening_2d.toml --speed 100 --only rate,bonded \
-      --rates 100,50 --bonded 25,100,150,200 \
-      --out benchmarks/results/pullout_tang_softening --jobs 2
+      --rates 100,50 --bonded 25,100,150,200 --out benchmarks/results/pullout_tang_softening --jobs 2
+  benchmarks/pullout_tang.py --scene scenes/pull_tang_softening_2d.toml --speed 100 --only bonded --bonded 300 \
+      --threads 2 --out benchmarks/results/pullout_tang_softening
 """
 import math
 import subprocess
