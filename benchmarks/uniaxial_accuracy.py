@@ -72,7 +72,7 @@ def appending(path, fields):
             rows = list(reader)
         if reader.fieldnames != fields:
             with open(path, "w", newline="") as f:
-                w = csv.DictWriter(f, fieldnames=fields, restval="")
+                w = csv.DictWriter(f, fieldnames=fields)
                 w.writeheader()
                 w.writerows({k: r.get(k, "") for k in fields} for r in rows)
     with open(path, "a", newline="") as f:
@@ -210,7 +210,7 @@ def plan(full, dims, only, seeds):
 
 def timed_run(exe, scene, h5, overrides, keep=False, threads=1):
     """`mesocrack run scene -o h5` on `threads` threads (one by default) with --set overrides; its summary (JSON as
-    a dict), and the CPU seconds (user + system of the child: the cost on one core, robust to whatever else the
+    a dict), and the CPU seconds (user + system of the child, summed over its threads: robust to whatever else the
     machine is doing) and wall seconds it took. The output files are deleted unless `keep`: the numbers are in the
     summary."""
     cmd = [exe, "run", str(scene), "-o", str(h5), "--threads", str(threads)]
