@@ -19,40 +19,25 @@ template <>
 struct LaneLaw<ParallelBond, 3> {
   using State = ParallelBond::State<3>;
   static constexpr int kStride = sizeof(State) / sizeof(double);
-  static constexpr int kVec = 3;  // doubles per slot vector
 
   // Contacts [c, c + kLanes) of `pairs` and `states`, slots from `slot`. False: nothing written, run them
   // one at a time.
   [[gnu::flatten]] static bool force(const ParallelBondParams& prm, const Particles<3>& p, const Pair* pairs,
                                      State* states, Slots<3>& s, std::size_t slot, double dt) {
     if (prm.contact.damping_ratio > 0) return false;
-    LaneIndex ia, ib;
-    lane_partners(pairs, ia, ib);
     const Lane tensile = load_lanes<kStride>(&states[0].tensile);
     const Lane shear = load_lanes<kStride>(&states[0].shear);
     const LaneMask bonded = tensile > 0.0;
-
-    // Geometry, as ball_geometry (contact_set.hpp), Tang (3.1)–(3.6).
-    const Lane3 xa = gather(p.x, ia), xb = gather(p.x, ib);
-    const Lane ra = gather(p.radius, ia), rb = gather(p.radius, ib);
-    const Lane3 d = xb - xa;
-    const Lane reach = ra + rb;
-    const LaneMask apart = dot(d, d) >= reach * reach && !bonded;
-    const Lane dist = dot(d, d).sqrt();
-    const Lane3 n = d * (1.0 / dist);
-    const Lane overlap = reach - dist;
-    if ((!apart && overlap > 0.5 * ra.min(rb)).any()) return false;  // passing through: the guard's message
-    if ((!apart && (gather(p.stiffness, ia) != 1.0 || gather(p.stiffness, ib) != 1.0)).any()) return false;
-    const Lane3 ca = (ra - 0.5 * overlap) * n;
-    const Lane3 cb = ca - d;
-    const Lane3 wa = gather(p.w, ia), wb = gather(p.w, ib);
-    const Lane3 v_rel = (gather(p.v, ib) + cross(wb, cb)) - (gather(p.v, ia) + cross(wa, ca));
-    const Lane3 w_rel = wb - wa;
-    const Lane spin = 0.5 * dot(wa + wb, n);
-    const Lane angle = spin * dt, turn = 1.0 - 0.5 * angle * angle;
+    LaneGeometry g;
+    if (!lane_geometry(p, pairs, bonded, dt, g)) return false;
+    const LaneMask apart = g.apart;
+    if ((!apart && (gather(p.stiffness, g.ia) != 1.0 || gather(p.stiffness, g.ib) != 1.0)).any()) return false;
+    const Lane &ra = g.ra, &rb = g.rb, &overlap = g.overlap, &angle = g.angle, &turn = g.turn;
+    const Lane3 &n = g.n, &v_rel = g.v_rel;
+    const Lane3 w_rel = g.wb - g.wa;
 
     // Coefficients, as ParallelBond::pair with unit stiffness factors.
-    const Lane inv_sum = 1.0 / reach;
+    const Lane inv_sum = 1.0 / g.reach;
     const Lane kn = prm.modulus * inv_sum, ks = kn * (1.0 / prm.kn_ks_ratio);  // Tang (3.38)
     const Lane r = prm.radius_multiplier * ra.min(rb), inv_r = 1.0 / r;        // Tang (3.40)
     const Lane kn_c = 4.0 * prm.contact.modulus * (ra * rb * inv_sum), ks_c = kn_c * (1.0 / prm.contact.kn_ks_ratio);
@@ -107,10 +92,7 @@ struct LaneLaw<ParallelBond, 3> {
     keep(&states[0].tensile, tensile, kept, 0.0);
     keep(&states[0].shear, shear, kept, 0.0);
     store_lanes<kStride>(&states[0].stiffness, pick(kept, load_lanes<kStride>(&states[0].stiffness), 1.0));
-    const Lane3 neg = Lane3{-force.x, -force.y, -force.z};
-    store_lanes3<kVec>(s.f[slot].data(), pick(kept, force, 0.0));
-    store_lanes3<kVec>(s.ma[slot].data(), pick(kept, cross(ca, neg) - moment, 0.0));
-    store_lanes3<kVec>(s.mb[slot].data(), pick(kept, cross(cb, force) + moment, 0.0));
+    store_slots(s, slot, g, force, &moment);
     return true;
   }
 };

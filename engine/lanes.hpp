@@ -1,16 +1,19 @@
-// Contacts side by side: each number of a contact law held as an array of kLanes lanes (Eigen's fixed-size
-// arrays, which the compiler turns into SIMD instructions), so that a model can run several contacts through one
-// sequence of instructions. The lanes repeat the scalar code's operations in the scalar code's order (Eigen's
-// Vector3d sums x, y, z from the left), and IEEE arithmetic is the same in a lane as in a scalar register, so a
-// law run in lanes gives the same bits as run one contact at a time (the build turns off fused multiply-add).
+// Contacts side by side: each number of a contact law held as kLanes lanes of one SIMD register, so that a model
+// can run several contacts through one sequence of instructions. The lanes repeat the scalar code's operations in the
+// scalar code's order (Eigen's Vector3d sums x, y, z from the left), and IEEE arithmetic is the same in a lane as in a
+// scalar register, so a law run in lanes gives the same bits as run one contact at a time (the build turns off fused
+// multiply-add).
 #pragma once
-#include <Eigen/Core>
+#include <immintrin.h>
+
+#include <array>
 #include <cstddef>
 #include <vector>
 
 #include "engine/cell_grid.hpp"
 #include "engine/contact_geometry.hpp"
 #include "engine/dim.hpp"
+#include "engine/particles.hpp"
 
 namespace mc {
 
@@ -22,9 +25,61 @@ inline constexpr int kLanes = 4;
 #else
 inline constexpr int kLanes = 2;
 #endif
-using Lane = Eigen::Array<double, kLanes, 1>;
-using LaneMask = Eigen::Array<bool, kLanes, 1>;
-using LaneIndex = Eigen::Array<int, kLanes, 1>;
+
+// A lane value is a GCC vector, not an Eigen array: the compiler keeps it in a register and builds a gathered one
+// there, where Eigen 3.4 writes an array lane by lane to the stack and reads it back whole (a stalled store
+// forward per gather, per mask and per select).
+using LaneV = double __attribute__((vector_size(8 * kLanes)));
+using LaneM = decltype(LaneV{} < LaneV{});  // −1 (all bits set) where true, 0 where false
+
+struct LaneMask {
+  LaneM m;
+  static LaneMask Constant(bool b) { return {b ? ~LaneM{} : LaneM{}}; }
+  bool operator[](int l) const { return m[l] != 0; }
+  bool any() const {
+    for (int l = 0; l < kLanes; ++l)
+      if (m[l]) return true;
+    return false;
+  }
+};
+[[gnu::always_inline]] inline LaneMask operator&&(const LaneMask& a, const LaneMask& b) { return {a.m & b.m}; }
+[[gnu::always_inline]] inline LaneMask operator||(const LaneMask& a, const LaneMask& b) { return {a.m | b.m}; }
+[[gnu::always_inline]] inline LaneMask operator!(const LaneMask& a) { return {~a.m}; }
+
+struct Lane {
+  LaneV v;
+  Lane() = default;
+  Lane(LaneV x) : v(x) {}
+  Lane(double s) : v(s - LaneV{}) {}  // every lane s (s − 0 is s, even for s = −0)
+  static Lane Zero() { return Lane(LaneV{}); }
+  static Lane Constant(double s) { return Lane(s); }
+  double operator[](int l) const { return v[l]; }
+  void set(int l, double x) { v[l] = x; }
+  Lane sqrt() const {
+#if defined(__AVX__)
+    return Lane(LaneV(_mm256_sqrt_pd(v)));
+#else
+    return Lane(LaneV(_mm_sqrt_pd(v)));
+#endif
+  }
+  Lane min(const Lane& o) const { return Lane(o.v < v ? o.v : v); }  // std::min(*this, o)
+  Lane abs() const {                                                 // std::abs: the sign bit cleared
+    const LaneV sign = -0.0 - LaneV{};
+    return Lane(LaneV(LaneM(v) & ~LaneM(sign)));
+  }
+};
+[[gnu::always_inline]] inline Lane operator+(const Lane& a, const Lane& b) { return a.v + b.v; }
+[[gnu::always_inline]] inline Lane operator-(const Lane& a, const Lane& b) { return a.v - b.v; }
+[[gnu::always_inline]] inline Lane operator*(const Lane& a, const Lane& b) { return a.v * b.v; }
+[[gnu::always_inline]] inline Lane operator/(const Lane& a, const Lane& b) { return a.v / b.v; }
+[[gnu::always_inline]] inline Lane operator-(const Lane& a) { return -a.v; }
+[[gnu::always_inline]] inline LaneMask operator<(const Lane& a, const Lane& b) { return {a.v < b.v}; }
+[[gnu::always_inline]] inline LaneMask operator<=(const Lane& a, const Lane& b) { return {a.v <= b.v}; }
+[[gnu::always_inline]] inline LaneMask operator>(const Lane& a, const Lane& b) { return {a.v > b.v}; }
+[[gnu::always_inline]] inline LaneMask operator>=(const Lane& a, const Lane& b) { return {a.v >= b.v}; }
+[[gnu::always_inline]] inline LaneMask operator==(const Lane& a, const Lane& b) { return {a.v == b.v}; }
+[[gnu::always_inline]] inline LaneMask operator!=(const Lane& a, const Lane& b) { return {a.v != b.v}; }
+using LaneIndex = std::array<int, kLanes>;
 
 struct Lane3 {
   Lane x, y, z;
@@ -46,13 +101,14 @@ struct Lane3 {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 // Per lane: a where m, else b.
-[[gnu::always_inline]] inline Lane pick(const LaneMask& m, const Lane& a, const Lane& b) { return m.select(a, b); }
-[[gnu::always_inline]] inline Lane pick(const LaneMask& m, const Lane& a, double b) { return m.select(a, b); }
+[[gnu::always_inline]] inline Lane pick(const LaneMask& m, const Lane& a, const Lane& b) {
+  return Lane(m.m ? a.v : b.v);
+}
 [[gnu::always_inline]] inline Lane3 pick(const LaneMask& m, const Lane3& a, const Lane3& b) {
-  return {m.select(a.x, b.x), m.select(a.y, b.y), m.select(a.z, b.z)};
+  return {pick(m, a.x, b.x), pick(m, a.y, b.y), pick(m, a.z, b.z)};
 }
 [[gnu::always_inline]] inline Lane3 pick(const LaneMask& m, const Lane3& a, double b) {
-  return {m.select(a.x, b), m.select(a.y, b), m.select(a.z, b)};
+  return {pick(m, a.x, b), pick(m, a.y, b), pick(m, a.z, b)};
 }
 
 // The two partners of kLanes consecutive pairs.
@@ -61,27 +117,26 @@ struct Lane3 {
 }
 // Per-particle values of the partners in `idx`.
 [[gnu::always_inline]] inline Lane gather(const std::vector<double>& v, const LaneIndex& idx) {
-  Lane g;
+  LaneV g;
   for (int l = 0; l < kLanes; ++l) g[l] = v[idx[l]];
   return g;
 }
 [[gnu::always_inline]] inline Lane3 gather(const std::vector<Vec<3>>& v, const LaneIndex& idx) {
-  Lane3 g;
+  LaneV x, y, z;
   for (int l = 0; l < kLanes; ++l) {
     const Vec<3>& e = v[idx[l]];
-    g.x[l] = e[0], g.y[l] = e[1], g.z[l] = e[2];
+    x[l] = e[0], y[l] = e[1], z[l] = e[2];
   }
-  return g;
+  return {x, y, z};
 }
 
 // A field of kLanes consecutive records of `Stride` doubles each (a contact state, a slot's vector): `at` points
 // at the field in the first record.
 template <int Stride>
-using LaneField = Eigen::Map<Lane, 0, Eigen::InnerStride<Stride>>;
-
-template <int Stride>
 [[gnu::always_inline]] inline Lane load_lanes(const double* at) {
-  return Eigen::Map<const Lane, 0, Eigen::InnerStride<Stride>>(at);
+  LaneV v;
+  for (int l = 0; l < kLanes; ++l) v[l] = at[l * Stride];
+  return v;
 }
 template <int Stride>
 [[gnu::always_inline]] inline Lane3 load_lanes3(const double* at) {
@@ -89,8 +144,7 @@ template <int Stride>
 }
 template <int Stride>
 [[gnu::always_inline]] inline void store_lanes(double* at, const Lane& v) {
-  LaneField<Stride> field(at);
-  field = v;
+  for (int l = 0; l < kLanes; ++l) at[l * Stride] = v.v[l];
 }
 template <int Stride>
 [[gnu::always_inline]] inline void store_lanes3(double* at, const Lane3& v) {
@@ -106,6 +160,59 @@ template <int Stride>
   const Lane3 t = fs - p * n;
   tilted = tilted || (active && !(p * p <= 1e-8 * mag2));
   return c * t + a * cross(n, t);
+}
+
+// ball_geometry (contact_points.hpp, Tang 3.1–3.6) of kLanes consecutive pairs.
+struct LaneGeometry {
+  LaneIndex ia, ib;
+  Lane ra, rb, reach;  // radii, r_a + r_b
+  Lane3 d, n;          // x_b − x_a, the unit normal
+  Lane overlap;
+  Lane3 ca, cb;      // the partners' centres to the contact point
+  Lane3 wa, wb;      // spins
+  Lane3 v_rel;       // velocity of B relative to A at the contact point
+  Lane angle, turn;  // the plane's spin about n in this step, ½(ω_a + ω_b)·n Δt, and 1 − angle²/2 (carry_shear)
+  LaneMask apart;    // not `held` and at least the touching reach apart: no force, and the state of a pair
+                     // never touched
+};
+
+// False when a pair that is not apart overlaps by more than half its smaller radius: it is passing through, and
+// the one-contact pass gives the guard its message.
+[[gnu::always_inline]] inline bool lane_geometry(const Particles<3>& p, const Pair* pairs, const LaneMask& held,
+                                                 double dt, LaneGeometry& g) {
+  lane_partners(pairs, g.ia, g.ib);
+  const Lane3 xa = gather(p.x, g.ia), xb = gather(p.x, g.ib);
+  g.ra = gather(p.radius, g.ia), g.rb = gather(p.radius, g.ib);
+  g.d = xb - xa;
+  g.reach = g.ra + g.rb;
+  g.apart = dot(g.d, g.d) >= g.reach * g.reach && !held;
+  const Lane dist = dot(g.d, g.d).sqrt();
+  g.n = g.d * (1.0 / dist);
+  g.overlap = g.reach - dist;
+  if ((!g.apart && g.overlap > 0.5 * g.ra.min(g.rb)).any()) return false;
+  g.ca = (g.ra - 0.5 * g.overlap) * g.n;
+  g.cb = g.ca - g.d;
+  g.wa = gather(p.w, g.ia), g.wb = gather(p.w, g.ib);
+  g.v_rel = (gather(p.v, g.ib) + cross(g.wb, g.cb)) - (gather(p.v, g.ia) + cross(g.wa, g.ca));
+  g.angle = 0.5 * dot(g.wa + g.wb, g.n) * dt;
+  g.turn = 1.0 - 0.5 * g.angle * g.angle;
+  return true;
+}
+
+// The slots of kLanes contacts from `slot`, as the one-contact pass writes them: zero for an apart pair, else
+// the force on B and its moments about both centres, less (on A) and plus (on B) the model's own moment (zero
+// for `moment` = nullptr: x − 0 is x, but −0 + 0 is +0, so the sum is kept even then).
+template <class Slots>
+[[gnu::always_inline]] inline void store_slots(Slots& s, std::size_t slot, const LaneGeometry& g, const Lane3& force,
+                                               const Lane3* moment) {
+  constexpr int kVec = 3;
+  const LaneMask written = !g.apart;
+  const Lane3 neg = Lane3{-force.x, -force.y, -force.z};
+  const Lane3 ma = moment ? cross(g.ca, neg) - *moment : cross(g.ca, neg);
+  const Lane3 mb = moment ? cross(g.cb, force) + *moment : 0.0 + cross(g.cb, force);
+  store_lanes3<kVec>(s.f[slot].data(), pick(written, force, 0.0));
+  store_lanes3<kVec>(s.ma[slot].data(), pick(written, ma, 0.0));
+  store_lanes3<kVec>(s.mb[slot].data(), pick(written, mb, 0.0));
 }
 
 }  // namespace mc

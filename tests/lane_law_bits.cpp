@@ -1,15 +1,18 @@
-// The parallel bond run kLanes contacts at a time (contact_models/parallel_bond_lanes.hpp)
-// must give the same bits as the one-contact law it mirrors. Energy tracing runs every contact through the
-// one-contact law and changes no force, so a world stepped with tracing and one stepped without must agree to
-// the last bit, through bonds carrying load, slipping grain contacts, bonds breaking and pieces flying apart.
+// The parallel bond and the CPM run kLanes contacts at a time (contact_models/parallel_bond_lanes.hpp,
+// cpm_lanes.hpp) must give the same bits as the one-contact laws they mirror. Energy tracing runs every contact through
+// the one-contact law and changes no force, so a world stepped with tracing and one stepped without must agree to the
+// last bit, through bonds carrying load, slipping grain contacts, bonds breaking and pieces flying apart.
 #include <doctest/doctest.h>
 
 #include <cstring>
 #include <vector>
 
+#include "contact_models/cpm.hpp"
 #include "contact_models/parallel_bond.hpp"
 #include "engine/lanes.hpp"
 #include "engine/random_stream.hpp"
+#include "io/sphere_list.hpp"
+#include "tests/common/cpm_pair.hpp"
 #include "tests/common/test_worlds.hpp"
 
 using namespace mc;
@@ -43,6 +46,36 @@ World<3> pulled_block(bool traced) {
   return w;
 }
 
+// The CPM specimen of the scenes (2007 spheres), its end layers moved apart (`pull` > 0) or together at `pull` of
+// the length per step, and sheared sideways at a fifth of it. The stiffness factors vary from sphere to sphere
+// (heterogeneity), the confinement is on, and cohesive contacts break at ω = 0.9: in tension the contacts damage
+// and break, in compression they harden, yield on the logarithmic surface, and broken pairs touch again.
+World<3> cpm_block(bool traced, double pull) {
+  const auto list = read_sphere_list<3>(MESOCRACK_SOURCE_DIR "/scenes/specimens/cpm_1x1x2.spheres");
+  CpmParams p = test::cpm_params();
+  p.break_damage = 0.9;
+  p.confinement = -1e5;
+  p.hardening_strain = -1e-3;
+  auto w = test::single_model_world<3, Cpm>(p);
+  RandomStream rng(11);
+  for (int i = 0; i < list.size(); ++i) {
+    const int n = w.particles.add(list.x[i], list.radius[i], 4800, 0);
+    if (i % 3 == 0) w.particles.stiffness[n] = 0.8 + 0.4 * rng.uniform();
+  }
+  w.local_damping = 0.2;
+  w.trace_energy = traced;
+  w.init();
+  w.install_bonds(0.0, 1);
+  const double v = pull * 0.09 / w.dt;
+  for (int i = 0; i < list.size(); ++i)
+    if (list.tag[i] != 0) {
+      w.particles.fix[i] = 0xff;
+      const double sign = list.tag[i] == 2 ? 1.0 : -1.0;
+      w.particles.v[i] = Vec<3>(0.2 * sign * std::abs(v), 0, sign * v);
+    }
+  return w;
+}
+
 bool same_bits(const std::vector<Vec<3>>& a, const std::vector<Vec<3>>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec<3>)) == 0;
 }
@@ -67,4 +100,33 @@ TEST_CASE("parallel_bond_in_lanes_gives_the_one_contact_bits_through_failure") {
   CHECK(lanes.cracks.size() > bonds / 8);
   CHECK(lanes.crack_count(CrackKind::Break, CrackMode::Tensile) > 0);
   CHECK(lanes.crack_count(CrackKind::Break, CrackMode::Shear) > 0);
+}
+
+TEST_CASE("cpm_in_lanes_gives_the_one_contact_bits_through_damage_hardening_and_breakage") {
+  for (const double pull : {2e-5, -2e-5}) {
+    World<3> lanes = cpm_block(false, pull), one = cpm_block(true, pull);
+    const std::size_t bonds = lanes.bond_count();
+    int steps = 0;
+    for (; steps < 400; ++steps) {
+      lanes.step(), one.step();
+      if (!same_bits(lanes.particles.x, one.particles.x) || !same_bits(lanes.particles.w, one.particles.w)) break;
+    }
+    CHECK_MESSAGE(steps == 400, "pull ", pull, ": positions or spins differ at step ", steps + 1);
+    CHECK(same_bits(lanes.particles.v, one.particles.v));
+    CHECK(lanes.cracks.size() == one.cracks.size());
+    const auto& a = static_cast<const ContactSet<Cpm, 3>&>(*lanes.sets[0]).states();
+    const auto& b = static_cast<const ContactSet<Cpm, 3>&>(*one.sets[0]).states();
+    REQUIRE(a.size() == b.size());
+    CHECK(std::memcmp(static_cast<const void*>(a.data()), static_cast<const void*>(b.data()),
+                      a.size() * sizeof(a[0])) == 0);
+    // The run went through what the lanes must carry: contacts damaged past ε_0 (κ > ε_0 = 1e-4) and broken in
+    // both runs, plastic hardening in compression.
+    std::size_t damaged = 0, hardened = 0;
+    for (const auto& st : a) damaged += Cpm::bonded<3>(st) && st.kappa > 1e-4, hardened += st.eps_pl < 0;
+    MESSAGE("pull ", pull, ": bonds ", bonds, ", broken ", bonds - lanes.bond_count(), ", damaged ", damaged,
+            ", hardened ", hardened);
+    CHECK(lanes.crack_count(CrackKind::Break, CrackMode::Tensile) > 0);
+    CHECK(damaged > 0);
+    if (pull < 0) CHECK(hardened > bonds / 10);
+  }
 }
