@@ -56,9 +56,9 @@ template <int D>
 Footprint footprint(const World<D>& w) {
   Footprint fp;
   const auto& p = w.particles;
-  fp.particles = bytes(p.x) + bytes(p.v) + bytes(p.f) + bytes(p.w) + bytes(p.m) + bytes(p.q) + bytes(p.radius) +
-                 bytes(p.mass) + bytes(p.inertia) + bytes(p.phase) + bytes(p.stiffness) + bytes(p.fix) +
-                 bytes(p.f_applied) + bytes(p.m_applied) + p.x.size() * sizeof(Vec<D>);
+  fp.particles = bytes(p.x) + bytes(p.v) + bytes(p.f) + bytes(p.w) + bytes(p.radius) + bytes(p.mass) +
+                 bytes(p.inertia) + bytes(p.phase) + bytes(p.stiffness) + bytes(p.fix) + bytes(p.f_applied) +
+                 bytes(p.m_applied) + p.x.size() * sizeof(Vec<D>);
   for (const auto& s : w.sets) fp.contacts += s->memory_bytes();
   fp.slots = w.slot_count() * (sizeof(Vec<D>) + 2 * sizeof(Rot<D>));
   fp.gather = w.gather_bytes();
@@ -79,9 +79,8 @@ double streamed_bytes_per_step(const World<D>& w) {
   const double vec = sizeof(Vec<D>), rot = sizeof(Rot<D>);
   const double slot_traffic = slots * (vec + 2 * rot) + slots * (2 * vec + 2 * rot);
   const double gather = static_cast<double>(w.gather_bytes());
-  // Law of motion: reads x, v, w, q, mass, inertia, fix, x at rebuild; writes x, v, w, q, f, m.
-  const double motion = n * (2 * (3 * vec + sizeof(typename Dim<D>::Orientation)) + 2 * vec + 2 * rot +
-                             2 * sizeof(double) + sizeof(FixMask) + vec);
+  // Law of motion: reads x, v, w, mass, inertia, fix, x at rebuild; writes x, v, w, f.
+  const double motion = n * (2 * 3 * vec + 2 * vec + 2 * sizeof(double) + sizeof(FixMask) + vec);
   // The contacts' reads of the particles: position, velocity, spin, radius, stiffness factor.
   const double partners = n * (2 * vec + rot + 2 * sizeof(double));
   return contacts + slot_traffic + gather + motion + partners;

@@ -82,7 +82,7 @@ World<D> make_world(const std::vector<Vec<D>>& x, const std::vector<double>& r, 
   const int n = static_cast<int>(x.size());
   auto& p = w.particles;
   for (auto* v : {&p.x, &p.v, &p.f}) v->reserve(n);
-  p.w.reserve(n), p.m.reserve(n), p.q.reserve(n), p.radius.reserve(n), p.mass.reserve(n), p.inertia.reserve(n);
+  p.w.reserve(n), p.radius.reserve(n), p.mass.reserve(n), p.inertia.reserve(n);
   p.phase.reserve(n), p.fix.reserve(n);
   Vec<D> lo = Vec<D>::Constant(kInf), hi = Vec<D>::Constant(-kInf);
   for (int i = 0; i < n; ++i) {

@@ -10,7 +10,7 @@ namespace mc {
 // References to the arrays of p (const when p is).
 template <class P>
 auto particle_fields(P& p) {
-  return std::tie(p.x, p.v, p.f, p.w, p.m, p.q, p.radius, p.mass, p.inertia, p.phase, p.stiffness, p.fix);
+  return std::tie(p.x, p.v, p.f, p.w, p.radius, p.mass, p.inertia, p.phase, p.stiffness, p.fix);
 }
 
 }  // namespace mc

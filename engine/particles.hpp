@@ -15,9 +15,8 @@ using FixMask = std::uint8_t;
 template <int D>
 struct Particles {
   using R = Rot<D>;
-  std::vector<Vec<D>> x, v, f;  // position [m], velocity at t−Δt/2 [m/s], resultant force [N]
-  std::vector<R> w, m;          // angular velocity [rad/s], resultant moment [N m]
-  std::vector<typename Dim<D>::Orientation> q;
+  std::vector<Vec<D>> x, v, f;                // position [m], velocity at t−Δt/2 [m/s], resultant force [N]
+  std::vector<R> w;                           // angular velocity [rad/s]
   std::vector<double> radius, mass, inertia;  // [m], [kg], [kg m²]
   std::vector<int> phase;
   std::vector<double> stiffness;  // factor on the particle's own springs (heterogeneity, Tang §8.1.2); 1
@@ -37,8 +36,6 @@ struct Particles {
     v.push_back(Vec<D>::Zero());
     f.push_back(Vec<D>::Zero());
     w.push_back(R::Zero());
-    m.push_back(R::Zero());
-    q.push_back(Dim<D>::identity());
     radius.push_back(r);
     mass.push_back(0.0);
     inertia.push_back(0.0);

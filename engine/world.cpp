@@ -360,7 +360,6 @@ typename World<D>::Motion World<D>::move_particles() {
       f += fext;
       m += mext;
       p.f[i] = f;
-      p.m[i] = m;
       const Vec<D> v0 = p.v[i];
       const Rot<D> w0 = p.w[i];
       const FixMask fix = p.fix[i];
@@ -387,7 +386,6 @@ typename World<D>::Motion World<D>::move_particles() {
       }
       const Vec<D> dx = p.v[i] * h;
       p.x[i] += dx;  // Tang (3.20)
-      Dim<D>::rotate(p.q[i], p.w[i], h);
       moved2 = std::max(moved2, (p.x[i] - x_at_rebuild_[i]).squaredNorm());
       // The stability guard's every-step part, one comparison per particle (written so that NaN fails it too).
       if (!(dx.squaredNorm() <= 0.25 * p.radius[i] * p.radius[i])) [[unlikely]]

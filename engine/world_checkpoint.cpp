@@ -54,15 +54,6 @@ void World<D>::write_archive(Archive& a, const Particles<D>& p, const std::vecto
   a.put("v", p.v);
   a.put("f", p.f);
   a.put("w", p.w);
-  a.put("m", p.m);
-  std::vector<double> q;
-  for (const auto& o : p.q) {
-    if constexpr (D == 2)
-      q.push_back(o);
-    else
-      q.insert(q.end(), {o.w(), o.x(), o.y(), o.z()});
-  }
-  a.reals["q"] = q;
   a.put("x_at_rebuild", x_at_rebuild);
   a.put("wall_at_rebuild", wall_at_rebuild_);
   std::vector<double> wl;
@@ -114,14 +105,6 @@ void World<D>::restore(const Archive& a) {
   a.get("v", p.v);
   a.get("f", p.f);
   a.get("w", p.w);
-  a.get("m", p.m);
-  const auto& q = a.reals.at("q");
-  for (std::size_t i = 0; i < p.q.size(); ++i) {
-    if constexpr (D == 2)
-      p.q[i] = q[i];
-    else
-      p.q[i] = Eigen::Quaterniond(q[4 * i], q[4 * i + 1], q[4 * i + 2], q[4 * i + 3]);
-  }
   a.get("x_at_rebuild", x_at_rebuild_);
   a.get("wall_at_rebuild", wall_at_rebuild_);
   const auto& wl = a.reals.at("walls");

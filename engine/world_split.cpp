@@ -462,9 +462,8 @@ void World<D>::share_motion() {
       put_bytes(out[r], p.x[i]);
       put_bytes(out[r], p.v[i]);
       put_bytes(out[r], p.w[i]);
-      put_bytes(out[r], p.q[i]);
     }
-  constexpr std::size_t kEach = 2 * sizeof(Vec<D>) + sizeof(Rot<D>) + sizeof(typename Dim<D>::Orientation);
+  constexpr std::size_t kEach = 2 * sizeof(Vec<D>) + sizeof(Rot<D>);
   std::vector<std::size_t> sizes(ex.size());
   for (int r = 0; r < ex.size(); ++r) sizes[r] = split_->fill[r].size() * kEach;
   const std::vector<Bytes> in = ex.swap(out, sizes);
@@ -474,7 +473,6 @@ void World<D>::share_motion() {
       p.x[i] = take_bytes<Vec<D>>(in[r], at);
       p.v[i] = take_bytes<Vec<D>>(in[r], at);
       p.w[i] = take_bytes<Rot<D>>(in[r], at);
-      p.q[i] = take_bytes<typename Dim<D>::Orientation>(in[r], at);
     }
   }
 }

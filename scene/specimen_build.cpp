@@ -219,7 +219,7 @@ void reorder(Particles<D>& p, std::vector<int>& tags, std::vector<std::int64_t>&
     v.resize(order.size());
     for (std::size_t k = 0; k < order.size(); ++k) v[k] = old[order[k]];
   };
-  permute(p.x), permute(p.v), permute(p.f), permute(p.w), permute(p.m), permute(p.q);
+  permute(p.x), permute(p.v), permute(p.f), permute(p.w);
   permute(p.radius), permute(p.mass), permute(p.inertia), permute(p.phase), permute(p.fix), permute(p.stiffness);
   permute(tags), permute(ids);
 }
