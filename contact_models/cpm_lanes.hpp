@@ -10,7 +10,6 @@
 #include <cstddef>
 
 #include "contact_models/cpm.hpp"
-#include "engine/contact_points.hpp"
 #include "engine/contact_set.hpp"
 #include "engine/lanes.hpp"
 

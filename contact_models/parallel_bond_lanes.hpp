@@ -9,7 +9,6 @@
 #include <cstddef>
 
 #include "contact_models/parallel_bond.hpp"
-#include "engine/contact_points.hpp"
 #include "engine/contact_set.hpp"
 #include "engine/lanes.hpp"
 
