@@ -27,15 +27,21 @@ namespace mc {
 
 // Every contact owns one slot: the force on B and the moments on A and B. Each particle then sums its own
 // slots in a fixed order (the gather), so no two threads ever add into the same particle.
+// `live` is 0 for a slot known to hold zeros: a pair apart in the last force pass whose slot was zeroed then (most
+// candidates of a loose packing). The force pass writes it no more and the gather skips it, which leaves every
+// sum as it was but for the sign of a zero. Whatever writes the slots outside a force pass marks them all live.
 template <int D>
 struct Slots {
   std::vector<Vec<D>> f;
   std::vector<Rot<D>> ma, mb;
+  std::vector<std::uint8_t> live;
   void resize(std::size_t n) {
     f.assign(n, Vec<D>::Zero());
     ma.assign(n, Rot<D>::Zero());
     mb.assign(n, Rot<D>::Zero());
+    live.assign(n, 0);
   }
+  void mark_all_live() { std::fill(live.begin(), live.end(), std::uint8_t{1}); }
 };
 
 // Energy dissipated by one pass over the contacts [J] (energy tracing only), summed exactly: the same bits however
@@ -417,9 +423,12 @@ class ContactSet final : public ContactSetBase<D> {
             }
           }
           st = State{};  // apart and unbonded: no force, no history
-          s.f[slot].setZero();
-          s.ma[slot].setZero();
-          s.mb[slot].setZero();
+          if (s.live[slot]) {
+            s.f[slot].setZero();
+            s.ma[slot].setZero();
+            s.mb[slot].setZero();
+            s.live[slot] = 0;
+          }
           return;
         }
         Vec<D> ca, cb;
@@ -434,6 +443,7 @@ class ContactSet final : public ContactSetBase<D> {
         s.f[slot] = r.force;
         s.ma[slot] = Dim<D>::cross(ca, Vec<D>(-r.force)) - r.moment;
         s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
+        s.live[slot] = 1;
         if (r.event.mode != CrackMode::None) [[unlikely]]
           block_events_[b].push_back({i, j, p.x[i] + ca, g.n, r.event});
         if constexpr (Energy) {
@@ -480,6 +490,7 @@ class ContactSet final : public ContactSetBase<D> {
       s.f[slot] = r.force;
       s.ma[slot] = Dim<D>::cross(cw, Vec<D>(-r.force)) - r.moment;  // on the wall, about its origin
       s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
+      s.live[slot] = 1;
       if constexpr (Energy) {
         e.contacts.add(r.dissipated - 0.5 * (wall_dashpot_[c] + r.dashpot).dot(g.v_rel) * dt);
         e.bonds.add(r.fractured);

@@ -199,7 +199,8 @@ struct LaneGeometry {
   return true;
 }
 
-// The slots of kLanes contacts from `slot`, as the one-contact pass writes them: zero for an apart pair, else
+// The slots of kLanes contacts from `slot`, as the one-contact pass writes them: zero (and not live) for an apart
+// pair, else
 // the force on B and its moments about both centres, less (on A) and plus (on B) the model's own moment (zero
 // for `moment` = nullptr: x − 0 is x, but −0 + 0 is +0, so the sum is kept even then).
 template <class Slots>
@@ -213,6 +214,7 @@ template <class Slots>
   store_lanes3<kVec>(s.f[slot].data(), pick(written, force, 0.0));
   store_lanes3<kVec>(s.ma[slot].data(), pick(written, ma, 0.0));
   store_lanes3<kVec>(s.mb[slot].data(), pick(written, mb, 0.0));
+  for (int l = 0; l < kLanes; ++l) s.live[slot + l] = written[l];
 }
 
 }  // namespace mc

@@ -215,7 +215,10 @@ void World<D>::refresh_timestep(bool forces_follow) {
   // The estimate borrowed the slots: unless a force pass overwrites them next, they are given back zeroed, as a
   // relink leaves them (so is a refused step's: they hold stiffnesses, not forces).
   const bool refused = timestep.fixed > 0 && timestep.fixed > dt_critical;
-  if (!forces_follow || refused) slots_.resize(slots_.f.size());
+  if (!forces_follow || refused)
+    slots_.resize(slots_.f.size());
+  else
+    slots_.mark_all_live();  // stiffnesses in every slot until the force pass writes or zeroes it
   if (timestep.fixed > 0) {
     if (refused) {
       std::ostringstream m;
@@ -345,11 +348,13 @@ typename World<D>::Motion World<D>::move_particles() {
       Rot<D> m = Rot<D>::Zero();
       for (int c = gather_start_[i]; c < gather_split_[i]; ++c) {  // as A: −F
         const std::size_t slot = static_cast<std::size_t>(gather_items_[c]);
+        if (!slots_.live[slot]) continue;
         f -= slots_.f[slot];
         m += slots_.ma[slot];
       }
       for (int c = gather_split_[i]; c < gather_start_[i + 1]; ++c) {  // as B: +F
         const std::size_t slot = static_cast<std::size_t>(gather_items_[c]);
+        if (!slots_.live[slot]) continue;
         f += slots_.f[slot];
         m += slots_.mb[slot];
       }

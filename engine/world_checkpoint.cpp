@@ -152,6 +152,7 @@ void World<D>::restore(const Archive& a) {
   // next step sees exactly the lists it would have seen.
   relink();
   a.get("slot_f", slots_.f);
+  slots_.mark_all_live();
   // The crack log and its counts.
   const auto& cb = a.bytes.at("cracks");
   cracks.resize(cb.size() / sizeof(Crack<D>));

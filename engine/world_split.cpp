@@ -215,6 +215,7 @@ void World<D>::split(const Exchange& exchange) {
       slots_.f[wall_offset_[s] + c] = force_of(whole_pairs[2 * s + 1], whole_wall_offset[s],
                                                {walls_of[c][0], static_cast<int>(global[walls_of[c][1]])});
   }
+  slots_.mark_all_live();
 }
 
 // The own particles other processes need as ghosts, per rank: those within the ghost layer of its region, and
