@@ -57,15 +57,15 @@ struct LaneLaw<Cpm, 3> {
     const Lane el = eps - eps_pl;
     const Lane kappa_before = load_lanes<kStride>(&states[0].kappa);
     Lane kappa = kappa_before;
-    Lane omega = Lane::Constant(1.0);
+    Lane omega = 1.0;
     if (prm.never_damage) {
-      omega = pick(cohesive, Lane::Zero(), omega);
+      omega = pick(cohesive, 0.0, omega);
     } else {
       const double e0 = prm.crack_onset_strain;
       const LaneMask grows = cohesive && el > kappa_before;
       if ((grows && el > e0 && kappa_before <= e0).any()) return false;  // first crack: the crack log's event
       kappa = pick(grows, el, kappa_before);
-      Lane g = Lane::Zero();
+      Lane g = 0.0;
       if ((cohesive && kappa > e0).any())
         for (int l = 0; l < kLanes; ++l)
           if (cohesive[l] && kappa[l] > e0) g.set(l, Cpm::damage(prm, kappa[l]));
@@ -94,11 +94,10 @@ struct LaneLaw<Cpm, 3> {
       const Lane low = (coh + coh0 * y0 * tan_phi * (x / (1.0 + x))) * (1.0 - 1e-9);
       const LaneMask may = st2 > low * low;
       Lane r_log = kInf;
-      if ((compressed && may).any()) {
-        const Cpm::Coeffs c{0.0, 0.0, 0.0, 0.0, tan_phi, coh0, eps_conf, &prm};
+      if ((compressed && may).any())
         for (int l = 0; l < kLanes; ++l)
-          if (compressed[l] && may[l]) r_log.set(l, Cpm::yield_radius(c, sn[l], omega[l]));
-      }
+          if (compressed[l] && may[l])
+            r_log.set(l, Cpm::yield_radius(Cpm::pair<3>(prm, ra[l], rb[l], fa[l], fb[l]), sn[l], omega[l]));
       r_pl = pick(compressed, r_log, r_pl);
     }
     const LaneMask yields = st2 > r_pl * r_pl;

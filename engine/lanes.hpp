@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "engine/cell_grid.hpp"
-#include "engine/contact_geometry.hpp"
 #include "engine/dim.hpp"
 #include "engine/particles.hpp"
 
@@ -51,8 +50,6 @@ struct Lane {
   Lane() = default;
   Lane(LaneV x) : v(x) {}
   Lane(double s) : v(s - LaneV{}) {}  // every lane s (s − 0 is s, even for s = −0)
-  static Lane Zero() { return Lane(LaneV{}); }
-  static Lane Constant(double s) { return Lane(s); }
   double operator[](int l) const { return v[l]; }
   void set(int l, double x) { v[l] = x; }
   Lane sqrt() const {
