@@ -16,10 +16,12 @@
 
 namespace mc {
 
-// Two lanes per SSE register, four per AVX register. Wider lanes gained nothing on the parallel bond
-// (AVX-512, 8 lanes: 3.7e6 particle-steps/s against 4.1e6 with 4): the kernel waits on gathering the particles and
-// on spilled registers, not on arithmetic.
-#if defined(__AVX__)
+// Two lanes per SSE register, four per AVX register, eight per AVX-512 register: the wider, the faster, since a lane is
+// a GCC vector (n10k, one core, 2026-11-27: parallel bonds 5.3–5.4e6 with 2 lanes, 6.1e6 with 4, 6.6–7.1e6 with 8).
+// The build takes the widest the build machine runs (CMakeLists.txt, MESOCRACK_ARCH).
+#if defined(__AVX512F__)
+inline constexpr int kLanes = 8;
+#elif defined(__AVX__)
 inline constexpr int kLanes = 4;
 #else
 inline constexpr int kLanes = 2;
@@ -53,7 +55,9 @@ struct Lane {
   double operator[](int l) const { return v[l]; }
   void set(int l, double x) { v[l] = x; }
   Lane sqrt() const {
-#if defined(__AVX__)
+#if defined(__AVX512F__)
+    return Lane(LaneV(_mm512_sqrt_pd(v)));
+#elif defined(__AVX__)
     return Lane(LaneV(_mm256_sqrt_pd(v)));
 #else
     return Lane(LaneV(_mm_sqrt_pd(v)));
