@@ -16,9 +16,9 @@
 
 namespace mc {
 
-// Two lanes per SSE register, four per AVX register, eight per AVX-512 register: the wider, the faster, since a lane is
-// a GCC vector (n10k, one core, 2026-11-27: parallel bonds 5.3–5.4e6 with 2 lanes, 6.1e6 with 4, 6.6–7.1e6 with 8).
-// The build takes the widest the build machine runs (CMakeLists.txt, MESOCRACK_ARCH).
+// Two lanes per SSE register, four per AVX register, eight per AVX-512 register: the wider, the faster (n10k, one core,
+// 2026-11-27, CPM: 5.8–6.6e6 particle-steps/s with 2 lanes, 7.0–7.8e6 with 4, 8.5–9.5e6 with 8). The build takes the
+// widest the build machine runs (CMakeLists.txt, MESOCRACK_ARCH).
 #if defined(__AVX512F__)
 inline constexpr int kLanes = 8;
 #elif defined(__AVX__)
