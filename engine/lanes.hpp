@@ -201,9 +201,8 @@ struct LaneGeometry {
 }
 
 // The slots of kLanes contacts from `slot`, as the one-contact pass writes them: zero (and not live) for an apart
-// pair, else
-// the force on B and its moments about both centres, less (on A) and plus (on B) the model's own moment (zero
-// for `moment` = nullptr: x − 0 is x, but −0 + 0 is +0, so the sum is kept even then).
+// pair, else the force on B and its moments about both centres, less (on A) and plus (on B) the model's own moment
+// (zero for `moment` = nullptr: x − 0 is x, but −0 + 0 is +0, so the sum is kept even then).
 template <class Slots>
 [[gnu::always_inline]] inline void store_slots(Slots& s, std::size_t slot, const LaneGeometry& g, const Lane3& force,
                                                const Lane3* moment) {
