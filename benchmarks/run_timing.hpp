@@ -50,8 +50,8 @@ struct Footprint {
 };
 
 // From the container sizes: particle arrays (+ the positions kept at the last rebuild), the contact set's pairs
-// and histories, the slots (force, two moments, live byte), the gather lists (the timestep estimate borrows the slots:
-// no memory of its own).
+// and histories, the slots (per contact its force, moment on B and live byte; per particle its sums as A), the gather
+// lists (the timestep estimate borrows the slots: no memory of its own).
 template <int D>
 Footprint footprint(const World<D>& w) {
   Footprint fp;
@@ -60,16 +60,16 @@ Footprint footprint(const World<D>& w) {
                  bytes(p.inertia) + bytes(p.phase) + bytes(p.stiffness) + bytes(p.fix) + bytes(p.f_applied) +
                  bytes(p.m_applied) + p.x.size() * sizeof(Vec<D>);
   for (const auto& s : w.sets) fp.contacts += s->memory_bytes();
-  fp.slots = w.slot_count() * (sizeof(Vec<D>) + 2 * sizeof(Rot<D>) + sizeof(std::uint8_t));  // + live
+  fp.slots = w.slot_bytes();
   fp.gather = w.gather_bytes();
   return fp;
 }
 
 // Bytes one step moves through memory, counted from the arrays it streams (read once, written once when it
-// changes them): per contact its pair, its state read and written, its slot written and read back by the
-// gather (the force by both partners, each moment by one); per particle its gather list, the state the law of
-// motion reads and writes, and the partners' positions, velocities, spins and radii the contacts read. Caches
-// only make the real traffic smaller; this is what a machine without them would move.
+// changes them): per contact its pair, its state read and written, its slot (force, moment on B, live byte) written
+// and read back by the gather; per particle its sums as A zeroed, added to and read by the gather, its gather list,
+// the state the law of motion reads and writes, and the partners' positions, velocities, spins and radii the
+// contacts read. Caches only make the real traffic smaller; this is what a machine without them would move.
 template <int D>
 double streamed_bytes_per_step(const World<D>& w) {
   const double n = w.particles.size();
@@ -77,7 +77,7 @@ double streamed_bytes_per_step(const World<D>& w) {
   for (const auto& s : w.sets) contacts += static_cast<double>(s->memory_bytes()) * 2.0;  // read and write
   const double slots = static_cast<double>(w.slot_count());
   const double vec = sizeof(Vec<D>), rot = sizeof(Rot<D>);
-  const double slot_traffic = slots * (vec + 2 * rot + 1) + slots * (2 * vec + 2 * rot + 2);  // + live bytes
+  const double slot_traffic = 2 * slots * (vec + rot + 1) + 4 * n * (vec + rot);
   const double gather = static_cast<double>(w.gather_bytes());
   // Law of motion: reads x, v, w, mass, inertia, fix, x at rebuild; writes x, v, w, f.
   const double motion = n * (2 * 3 * vec + 2 * vec + 2 * sizeof(double) + sizeof(FixMask) + vec);

@@ -25,23 +25,43 @@
 
 namespace mc {
 
-// Every contact owns one slot: the force on B and the moments on A and B. Each particle then sums its own
-// slots in a fixed order (the gather), so no two threads ever add into the same particle.
+// Every contact owns one slot: the force on B and the moment on B. Each particle sums its slots as B in a fixed
+// order (the gather), so no two threads ever add into the same particle. Its contacts as A it sums in the force pass
+// itself, into a_force and a_moment: the pairs are sorted by A and a block of the pass holds all of a particle's pairs
+// as A, so the sum runs in pair order on one thread, the same sum as a gather over slots would be, without the slots'
+// moments on A or the lists to find them. A wall contact also gives the moment on the wall about its origin.
 // `live` is 0 for a slot known to hold zeros: a pair apart in the last force pass whose slot was zeroed then (most
 // candidates of a loose packing). The force pass writes it no more and the gather skips it, which leaves every
 // sum as it was but for the sign of a zero. Whatever writes the slots outside a force pass marks them all live.
 template <int D>
 struct Slots {
   std::vector<Vec<D>> f;
-  std::vector<Rot<D>> ma, mb;
+  std::vector<Rot<D>> mb;
   std::vector<std::uint8_t> live;
-  void resize(std::size_t n) {
-    f.assign(n, Vec<D>::Zero());
-    ma.assign(n, Rot<D>::Zero());
-    mb.assign(n, Rot<D>::Zero());
-    live.assign(n, 0);
+  std::vector<Rot<D>> wall_moment;  // per wall contact
+  std::vector<Vec<D>> a_force;      // per particle: −Σ F of its contacts as A
+  std::vector<Rot<D>> a_moment;     // per particle: Σ of their moments on it
+  void resize(std::size_t contacts, std::size_t wall_contacts, std::size_t particles) {
+    f.assign(contacts, Vec<D>::Zero());
+    mb.assign(contacts, Rot<D>::Zero());
+    live.assign(contacts, 0);
+    wall_moment.assign(wall_contacts, Rot<D>::Zero());
+    a_force.assign(particles, Vec<D>::Zero());
+    a_moment.assign(particles, Rot<D>::Zero());
   }
+  void clear() { resize(f.size(), wall_moment.size(), a_force.size()); }
   void mark_all_live() { std::fill(live.begin(), live.end(), std::uint8_t{1}); }
+  std::size_t bytes() const {
+    return f.capacity() * sizeof(Vec<D>) + mb.capacity() * sizeof(Rot<D>) + live.capacity() +
+           wall_moment.capacity() * sizeof(Rot<D>) + a_force.capacity() * sizeof(Vec<D>) +
+           a_moment.capacity() * sizeof(Rot<D>);
+  }
+};
+
+// Where one contact set writes: ball contacts' slots from `ball`, wall contacts' from `wall`, and their moments on the
+// walls from `wall_moment`.
+struct SlotOffsets {
+  std::size_t ball = 0, wall = 0, wall_moment = 0;
 };
 
 // Energy dissipated by one pass over the contacts [J] (energy tracing only), summed exactly: the same bits however
@@ -56,16 +76,17 @@ struct Dissipated {
   }
 };
 
-// Stiffness of each slot for the timestep estimate: translational, and rotational about A's and B's centres.
-// The estimate runs between force passes and borrows the slots' own numbers for them (a force and a moment hold
-// at least three in 2D and 3D), so it costs no memory per contact; World::refresh_timestep says when they are
+// Stiffness of each slot for the timestep estimate: translational, and rotational about B's centre; and per particle
+// the sums over its contacts as A (as the force pass sums forces). The estimate runs between force passes and borrows
+// the slots' own numbers for them, so it costs no memory per contact; World::refresh_timestep says when they are
 // given back.
 template <int D>
 struct SlotStiffness {
   Slots<D>& s;
   double& kt(std::size_t slot) { return s.f[slot][0]; }
-  double& kra(std::size_t slot) { return s.f[slot][1]; }
-  double& krb(std::size_t slot) { return s.ma[slot][0]; }
+  double& krb(std::size_t slot) { return s.mb[slot][0]; }
+  double& a_kt(int i) { return s.a_force[i][0]; }
+  double& a_kr(int i) { return s.a_force[i][1]; }
 };
 
 template <int D>
@@ -79,14 +100,14 @@ class ContactSetBase {
   // (intact bonds) stay even when they are no longer candidates.
   virtual void set_pairs(const std::vector<Pair>& candidates) = 0;
   virtual void set_wall_pairs(const std::vector<Pair>& candidates) = 0;
-  // Forces into slots [offset, offset + size) and [wall_offset, wall_offset + wall size). Returns the
-  // energy dissipated this step when `energy` is set, else zeros.
+  // Forces into the slots at `at`, and added to the A-side sums. Returns the energy dissipated this step when
+  // `energy` is set, else zeros.
   virtual Dissipated forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy,
-                            Slots<D>& slots, std::size_t offset, std::size_t wall_offset) = 0;
+                            Slots<D>& slots, const SlotOffsets& at) = 0;
   // Per-slot stiffnesses for the timestep. A pair that is neither persistent (bonded) nor within `margin` of
   // touching counts nothing (kInf: every pair counts).
   virtual void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness<D>& k,
-                         std::size_t offset, std::size_t wall_offset, double margin) const = 0;
+                         const SlotOffsets& at, double margin) const = 0;
   virtual ContactStiffness nominal_stiffness(double r) const = 0;  // one contact with an identical particle
   virtual double damping_ratio() const = 0;                        // of the model's dashpots (0: none)
   // Bonds the given pairs (sorted, all present in the list); returns how many were bonded. Models without
@@ -160,43 +181,49 @@ class ContactSet final : public ContactSetBase<D> {
   void set_wall_pairs(const std::vector<Pair>& c) override { merge(wall_pairs_, wall_states_, wall_dashpot_, c); }
 
   Dissipated forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy, Slots<D>& s,
-                    std::size_t off, std::size_t woff) override {
-    return energy ? forces_impl<true>(p, walls, dt, s, off, woff) : forces_impl<false>(p, walls, dt, s, off, woff);
+                    const SlotOffsets& at) override {
+    return energy ? forces_impl<true>(p, walls, dt, s, at) : forces_impl<false>(p, walls, dt, s, at);
   }
 
-  void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness<D>& k, std::size_t off,
-                 std::size_t woff, double margin) const override {
-    const int n = static_cast<int>(pairs_.size());
-#pragma omp parallel for schedule(static) if (n > kParallelMin)
-    for (int c = 0; c < n; ++c) {
-      const auto [i, j] = pairs_[c];
-      const double reach = p.radius[i] + p.radius[j] + margin;
-      if ((p.x[j] - p.x[i]).squaredNorm() >= reach * reach && !Model::template persistent<D>(states_[c])) {
-        k.kt(off + c) = k.kra(off + c) = k.krb(off + c) = 0;
-        continue;
+  void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness<D>& k, const SlotOffsets& at,
+                 double margin) const override {
+    const std::size_t n = pairs_.size();
+#pragma omp parallel for schedule(static) if (n > std::size_t(kParallelMin))
+    for (int b = 0; b < block_count(n); ++b) {
+      const std::size_t end = block_begin(b + 1);
+      for (std::size_t c = block_begin(b); c < end; ++c) {
+        const auto [i, j] = pairs_[c];
+        const std::size_t slot = at.ball + c;
+        const double reach = p.radius[i] + p.radius[j] + margin;
+        if ((p.x[j] - p.x[i]).squaredNorm() >= reach * reach && !Model::template persistent<D>(states_[c])) {
+          k.kt(slot) = k.krb(slot) = 0;
+          continue;
+        }
+        Vec<D> ca, cb;
+        const auto g = ball_geometry(p, i, j, 0.0, ca, cb);
+        const auto st =
+            Model::template stiffness<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g, states_[c]);
+        const double kt = st.normal + st.shear;
+        k.kt(slot) = kt;
+        k.krb(slot) = st.shear * cb.squaredNorm() + st.rotational;
+        k.a_kt(i) += kt;
+        k.a_kr(i) += st.shear * ca.squaredNorm() + st.rotational;
       }
-      Vec<D> ca, cb;
-      const auto g = ball_geometry(p, i, j, 0.0, ca, cb);
-      const auto st =
-          Model::template stiffness<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g, states_[c]);
-      k.kt(off + c) = st.normal + st.shear;
-      k.kra(off + c) = st.shear * ca.squaredNorm() + st.rotational;
-      k.krb(off + c) = st.shear * cb.squaredNorm() + st.rotational;
     }
     const int nw = static_cast<int>(wall_pairs_.size());
     for (int c = 0; c < nw; ++c) {
       const auto [w, j] = wall_pairs_[c];
+      const std::size_t slot = at.wall + c;
       Vec<D> cw, cb;
       const auto g = wall_geometry(p, walls[w], j, 0.0, cw, cb);
       if (-g.overlap >= margin) {
-        k.kt(woff + c) = k.kra(woff + c) = k.krb(woff + c) = 0;
+        k.kt(slot) = k.krb(slot) = 0;
         continue;
       }
       const auto st = Model::template stiffness<D>(Model::template wall<D>(params_, walls[w].material, g.r_b, g.k_b), g,
                                                    wall_states_[c]);
-      k.kt(woff + c) = st.normal + st.shear;
-      k.kra(woff + c) = 0;
-      k.krb(woff + c) = st.shear * cb.squaredNorm() + st.rotational;
+      k.kt(slot) = st.normal + st.shear;
+      k.krb(slot) = st.shear * cb.squaredNorm() + st.rotational;
     }
   }
 
@@ -385,7 +412,7 @@ class ContactSet final : public ContactSetBase<D> {
  private:
   template <bool Energy>
   Dissipated forces_impl(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, Slots<D>& s,
-                         std::size_t off, std::size_t woff) {
+                         const SlotOffsets& at) {
     const std::size_t n = pairs_.size();
     // A local copy: the compiler then knows no store in the loop changes it, and hoists what depends on the
     // parameters alone (reciprocals) out of the loop.
@@ -402,12 +429,12 @@ class ContactSet final : public ContactSetBase<D> {
     auto counted = [&p](int a) { return !p.is_ghost(a); };
 #pragma omp parallel for schedule(static) if (n > std::size_t(kParallelMin))
     for (int b = 0; b < block_count(n); ++b) {
-      const std::size_t end = std::min(n, std::size_t(b + 1) * kBlock);
+      const std::size_t end = block_begin(b + 1);
       Dissipated dissipated;
       auto one = [&](std::size_t c) __attribute__((always_inline)) {
         const auto [i, j] = pairs_[c];
         State& st = states_[c];
-        const std::size_t slot = off + c;
+        const std::size_t slot = at.ball + c;
         const Vec<D> d = p.x[j] - p.x[i];
         const double reach = p.radius[i] + p.radius[j];
         if (d.squaredNorm() >= reach * reach && !Model::template persistent<D>(st)) {
@@ -425,7 +452,6 @@ class ContactSet final : public ContactSetBase<D> {
           st = State{};  // apart and unbonded: no force, no history
           if (s.live[slot]) {
             s.f[slot].setZero();
-            s.ma[slot].setZero();
             s.mb[slot].setZero();
             s.live[slot] = 0;
           }
@@ -441,9 +467,10 @@ class ContactSet final : public ContactSetBase<D> {
             Model::template force<D, Energy>(Model::template pair<D>(prm, g.r_a, g.r_b, g.k_a, g.k_b), g, local);
         st = local;
         s.f[slot] = r.force;
-        s.ma[slot] = Dim<D>::cross(ca, Vec<D>(-r.force)) - r.moment;
         s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
         s.live[slot] = 1;
+        s.a_force[i] -= r.force;
+        s.a_moment[i] += Dim<D>::cross(ca, Vec<D>(-r.force)) - r.moment;
         if (r.event.mode != CrackMode::None) [[unlikely]]
           block_events_[b].push_back({i, j, p.x[i] + ca, g.n, r.event});
         if constexpr (Energy) {
@@ -456,10 +483,10 @@ class ContactSet final : public ContactSetBase<D> {
           dashpot_[c] = r.dashpot;
         }
       };
-      std::size_t c = std::size_t(b) * kBlock;
+      std::size_t c = block_begin(b);
       if constexpr (!Energy && requires { LaneLaw<Model, D>::force; }) {
         for (; c + kLanes <= end; c += kLanes)
-          if (!LaneLaw<Model, D>::force(prm, p, &pairs_[c], &states_[c], s, off + c, dt))
+          if (!LaneLaw<Model, D>::force(prm, p, &pairs_[c], &states_[c], s, at.ball + c, dt))
             for (int l = 0; l < kLanes; ++l) one(c + l);
       }
       for (; c < end; ++c) one(c);
@@ -480,7 +507,7 @@ class ContactSet final : public ContactSetBase<D> {
     // Walls touch few balls; a serial loop keeps the order fixed.
     for (std::size_t c = 0; c < wall_pairs_.size(); ++c) {
       const auto [w, j] = wall_pairs_[c];
-      const std::size_t slot = woff + c;
+      const std::size_t slot = at.wall + c;
       Vec<D> cw, cb;
       const auto g = wall_geometry(p, walls[w], j, dt, cw, cb);
       if (g.overlap > 0.5 * g.r_b && !passing_) [[unlikely]]
@@ -488,7 +515,7 @@ class ContactSet final : public ContactSetBase<D> {
       const auto r = Model::template force<D, Energy>(Model::template wall<D>(prm, walls[w].material, g.r_b, g.k_b), g,
                                                       wall_states_[c]);
       s.f[slot] = r.force;
-      s.ma[slot] = Dim<D>::cross(cw, Vec<D>(-r.force)) - r.moment;  // on the wall, about its origin
+      s.wall_moment[at.wall_moment + c] = Dim<D>::cross(cw, Vec<D>(-r.force)) - r.moment;  // about its origin
       s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
       s.live[slot] = 1;
       if constexpr (Energy) {
@@ -498,6 +525,14 @@ class ContactSet final : public ContactSetBase<D> {
       }
     }
     return e;
+  }
+
+  // Block b of the ball pairs: from pair b·kBlock on to the first pair of a particle as A, so that a particle's pairs
+  // as A lie in one block and one thread sums them (Slots).
+  std::size_t block_begin(int b) const {
+    std::size_t c = std::min(pairs_.size(), std::size_t(b) * kBlock);
+    while (c > 0 && c < pairs_.size() && pairs_[c][0] == pairs_[c - 1][0]) ++c;
+    return c;
   }
 
   // Sorted merge of the old (pair, state) list with the new candidates.

@@ -201,8 +201,9 @@ struct LaneGeometry {
 }
 
 // The slots of kLanes contacts from `slot`, as the one-contact pass writes them: zero (and not live) for an apart
-// pair, else the force on B and its moments about both centres, less (on A) and plus (on B) the model's own moment
-// (zero for `moment` = nullptr: x − 0 is x, but −0 + 0 is +0, so the sum is kept even then).
+// pair, else the force on B and its moment about B's centre plus the model's own moment; and the force on A and its
+// moment about A's centre less the model's moment added to A's sums, lane by lane in pair order (zero for `moment` =
+// nullptr: x − 0 is x, but −0 + 0 is +0, so the sum is kept even then).
 template <class Slots>
 [[gnu::always_inline]] inline void store_slots(Slots& s, std::size_t slot, const LaneGeometry& g, const Lane3& force,
                                                const Lane3* moment) {
@@ -212,9 +213,15 @@ template <class Slots>
   const Lane3 ma = moment ? cross(g.ca, neg) - *moment : cross(g.ca, neg);
   const Lane3 mb = moment ? cross(g.cb, force) + *moment : 0.0 + cross(g.cb, force);
   store_lanes3<kVec>(s.f[slot].data(), pick(written, force, 0.0));
-  store_lanes3<kVec>(s.ma[slot].data(), pick(written, ma, 0.0));
   store_lanes3<kVec>(s.mb[slot].data(), pick(written, mb, 0.0));
-  for (int l = 0; l < kLanes; ++l) s.live[slot + l] = written[l];
+  for (int l = 0; l < kLanes; ++l) {
+    s.live[slot + l] = written[l];
+    if (!written[l]) continue;
+    double* fa = s.a_force[g.ia[l]].data();
+    fa[0] -= force.x[l], fa[1] -= force.y[l], fa[2] -= force.z[l];
+    double* mo = s.a_moment[g.ia[l]].data();
+    mo[0] += ma.x[l], mo[1] += ma.y[l], mo[2] += ma.z[l];
+  }
 }
 
 }  // namespace mc

@@ -80,40 +80,32 @@ void World<D>::relink() {
   const int nsets = static_cast<int>(sets.size());
   offset_.assign(nsets, 0);
   wall_offset_.assign(nsets, 0);
-  std::size_t total = 0;
+  wall_moment_offset_.assign(nsets, 0);
+  std::size_t total = 0, wall_total = 0;
   for (int s = 0; s < nsets; ++s) {
     offset_[s] = total;
     total += sets[s]->pairs().size();
     wall_offset_[s] = total;
     total += sets[s]->wall_pairs().size();
+    wall_moment_offset_[s] = wall_total;
+    wall_total += sets[s]->wall_pairs().size();
   }
-  slots_.resize(total);
-  // Gather lists: each particle's slots where it is A, then those where it is B (split at gather_split_), each
-  // in increasing slot order, so its sum is the same on any thread count and the gather needs no branch.
-  std::vector<int> count_a(n, 0), count_b(n, 0);
+  slots_.resize(total, wall_total, n);
+  // Gather lists: each particle's slots where it is B, in increasing slot order, so its sum is the same on any
+  // thread count. (Its contacts as A it sums in the force pass: Slots.)
+  std::vector<int> count_b(n, 0);
   for (int s = 0; s < nsets; ++s) {
-    for (const Pair& pr : sets[s]->pairs()) ++count_a[pr[0]], ++count_b[pr[1]];
+    for (const Pair& pr : sets[s]->pairs()) ++count_b[pr[1]];
     for (const Pair& pr : sets[s]->wall_pairs()) ++count_b[pr[1]];
   }
   gather_start_.assign(n + 1, 0);
-  gather_split_.resize(n);
-  for (int i = 0; i < n; ++i) {
-    gather_split_[i] = gather_start_[i] + count_a[i];
-    gather_start_[i + 1] = gather_split_[i] + count_b[i];
-  }
+  for (int i = 0; i < n; ++i) gather_start_[i + 1] = gather_start_[i] + count_b[i];
   gather_items_.resize(gather_start_[n]);
-  std::vector<int> fill_a(gather_start_.begin(), gather_start_.end() - 1), fill_b(gather_split_);
+  std::vector<int> fill(gather_start_.begin(), gather_start_.end() - 1);
   for (int s = 0; s < nsets; ++s) {
     std::size_t slot = offset_[s];
-    for (const Pair& pr : sets[s]->pairs()) {
-      gather_items_[fill_a[pr[0]]++] = static_cast<int>(slot);
-      gather_items_[fill_b[pr[1]]++] = static_cast<int>(slot);
-      ++slot;
-    }
-    for (const Pair& pr : sets[s]->wall_pairs()) {
-      gather_items_[fill_b[pr[1]]++] = static_cast<int>(slot);
-      ++slot;
-    }
+    for (const Pair& pr : sets[s]->pairs()) gather_items_[fill[pr[1]]++] = static_cast<int>(slot++);
+    for (const Pair& pr : sets[s]->wall_pairs()) gather_items_[fill[pr[1]]++] = static_cast<int>(slot++);
   }
 }
 
@@ -167,12 +159,12 @@ double World<D>::critical_timestep() {
   for (std::size_t s = 0; s < sets.size(); ++s)
     for (std::size_t c = 0; c < sets[s]->wall_pairs().size(); ++c)
       wall_touching.push_back(slots_.f[wall_offset_[s] + c].squaredNorm() > 0);
+  clear_a_sums();
   SlotStiffness<D> k{slots_};
   // Every pair in the lists counts (contacts about to close); once the adaptive skin has grown, only those within
   // the skin set at init, so that a wider skin does not shorten the step.
   const double margin = skin > skin_floor_ ? skin_floor_ : kInf;
-  for (std::size_t s = 0; s < sets.size(); ++s)
-    sets[s]->stiffness(particles, walls, k, offset_[s], wall_offset_[s], margin);
+  for (std::size_t s = 0; s < sets.size(); ++s) sets[s]->stiffness(particles, walls, k, slot_offsets(s), margin);
   std::vector<ExactSum> kn(walls.size());
   for (std::size_t s = 0, at = 0; s < sets.size(); ++s) {
     const auto& wp = sets[s]->wall_pairs();
@@ -185,11 +177,11 @@ double World<D>::critical_timestep() {
 #pragma omp parallel for schedule(static) reduction(min : tmin) if (n > kParallelMin)
   for (int i = 0; i < n; ++i) {
     if (particles.is_ghost(i)) continue;  // its own process counts it
-    double kt = 0, kr = 0;
+    double kt = k.a_kt(i), kr = k.a_kr(i);
     for (int c = gather_start_[i]; c < gather_start_[i + 1]; ++c) {
       const std::size_t slot = static_cast<std::size_t>(gather_items_[c]);
       kt += k.kt(slot);
-      kr += c >= gather_split_[i] ? k.krb(slot) : k.kra(slot);
+      kr += k.krb(slot);
     }
     if (kt == 0) {  // no neighbour yet: as if it touched an identical particle
       const int s = model_of[particles.phase[i]][particles.phase[i]];
@@ -216,7 +208,7 @@ void World<D>::refresh_timestep(bool forces_follow) {
   // relink leaves them (so is a refused step's: they hold stiffnesses, not forces).
   const bool refused = timestep.fixed > 0 && timestep.fixed > dt_critical;
   if (!forces_follow || refused)
-    slots_.resize(slots_.f.size());
+    slots_.clear();
   else
     slots_.mark_all_live();  // stiffnesses in every slot until the force pass writes or zeroes it
   if (timestep.fixed > 0) {
@@ -234,10 +226,21 @@ void World<D>::refresh_timestep(bool forces_follow) {
 }
 
 template <int D>
+void World<D>::clear_a_sums() {
+  const int n = particles.size();
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
+  for (int i = 0; i < n; ++i) {
+    slots_.a_force[i].setZero();
+    slots_.a_moment[i].setZero();
+  }
+}
+
+template <int D>
 void World<D>::compute_forces() {
+  clear_a_sums();  // each set's pass adds its contacts as A, set after set
   Dissipated e;
   for (std::size_t s = 0; s < sets.size(); ++s) {
-    e += sets[s]->forces(particles, walls, dt, trace_energy, slots_, offset_[s], wall_offset_[s]);
+    e += sets[s]->forces(particles, walls, dt, trace_energy, slots_, slot_offsets(s));
     if (const auto pr = sets[s]->passing_through()) [[unlikely]] {
       if (!split_) throw InstabilityError(passing_message(*pr));
       // A split world fails at the end of the step, on every process together (agree_on_step).
@@ -344,15 +347,9 @@ typename World<D>::Motion World<D>::move_particles() {
     const int end = std::min(n, (b + 1) * kBlock);
     for (int i = b * kBlock; i < end; ++i) {
       if (ghost && ghost[i]) continue;
-      Vec<D> f = Vec<D>::Zero();
-      Rot<D> m = Rot<D>::Zero();
-      for (int c = gather_start_[i]; c < gather_split_[i]; ++c) {  // as A: −F
-        const std::size_t slot = static_cast<std::size_t>(gather_items_[c]);
-        if (!slots_.live[slot]) continue;
-        f -= slots_.f[slot];
-        m += slots_.ma[slot];
-      }
-      for (int c = gather_split_[i]; c < gather_start_[i + 1]; ++c) {  // as B: +F
+      Vec<D> f = slots_.a_force[i];  // as A: −F, summed by the force pass
+      Rot<D> m = slots_.a_moment[i];
+      for (int c = gather_start_[i]; c < gather_start_[i + 1]; ++c) {  // as B: +F
         const std::size_t slot = static_cast<std::size_t>(gather_items_[c]);
         if (!slots_.live[slot]) continue;
         f += slots_.f[slot];
@@ -436,7 +433,7 @@ void World<D>::move_walls() {
       const std::size_t slot = wall_offset_[s] + c;
       ExactSum* w = wall_sums + wp[c][0] * kWallTerms;
       for (int k = 0; k < D; ++k) w[k].add(-slots_.f[slot][k]);
-      for (int k = 0; k < Dim<D>::rot; ++k) w[D + k].add(slots_.ma[slot][k]);
+      for (int k = 0; k < Dim<D>::rot; ++k) w[D + k].add(slots_.wall_moment[wall_moment_offset_[s] + c][k]);
     }
   }
   for (std::size_t g = 0; g < gauges.size(); ++g) gauges[g].add_sums(particles, gauge_sums + g * 2 * D);

@@ -2,6 +2,7 @@
 // contact detection → force–displacement per contact model → gather per particle → law of motion →
 // walls. What the scene observes (histories, frames, measurements) is driven from outside, by the runner.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -109,9 +110,8 @@ class World {
   // (a few per world), not stored: 8 bytes less per contact.
   Pair slot_pair(std::size_t slot) const;
   std::size_t slot_count() const { return slots_.f.size(); }
-  std::size_t gather_bytes() const {
-    return (gather_start_.capacity() + gather_split_.capacity() + gather_items_.capacity()) * sizeof(int);
-  }
+  std::size_t slot_bytes() const { return slots_.bytes(); }
+  std::size_t gather_bytes() const { return (gather_start_.capacity() + gather_items_.capacity()) * sizeof(int); }
 
   // The complete dynamic state (checkpoints): restoring it and stepping on gives the same bits as never stopping.
   // A split world's processes save together: the whole world's state is gathered into process 0's archive (the
@@ -224,8 +224,10 @@ class World {
   void count_crack(const Crack<D>& c);
 
   Slots<D> slots_;
-  std::vector<std::size_t> offset_, wall_offset_;
-  std::vector<int> gather_start_, gather_split_, gather_items_;  // items: slots, A side first, then B side
+  std::vector<std::size_t> offset_, wall_offset_, wall_moment_offset_;
+  SlotOffsets slot_offsets(std::size_t s) const { return {offset_[s], wall_offset_[s], wall_moment_offset_[s]}; }
+  void clear_a_sums();                            // Slots::a_force and a_moment, before a pass over the sets
+  std::vector<int> gather_start_, gather_items_;  // items: each particle's slots as B
   std::vector<Vec<D>> x_at_rebuild_;
   std::vector<Vec<D>> wall_at_rebuild_;
   double moved_ = kInf;                       // max particle displacement since the last rebuild (+ walls)
@@ -241,9 +243,7 @@ class World {
 template <int D>
 template <class F>
 void World<D>::for_each_contact_of(int p, F&& fn) const {
-  for (int k = gather_start_[p]; k < gather_start_[p + 1]; ++k) {
-    const std::size_t slot = static_cast<std::size_t>(gather_items_[k]);
-    const bool as_b = k >= gather_split_[p];
+  auto visit = [&](std::size_t slot, bool as_b) {
     const auto [a, b] = slot_pair(slot);
     Vec<D> lever;
     if (a < 0) {
@@ -259,7 +259,14 @@ void World<D>::for_each_contact_of(int p, F&& fn) const {
       lever = d * ((particles.radius[p] - 0.5 * overlap) / dist);  // Tang (3.4), (3.56)
     }
     fn(slot, as_b ? slots_.f[slot] : Vec<D>(-slots_.f[slot]), lever);
+  };
+  // As A: its pairs, found in each set's sorted list; then as B: its gather list. The gather's order.
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    const auto& pairs = sets[s]->pairs();
+    for (auto it = std::lower_bound(pairs.begin(), pairs.end(), Pair{p, -1}); it != pairs.end() && (*it)[0] == p; ++it)
+      visit(offset_[s] + static_cast<std::size_t>(it - pairs.begin()), false);
   }
+  for (int k = gather_start_[p]; k < gather_start_[p + 1]; ++k) visit(static_cast<std::size_t>(gather_items_[k]), true);
 }
 
 extern template class World<2>;
