@@ -1,5 +1,6 @@
 // Determinism across thread counts (ARCHITECTURE: "same scene + same seed → identical results, for any
-// thread count"): every contact writes its own slot, each particle sums its slots in a fixed order, and sums
+// thread count"): every contact writes its force on B into its own slot and adds its force on A to A's sum, on
+// the one thread that computes all of A's pairs; each particle adds its slots as B in a fixed order, and sums
 // over contacts or particles are taken in fixed blocks added in order. So one and two threads must give the
 // same bits, not merely close numbers.
 #include <doctest/doctest.h>
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include "tests/common/test_worlds.hpp"
@@ -139,4 +141,53 @@ TEST_CASE("one_and_two_threads_give_bit_identical_positions") {
   CHECK(one.time == two.time);
   CHECK(one.rebuilds == two.rebuilds);
   CHECK(one.contacts == two.contacts);
+}
+
+// A particle that is A in more pairs than a block of the force pass holds (kBlock = 1024, engine/parallel.hpp): a
+// sphere of radius 1 m pressed by 5 000 spheres of radius 2 cm, each overlapping it by δ = 0.1 mm, on the upper half
+// of a Fibonacci lattice over its surface (5 000 pairs: more than kParallelMin, so the pass is split between threads).
+// Its pairs as A must all be summed by one thread, in pair order: the resultant is then the closed form −Σ k_n δ n_k
+// (about 2 500 contacts' force, downwards), and the same bits on one and two threads.
+TEST_CASE("resultant_on_a_sphere_touching_more_contacts_than_a_block_holds") {
+  const int before = omp_get_max_threads();
+  const double big = 1.0, small = 0.02, overlap = 1e-4;
+  const int shell = 5000;
+  LinearParams prm;
+  prm.modulus = 1e9;
+  auto resultant = [&](int threads) {
+    omp_set_num_threads(threads);
+    auto w = test::single_model_world<3, Linear>(prm);
+    w.domain_lo = Vec<3>::Constant(-1.5);
+    w.domain_hi = Vec<3>::Constant(1.5);
+    w.particles.add(Vec<3>::Zero(), big, 2600, 0);  // index 0: A in every pair it has
+    const double golden = M_PI * (3.0 - std::sqrt(5.0));
+    for (int k = 0; k < shell; ++k) {  // the upper half of a lattice of 2 × shell points
+      const double z = 1.0 - (k + 0.5) / shell, rho = std::sqrt(1.0 - z * z);
+      const Vec<3> n(rho * std::cos(golden * k), rho * std::sin(golden * k), z);
+      w.particles.add((big + small - overlap) * n, small, 2600, 0);
+    }
+    w.init();
+    const std::vector<Vec<3>> x = w.particles.x;  // where the force pass finds them
+    w.step();
+    CHECK(w.candidate_count() > std::size_t(shell));
+    return std::make_pair(w.particles.f[0], x);
+  };
+  const auto [one, x] = resultant(1);
+  const Vec<3> two = resultant(2).first;
+  omp_set_num_threads(before);
+
+  // The closed form from the positions as stored: each contact pushes the big sphere by k_n δ_k along −n_k.
+  const double kn = Linear::pair<3>(prm, big, small).kn;
+  Vec<3> expected = Vec<3>::Zero();
+  for (int k = 1; k <= shell; ++k) {
+    const Vec<3> d = x[k] - x[0];
+    expected -= kn * (big + small - d.norm()) * d.normalized();
+  }
+  const double one_contact = kn * overlap;
+  MESSAGE("resultant " << one.transpose() << " N, one contact's force " << one_contact << " N");
+  CHECK(-expected.z() > 2000 * one_contact);
+  // 5 000 terms of k_n δ, each δ known to round-off of the positions (1e-16 m against δ = 1e-4 m): the sums
+  // agree to far better than 1e-9 of one contact's force whatever their order.
+  CHECK((one - expected).norm() < 1e-9 * one_contact);
+  CHECK(std::memcmp(one.data(), two.data(), sizeof(Vec<3>)) == 0);
 }
