@@ -50,8 +50,9 @@ struct Footprint {
 };
 
 // From the container sizes: particle arrays (+ the positions kept at the last rebuild), the contact set's pairs
-// and histories, the slots (per contact its force, moment on B and live byte; per particle its sums as A), the gather
-// lists (the timestep estimate borrows the slots: no memory of its own).
+// and histories, the slots (per far pair and wall contact its force, moment on B and live byte; per particle its
+// sums; the pairs' kept forces, when a scene measures single contacts), the gather lists (the timestep estimate
+// borrows the slots: no memory of its own).
 template <int D>
 Footprint footprint(const World<D>& w) {
   Footprint fp;
@@ -66,8 +67,9 @@ Footprint footprint(const World<D>& w) {
 }
 
 // Bytes one step moves through memory, counted from the arrays it streams (read once, written once when it
-// changes them): per contact its pair, its state read and written, its slot (force, moment on B, live byte) written
-// and read back by the gather; per particle its sums as A zeroed, added to and read by the gather, its gather list,
+// changes them): per contact its pair, its state read and written; per far pair and wall contact its slot (force,
+// moment on B, live byte) written and read back by the gather; per particle its sums zeroed, added to and read by the
+// gather, its gather list,
 // the state the law of motion reads and writes, and the partners' positions, velocities, spins and radii the
 // contacts read. Caches only make the real traffic smaller; this is what a machine without them would move.
 template <int D>

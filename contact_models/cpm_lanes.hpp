@@ -20,10 +20,10 @@ struct LaneLaw<Cpm, 3> {
   using State = Cpm::State<3>;
   static constexpr int kStride = sizeof(State) / sizeof(double);
 
-  // Contacts [c, c + kLanes) of `pairs` and `states`, slots from `slot`. False: nothing written, run them
-  // one at a time.
+  // Contacts [c, c + kLanes) of `pairs` and `states`, results as store_slots puts them. False: nothing written, run
+  // them one at a time.
   [[gnu::flatten]] static bool force(const CpmParams& prm, const Particles<3>& p, const Pair* pairs, State* states,
-                                     Slots<3>& s, std::size_t slot, double dt) {
+                                     Slots<3>& s, BlockTarget& t, std::size_t record, double dt) {
     if (prm.damage_time > 0 || prm.plastic_time > 0) return false;
     const Lane length = load_lanes<kStride>(&states[0].length);
     const LaneMask cohesive = length > 0.0;
@@ -116,7 +116,7 @@ struct LaneLaw<Cpm, 3> {
     keep(&states[0].kappa, kappa);
     keep(&states[0].eps_pl, new_eps_pl);
     keep(&states[0].eps_d, load_lanes<kStride>(&states[0].eps_d));
-    store_slots(s, slot, g, force, nullptr);
+    store_slots(s, t, record, p, g, force, nullptr);
     return true;
   }
 };

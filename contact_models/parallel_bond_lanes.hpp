@@ -19,10 +19,10 @@ struct LaneLaw<ParallelBond, 3> {
   using State = ParallelBond::State<3>;
   static constexpr int kStride = sizeof(State) / sizeof(double);
 
-  // Contacts [c, c + kLanes) of `pairs` and `states`, slots from `slot`. False: nothing written, run them
-  // one at a time.
+  // Contacts [c, c + kLanes) of `pairs` and `states`, results as store_slots puts them. False: nothing written, run
+  // them one at a time.
   [[gnu::flatten]] static bool force(const ParallelBondParams& prm, const Particles<3>& p, const Pair* pairs,
-                                     State* states, Slots<3>& s, std::size_t slot, double dt) {
+                                     State* states, Slots<3>& s, BlockTarget& t, std::size_t record, double dt) {
     if (prm.contact.damping_ratio > 0) return false;
     const Lane tensile = load_lanes<kStride>(&states[0].tensile);
     const Lane shear = load_lanes<kStride>(&states[0].shear);
@@ -88,10 +88,10 @@ struct LaneLaw<ParallelBond, 3> {
     keep3(states[0].bond_ms.data(), bms, bonded);
     keep(&states[0].bond_fn, bfn, bonded, 0.0);
     keep(&states[0].bond_mn, bmn, bonded, 0.0);
-    keep(&states[0].tensile, tensile, kept, 0.0);
-    keep(&states[0].shear, shear, kept, 0.0);
+    store_lanes<kStrideF>(&states[0].tensile, pick(kept, tensile, 0.0));
+    store_lanes<kStrideF>(&states[0].shear, pick(kept, shear, 0.0));
     store_lanes<kStride>(&states[0].stiffness, pick(kept, load_lanes<kStride>(&states[0].stiffness), 1.0));
-    store_slots(s, slot, g, force, &moment);
+    store_slots(s, t, record, p, g, force, &moment);
     return true;
   }
 };

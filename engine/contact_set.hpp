@@ -49,7 +49,12 @@ class ContactSetBase {
   // (intact bonds) stay even when they are no longer candidates.
   virtual void set_pairs(const std::vector<Pair>& candidates) = 0;
   virtual void set_wall_pairs(const std::vector<Pair>& candidates) = 0;
-  // Forces into the slots at `at`, and added to the A-side sums. Returns the energy dissipated this step when
+  // The blocks of the force pass for the current pair list: `group_begin` holds the first particle of each group
+  // (parallel.hpp, kGroup) in this process's numbering, then the particle count. Called whenever the pairs change.
+  virtual void partition(const std::vector<int>& group_begin) = 0;
+  virtual std::size_t far_count() const = 0;               // pairs whose B another block holds
+  virtual std::vector<std::size_t> far_pairs() const = 0;  // their indices, in the order of their slots
+  // Forces into the particles' sums and the slots at `at` (Slots). Returns the energy dissipated this step when
   // `energy` is set, else zeros.
   virtual Dissipated forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy,
                             Slots<D>& slots, const SlotOffsets& at) = 0;
@@ -73,7 +78,10 @@ class ContactSetBase {
   // radius (a wall contact: by more than half the ball's): the pair (a ball–wall contact: (−1 − wall, ball)) is
   // passing through each other, which no contact law can stop. Empty when none.
   virtual std::optional<Pair> passing_through() const = 0;
-  virtual std::size_t bond_count() const = 0;    // intact bonds
+  virtual std::size_t bond_count() const = 0;  // intact bonds
+  // Pairs that gave a force in the last pass, of those whose A is held as its own (0 until a pass after the lists
+  // were last set).
+  virtual std::size_t touching() const = 0;
   virtual std::size_t memory_bytes() const = 0;  // pairs, histories and side arrays, as allocated
   // The whole history as bytes (checkpoints): pairs, wall pairs and states.
   virtual std::vector<std::uint8_t> save() const = 0;
@@ -127,6 +135,33 @@ class ContactSet final : public ContactSetBase<D> {
   const std::vector<State>& wall_states() const { return wall_states_; }
 
   void set_pairs(const std::vector<Pair>& c) override { merge(pairs_, states_, dashpot_, c); }
+
+  void partition(const std::vector<int>& group_begin) override {
+    const std::size_t groups = group_begin.size() - 1;
+    block_first_.assign(groups + 1, pairs_.size());
+    block_near_end_.resize(groups);
+    block_far_.assign(groups + 1, 0);
+    std::size_t c = 0, far = 0;
+    for (std::size_t k = 0; k < groups; ++k) {
+      block_first_[k] = c;
+      block_far_[k] = far;
+      const int end = group_begin[k + 1];
+      block_near_end_[k] = end;
+      for (; c < pairs_.size() && pairs_[c][0] < end; ++c) far += pairs_[c][1] >= end;
+    }
+    block_far_[groups] = far;
+    touching_ = 0;
+  }
+  std::size_t far_count() const override { return block_far_.empty() ? 0 : block_far_.back(); }
+  std::vector<std::size_t> far_pairs() const override {
+    std::vector<std::size_t> out;
+    out.reserve(far_count());
+    for (std::size_t k = 0; k + 1 < block_first_.size(); ++k)
+      for (std::size_t c = block_first_[k]; c < block_first_[k + 1]; ++c)
+        if (pairs_[c][1] >= block_near_end_[k]) out.push_back(c);
+    return out;
+  }
+  std::size_t touching() const override { return touching_; }
   void set_wall_pairs(const std::vector<Pair>& c) override { merge(wall_pairs_, wall_states_, wall_dashpot_, c); }
 
   Dissipated forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy, Slots<D>& s,
@@ -137,15 +172,18 @@ class ContactSet final : public ContactSetBase<D> {
   void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness<D>& k, const SlotOffsets& at,
                  double margin) const override {
     const std::size_t n = pairs_.size();
+    const int blocks = static_cast<int>(block_near_end_.size());
 #pragma omp parallel for schedule(static) if (n > std::size_t(kParallelMin))
-    for (int b = 0; b < block_count(n); ++b) {
-      const std::size_t end = block_begin(b + 1);
-      for (std::size_t c = block_begin(b); c < end; ++c) {
+    for (int b = 0; b < blocks; ++b) {
+      const int near_end = block_near_end_[b];
+      std::size_t far = at.far + block_far_[b];
+      for (std::size_t c = block_first_[b]; c < block_first_[b + 1]; ++c) {
         const auto [i, j] = pairs_[c];
-        const std::size_t slot = at.ball + c;
+        const bool is_far = j >= near_end;
+        const std::size_t slot = is_far ? far++ : 0;
         const double reach = p.radius[i] + p.radius[j] + margin;
         if ((p.x[j] - p.x[i]).squaredNorm() >= reach * reach && !Model::template persistent<D>(states_[c])) {
-          k.kt(slot) = k.krb(slot) = 0;
+          if (is_far) k.kt(slot) = k.krb(slot) = 0;
           continue;
         }
         Vec<D> ca, cb;
@@ -153,10 +191,16 @@ class ContactSet final : public ContactSetBase<D> {
         const auto st =
             Model::template stiffness<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g, states_[c]);
         const double kt = st.normal + st.shear;
-        k.kt(slot) = kt;
-        k.krb(slot) = st.shear * cb.squaredNorm() + st.rotational;
-        k.a_kt(i) += kt;
-        k.a_kr(i) += st.shear * ca.squaredNorm() + st.rotational;
+        const double kr_b = st.shear * cb.squaredNorm() + st.rotational;
+        k.sum_kt(i) += kt;
+        k.sum_kr(i) += st.shear * ca.squaredNorm() + st.rotational;
+        if (is_far) {
+          k.kt(slot) = kt;
+          k.krb(slot) = kr_b;
+        } else {
+          k.sum_kt(j) += kt;
+          k.sum_kr(j) += kr_b;
+        }
       }
     }
     const int nw = static_cast<int>(wall_pairs_.size());
@@ -366,24 +410,29 @@ class ContactSet final : public ContactSetBase<D> {
     // A local copy: the compiler then knows no store in the loop changes it, and hoists what depends on the
     // parameters alone (reciprocals) out of the loop.
     const typename Model::Params prm = params_;
-    std::vector<Dissipated> part(Energy ? block_count(n) : 0);
+    const int blocks = static_cast<int>(block_near_end_.size());
+    std::vector<Dissipated> part(Energy ? blocks : 0);
     if (Energy && dashpot_.size() != n) dashpot_.assign(n, Vec<D>::Zero());
     if (Energy && wall_dashpot_.size() != wall_pairs_.size()) wall_dashpot_.assign(wall_pairs_.size(), Vec<D>::Zero());
     // Events go to their block's list, joined in block order afterwards: rare, and deterministic.
-    block_events_.resize(block_count(n));
+    block_events_.resize(blocks);
     events_.clear();
-    block_passing_.assign(block_count(n), kNone);
+    block_passing_.assign(blocks, kNone);
+    block_touching_.assign(blocks, 0);
+    const bool kept = !s.pair_force.empty();
     passing_.reset();
     // A split world's pair is computed on both its particles' processes; its energy counts on A's.
     auto counted = [&p](int a) { return !p.is_ghost(a); };
 #pragma omp parallel for schedule(static) if (n > std::size_t(kParallelMin))
-    for (int b = 0; b < block_count(n); ++b) {
-      const std::size_t end = block_begin(b + 1);
+    for (int b = 0; b < blocks; ++b) {
+      const std::size_t end = block_first_[b + 1];
+      BlockTarget t{block_near_end_[b], at.far + block_far_[b], 0};
       Dissipated dissipated;
       auto one = [&](std::size_t c) __attribute__((always_inline)) {
         const auto [i, j] = pairs_[c];
         State& st = states_[c];
-        const std::size_t slot = at.ball + c;
+        const bool far = j >= t.near_end;
+        const std::size_t slot = far ? t.far++ : 0;
         const Vec<D> d = p.x[j] - p.x[i];
         const double reach = p.radius[i] + p.radius[j];
         if (d.squaredNorm() >= reach * reach && !Model::template persistent<D>(st)) {
@@ -399,7 +448,8 @@ class ContactSet final : public ContactSetBase<D> {
             }
           }
           st = State{};  // apart and unbonded: no force, no history
-          if (s.live[slot]) {
+          if (kept) s.pair_force[at.pair + c].setZero();
+          if (far && s.live[slot]) {
             s.f[slot].setZero();
             s.mb[slot].setZero();
             s.live[slot] = 0;
@@ -415,11 +465,19 @@ class ContactSet final : public ContactSetBase<D> {
         const auto r =
             Model::template force<D, Energy>(Model::template pair<D>(prm, g.r_a, g.r_b, g.k_a, g.k_b), g, local);
         st = local;
-        s.f[slot] = r.force;
-        s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
-        s.live[slot] = 1;
-        s.a_force[i] -= r.force;
-        s.a_moment[i] += Dim<D>::cross(ca, Vec<D>(-r.force)) - r.moment;
+        const Rot<D> mb = Dim<D>::cross(cb, r.force) + r.moment;
+        s.sum_force[i] -= r.force;
+        s.sum_moment[i] += Dim<D>::cross(ca, Vec<D>(-r.force)) - r.moment;
+        if (far) {
+          s.f[slot] = r.force;
+          s.mb[slot] = mb;
+          s.live[slot] = 1;
+        } else {
+          s.sum_force[j] += r.force;
+          s.sum_moment[j] += mb;
+        }
+        if (kept) s.pair_force[at.pair + c] = r.force;
+        if (r.force.squaredNorm() > 0 && counted(i)) ++t.touching;
         if (r.event.mode != CrackMode::None) [[unlikely]]
           block_events_[b].push_back({i, j, p.x[i] + ca, g.n, r.event});
         if constexpr (Energy) {
@@ -432,15 +490,18 @@ class ContactSet final : public ContactSetBase<D> {
           dashpot_[c] = r.dashpot;
         }
       };
-      std::size_t c = block_begin(b);
+      std::size_t c = block_first_[b];
       if constexpr (!Energy && requires { LaneLaw<Model, D>::force; }) {
         for (; c + kLanes <= end; c += kLanes)
-          if (!LaneLaw<Model, D>::force(prm, p, &pairs_[c], &states_[c], s, at.ball + c, dt))
+          if (!LaneLaw<Model, D>::force(prm, p, &pairs_[c], &states_[c], s, t, at.pair + c, dt))
             for (int l = 0; l < kLanes; ++l) one(c + l);
       }
       for (; c < end; ++c) one(c);
+      block_touching_[b] = t.touching;
       if constexpr (Energy) part[b] = dissipated;
     }
+    touching_ = 0;
+    for (std::size_t k : block_touching_) touching_ += k;
     for (auto& be : block_events_) {
       if (be.empty()) continue;
       events_.insert(events_.end(), be.begin(), be.end());
@@ -474,14 +535,6 @@ class ContactSet final : public ContactSetBase<D> {
       }
     }
     return e;
-  }
-
-  // Block b of the ball pairs: from pair b·kBlock on to the first pair of a particle as A, so that a particle's pairs
-  // as A lie in one block and one thread sums them (Slots).
-  std::size_t block_begin(int b) const {
-    std::size_t c = std::min(pairs_.size(), std::size_t(b) * kBlock);
-    while (c > 0 && c < pairs_.size() && pairs_[c][0] == pairs_[c - 1][0]) ++c;
-    return c;
   }
 
   // Sorted merge of the old (pair, state) list with the new candidates.
@@ -564,6 +617,12 @@ class ContactSet final : public ContactSetBase<D> {
   std::vector<PairEvent<D>> events_;
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   std::vector<std::size_t> block_passing_;  // per block: its first contact passing through, or kNone
+  // The blocks of the force pass (partition): per group its first pair (then the pair count), the first particle of
+  // the next group (a pair whose B is below it is near), and the far slots before it (then their count).
+  std::vector<std::size_t> block_first_, block_far_;
+  std::vector<int> block_near_end_;
+  std::vector<std::size_t> block_touching_;
+  std::size_t touching_ = 0;
   std::optional<Pair> passing_;
 };
 

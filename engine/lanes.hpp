@@ -13,6 +13,7 @@
 #include "engine/cell_grid.hpp"
 #include "engine/dim.hpp"
 #include "engine/particles.hpp"
+#include "engine/slots.hpp"
 
 namespace mc {
 
@@ -131,10 +132,10 @@ struct Lane3 {
   return {x, y, z};
 }
 
-// A field of kLanes consecutive records of `Stride` doubles each (a contact state, a slot's vector): `at` points
-// at the field in the first record.
-template <int Stride>
-[[gnu::always_inline]] inline Lane load_lanes(const double* at) {
+// A field of kLanes consecutive records of `Stride` numbers each (a contact state, a slot's vector): `at` points
+// at the field in the first record. A single-precision field is widened exactly, and stored back rounded.
+template <int Stride, class T>
+[[gnu::always_inline]] inline Lane load_lanes(const T* at) {
   LaneV v;
   for (int l = 0; l < kLanes; ++l) v[l] = at[l * Stride];
   return v;
@@ -143,9 +144,9 @@ template <int Stride>
 [[gnu::always_inline]] inline Lane3 load_lanes3(const double* at) {
   return {load_lanes<Stride>(at), load_lanes<Stride>(at + 1), load_lanes<Stride>(at + 2)};
 }
-template <int Stride>
-[[gnu::always_inline]] inline void store_lanes(double* at, const Lane& v) {
-  for (int l = 0; l < kLanes; ++l) at[l * Stride] = v.v[l];
+template <int Stride, class T>
+[[gnu::always_inline]] inline void store_lanes(T* at, const Lane& v) {
+  for (int l = 0; l < kLanes; ++l) at[l * Stride] = static_cast<T>(v.v[l]);
 }
 template <int Stride>
 [[gnu::always_inline]] inline void store_lanes3(double* at, const Lane3& v) {
@@ -200,27 +201,44 @@ struct LaneGeometry {
   return true;
 }
 
-// The slots of kLanes contacts from `slot`, as the one-contact pass writes them: zero (and not live) for an apart
-// pair, else the force on B and its moment about B's centre plus the model's own moment; and the force on A and its
-// moment about A's centre less the model's moment added to A's sums, lane by lane in pair order (zero for `moment` =
-// nullptr: x − 0 is x, but −0 + 0 is +0, so the sum is kept even then).
+// The results of kLanes contacts, as the one-contact pass stores them (ContactSet::forces_impl), lane by lane in pair
+// order: nothing for an apart pair but the zeroing of its far slot; else the force on A and its moment about A's
+// centre less the model's moment added to A's sums, and the force on B with its moment about B's centre plus the
+// model's moment added to B's sums (a near pair) or written to its far slot (`moment` = nullptr: x − 0 is x, but
+// −0 + 0 is +0, so the sum is kept even then). The force on B also goes to `record` on when the forces are kept.
 template <class Slots>
-[[gnu::always_inline]] inline void store_slots(Slots& s, std::size_t slot, const LaneGeometry& g, const Lane3& force,
-                                               const Lane3* moment) {
+[[gnu::always_inline]] inline void store_slots(Slots& s, BlockTarget& t, std::size_t record, const Particles<3>& p,
+                                               const LaneGeometry& g, const Lane3& force, const Lane3* moment) {
   constexpr int kVec = 3;
   const LaneMask written = !g.apart;
   const Lane3 neg = Lane3{-force.x, -force.y, -force.z};
   const Lane3 ma = moment ? cross(g.ca, neg) - *moment : cross(g.ca, neg);
   const Lane3 mb = moment ? cross(g.cb, force) + *moment : 0.0 + cross(g.cb, force);
-  store_lanes3<kVec>(s.f[slot].data(), pick(written, force, 0.0));
-  store_lanes3<kVec>(s.mb[slot].data(), pick(written, mb, 0.0));
+  const Lane f2 = dot(force, force);
+  if (!s.pair_force.empty()) store_lanes3<kVec>(s.pair_force[record].data(), pick(written, force, 0.0));
   for (int l = 0; l < kLanes; ++l) {
-    s.live[slot + l] = written[l];
-    if (!written[l]) continue;
-    double* fa = s.a_force[g.ia[l]].data();
+    const int a = g.ia[l], b = g.ib[l];
+    const bool far = b >= t.near_end;
+    const std::size_t slot = far ? t.far++ : 0;
+    if (!written[l]) {
+      if (far && s.live[slot]) s.f[slot].setZero(), s.mb[slot].setZero(), s.live[slot] = 0;
+      continue;
+    }
+    if (f2[l] > 0 && !p.is_ghost(a)) ++t.touching;
+    double* fa = s.sum_force[a].data();
     fa[0] -= force.x[l], fa[1] -= force.y[l], fa[2] -= force.z[l];
-    double* mo = s.a_moment[g.ia[l]].data();
+    double* mo = s.sum_moment[a].data();
     mo[0] += ma.x[l], mo[1] += ma.y[l], mo[2] += ma.z[l];
+    if (far) {
+      s.f[slot] = Vec<3>(force.x[l], force.y[l], force.z[l]);
+      s.mb[slot] = Vec<3>(mb.x[l], mb.y[l], mb.z[l]);
+      s.live[slot] = 1;
+    } else {
+      double* fb = s.sum_force[b].data();
+      fb[0] += force.x[l], fb[1] += force.y[l], fb[2] += force.z[l];
+      double* mob = s.sum_moment[b].data();
+      mob[0] += mb.x[l], mob[1] += mb.y[l], mob[2] += mb.z[l];
+    }
   }
 }
 

@@ -87,7 +87,7 @@ Tensor<D> average_stress(const World<D>& world, const Region<D>& region) {
     if (!region.contains(p.x[i])) return;
     s[D * D].add(Dim<D>::volume(p.radius[i]));
     world.for_each_contact_of(
-        i, [&](std::size_t, const Vec<D>& f, const Vec<D>& lever) { add_tensor<D>(s, 0, lever * f.transpose()); });
+        i, [&](const Vec<D>& f, const Vec<D>& lever) { add_tensor<D>(s, 0, lever * f.transpose()); });
   });
   const double volume = sum[D * D];
   if (volume == 0) return Tensor<D>::Constant(kNaN);
@@ -104,7 +104,7 @@ double coordination_number(const World<D>& world, const Region<D>& region) {
   const auto c = exact_sums<2>(world, [&](int i, std::array<ExactSum, 2>& s) {
     if (!region.contains(p.x[i])) return;
     double contacts = 0;
-    world.for_each_contact_of(i, [&](std::size_t, const Vec<D>& f, const Vec<D>&) {
+    world.for_each_contact_of(i, [&](const Vec<D>& f, const Vec<D>&) {
       if (f.squaredNorm() > 0) contacts += 1;  // candidate pairs not (or no longer) touching carry no force
     });
     s[0].add(contacts), s[1].add(1);

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <iterator>
 #include <sstream>
+#include <stdexcept>
 
 #include "engine/errors.hpp"
 
@@ -75,47 +76,90 @@ void World<D>::rebuild() {
 }
 
 template <int D>
+std::vector<int> World<D>::group_begin() const {
+  const int n = particles.size();
+  std::vector<int> first;
+  std::int64_t group = -1;
+  for (int i = 0; i < n; ++i) {
+    const std::int64_t g = global_index(i) / kGroup;
+    if (g != group) first.push_back(i), group = g;
+  }
+  first.push_back(n);
+  return first;
+}
+
+template <int D>
 void World<D>::relink() {
   const int n = particles.size();
   const int nsets = static_cast<int>(sets.size());
+  const std::vector<int> groups = group_begin();
   offset_.assign(nsets, 0);
   wall_offset_.assign(nsets, 0);
   wall_moment_offset_.assign(nsets, 0);
-  std::size_t total = 0, wall_total = 0;
+  pair_offset_.assign(nsets, 0);
+  std::size_t total = 0, wall_total = 0, pair_total = 0;
   for (int s = 0; s < nsets; ++s) {
+    sets[s]->partition(groups);
     offset_[s] = total;
-    total += sets[s]->pairs().size();
+    total += sets[s]->far_count();
     wall_offset_[s] = total;
     total += sets[s]->wall_pairs().size();
     wall_moment_offset_[s] = wall_total;
     wall_total += sets[s]->wall_pairs().size();
+    pair_offset_[s] = pair_total;
+    pair_total += sets[s]->pairs().size();
   }
-  slots_.resize(total, wall_total, n);
-  // Gather lists: each particle's slots where it is B, in increasing slot order, so its sum is the same on any
-  // thread count. (Its contacts as A it sums in the force pass: Slots.)
-  std::vector<int> count_b(n, 0);
-  for (int s = 0; s < nsets; ++s) {
-    for (const Pair& pr : sets[s]->pairs()) ++count_b[pr[1]];
-    for (const Pair& pr : sets[s]->wall_pairs()) ++count_b[pr[1]];
+  slots_.resize(total, wall_total, n, keep_forces_ ? pair_total : 0);
+  // Each particle's items in increasing order, so that its sum is the same on any thread count: built from
+  // (particle, item) lists counted first.
+  auto build = [n](std::vector<int>& start, std::vector<int>& items, auto&& for_each_item) {
+    std::vector<int> count(n, 0);
+    for_each_item([&](int i, int) { ++count[i]; });
+    start.assign(n + 1, 0);
+    for (int i = 0; i < n; ++i) start[i + 1] = start[i] + count[i];
+    std::vector<int>(start[n]).swap(items);  // not resize: a list that shrank would keep its old capacity
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for_each_item([&](int i, int item) { items[fill[i]++] = item; });
+  };
+  // Gather lists: each particle's far slots as B and its wall contacts' slots. (Its near pairs the force pass
+  // sums: Slots.)
+  std::vector<std::vector<std::size_t>> far(nsets);
+  for (int s = 0; s < nsets; ++s) far[s] = sets[s]->far_pairs();
+  build(gather_start_, gather_items_, [&](auto&& add) {
+    for (int s = 0; s < nsets; ++s) {
+      const auto& pairs = sets[s]->pairs();
+      for (std::size_t k = 0; k < far[s].size(); ++k) add(pairs[far[s][k]][1], static_cast<int>(offset_[s] + k));
+      const auto& wp = sets[s]->wall_pairs();
+      for (std::size_t c = 0; c < wp.size(); ++c) add(wp[c][1], static_cast<int>(wall_offset_[s] + c));
+    }
+  });
+  if (!keep_forces_) {
+    contact_start_.clear(), contact_items_.clear();
+    contact_start_.shrink_to_fit(), contact_items_.shrink_to_fit();
+    return;
   }
-  gather_start_.assign(n + 1, 0);
-  for (int i = 0; i < n; ++i) gather_start_[i + 1] = gather_start_[i] + count_b[i];
-  gather_items_.resize(gather_start_[n]);
-  std::vector<int> fill(gather_start_.begin(), gather_start_.end() - 1);
-  for (int s = 0; s < nsets; ++s) {
-    std::size_t slot = offset_[s];
-    for (const Pair& pr : sets[s]->pairs()) gather_items_[fill[pr[1]]++] = static_cast<int>(slot++);
-    for (const Pair& pr : sets[s]->wall_pairs()) gather_items_[fill[pr[1]]++] = static_cast<int>(slot++);
-  }
+  build(contact_start_, contact_items_, [&](auto&& add) {
+    for (int s = 0; s < nsets; ++s) {
+      const auto& pairs = sets[s]->pairs();
+      for (std::size_t c = 0; c < pairs.size(); ++c) add(pairs[c][1], static_cast<int>(pair_offset_[s] + c));
+      const auto& wp = sets[s]->wall_pairs();
+      for (std::size_t c = 0; c < wp.size(); ++c) add(wp[c][1], -1 - static_cast<int>(wall_offset_[s] + c));
+    }
+  });
 }
 
 template <int D>
-Pair World<D>::slot_pair(std::size_t slot) const {
-  std::size_t s = sets.size() - 1;
-  while (offset_[s] > slot) --s;
-  if (slot < wall_offset_[s]) return sets[s]->pairs()[slot - offset_[s]];
-  const Pair& wp = sets[s]->wall_pairs()[slot - wall_offset_[s]];
-  return {-1 - wp[0], wp[1]};
+void World<D>::keep_contact_forces() {
+  if (keep_forces_) return;
+  keep_forces_ = true;
+  relink();
+}
+
+template <int D>
+const Slots<D>& World<D>::kept() const {
+  if (!keep_forces_)
+    throw std::logic_error("World: single contacts' forces are read but not kept: call keep_contact_forces() first");
+  return slots_;
 }
 
 template <int D>
@@ -159,8 +203,8 @@ double World<D>::critical_timestep() {
   for (std::size_t s = 0; s < sets.size(); ++s)
     for (std::size_t c = 0; c < sets[s]->wall_pairs().size(); ++c)
       wall_touching.push_back(slots_.f[wall_offset_[s] + c].squaredNorm() > 0);
-  clear_a_sums();
-  SlotStiffness<D> k{slots_};
+  std::vector<double> sums(2 * static_cast<std::size_t>(n), 0.0);
+  SlotStiffness<D> k{slots_, sums};
   // Every pair in the lists counts (contacts about to close); once the adaptive skin has grown, only those within
   // the skin set at init, so that a wider skin does not shorten the step.
   const double margin = skin > skin_floor_ ? skin_floor_ : kInf;
@@ -177,7 +221,7 @@ double World<D>::critical_timestep() {
 #pragma omp parallel for schedule(static) reduction(min : tmin) if (n > kParallelMin)
   for (int i = 0; i < n; ++i) {
     if (particles.is_ghost(i)) continue;  // its own process counts it
-    double kt = k.a_kt(i), kr = k.a_kr(i);
+    double kt = k.sum_kt(i), kr = k.sum_kr(i);
     for (int c = gather_start_[i]; c < gather_start_[i + 1]; ++c) {
       const std::size_t slot = static_cast<std::size_t>(gather_items_[c]);
       kt += k.kt(slot);
@@ -226,18 +270,20 @@ void World<D>::refresh_timestep(bool forces_follow) {
 }
 
 template <int D>
-void World<D>::clear_a_sums() {
+void World<D>::clear_sums() {
   const int n = particles.size();
+  // A split world's ghosts get partial sums here, which nothing reads: their owners send them whole.
+  slots_.sum_force = particles.f.data();
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (int i = 0; i < n; ++i) {
-    slots_.a_force[i].setZero();
-    slots_.a_moment[i].setZero();
+    particles.f[i].setZero();
+    slots_.sum_moment[i].setZero();
   }
 }
 
 template <int D>
 void World<D>::compute_forces() {
-  clear_a_sums();  // each set's pass adds its contacts as A, set after set
+  clear_sums();  // each set's pass adds to them, set after set
   Dissipated e;
   for (std::size_t s = 0; s < sets.size(); ++s) {
     e += sets[s]->forces(particles, walls, dt, trace_energy, slots_, slot_offsets(s));
@@ -347,9 +393,9 @@ typename World<D>::Motion World<D>::move_particles() {
     const int end = std::min(n, (b + 1) * kBlock);
     for (int i = b * kBlock; i < end; ++i) {
       if (ghost && ghost[i]) continue;
-      Vec<D> f = slots_.a_force[i];  // as A: −F, summed by the force pass
-      Rot<D> m = slots_.a_moment[i];
-      for (int c = gather_start_[i]; c < gather_start_[i + 1]; ++c) {  // as B: +F
+      Vec<D> f = p.f[i];  // summed by the force pass
+      Rot<D> m = slots_.sum_moment[i];
+      for (int c = gather_start_[i]; c < gather_start_[i + 1]; ++c) {  // far pairs as B, wall contacts
         const std::size_t slot = static_cast<std::size_t>(gather_items_[c]);
         if (!slots_.live[slot]) continue;
         f += slots_.f[slot];
@@ -535,9 +581,7 @@ void World<D>::update_energy() {
 template <int D>
 std::size_t World<D>::contact_count() const {
   std::size_t n = 0;
-  for (std::size_t s = 0; s < sets.size(); ++s)
-    for (std::size_t c = 0; c < sets[s]->pairs().size(); ++c)
-      if (slots_.f[offset_[s] + c].squaredNorm() > 0 && !particles.is_ghost(sets[s]->pairs()[c][0])) ++n;
+  for (const auto& s : sets) n += s->touching();
   return whole_count(n);
 }
 

@@ -99,19 +99,30 @@ class World {
   std::int64_t crack_count(CrackKind kind, CrackMode mode, int phase_a = -1, int phase_b = -1) const;
   // The whole world's counts; a split world's processes call them together (each pair counts on A's process).
   std::size_t bond_count() const;     // intact bonds of all models
-  std::size_t contact_count() const;  // touching or bonded ball–ball contacts
+  std::size_t contact_count() const;  // ball–ball contacts that gave a force in the last step (0 before one)
   // This process's lists (a split world's: pairs with an own particle, those across a cut on both sides).
   std::size_t candidate_count() const;  // pairs in the neighbour lists
-  Vec<D> slot_force(std::size_t slot) const { return slots_.f[slot]; }
-  // Each contact of particle p: fn(slot, force on p, vector from p's centre to the contact point).
+  // Measurements of single contacts (stress, coordination, contact forces) need each ball pair's force, which the
+  // force pass otherwise sums into its particles without keeping it: ask for it once (a scene does when it measures
+  // them), and from the next force pass on it is kept, 24 bytes per pair (16 in 2D) and 4 for a list per contact.
+  void keep_contact_forces();
+  bool keeps_contact_forces() const { return keep_forces_; }
+  // The force on B of pair c of set s in the last force pass; all sets' pairs one after another (kept forces only).
+  Vec<D> contact_force(int set, std::size_t c) const { return kept().pair_force[pair_offset_[set] + c]; }
+  // Every contact's force in the last force pass, set by set: the ball pairs' on B, then the wall contacts' on the
+  // ball (kept forces only).
+  template <class F>
+  void for_each_contact_force(F&& fn) const;
+  // Each contact of particle p: fn(force on p, vector from p's centre to the contact point) (kept forces only).
   template <class F>
   void for_each_contact_of(int p, F&& fn) const;
-  // The partners of a slot: (i, j) for balls, (−1 − wall, j) for a ball–wall contact. Looked up in the sets
-  // (a few per world), not stored: 8 bytes less per contact.
-  Pair slot_pair(std::size_t slot) const;
-  std::size_t slot_count() const { return slots_.f.size(); }
+  std::size_t slot_count() const { return slots_.f.size(); }  // far pairs' and wall contacts'
   std::size_t slot_bytes() const { return slots_.bytes(); }
-  std::size_t gather_bytes() const { return (gather_start_.capacity() + gather_items_.capacity()) * sizeof(int); }
+  std::size_t gather_bytes() const {
+    return (gather_start_.capacity() + gather_items_.capacity() + contact_start_.capacity() +
+            contact_items_.capacity()) *
+           sizeof(int);
+  }
 
   // The complete dynamic state (checkpoints): restoring it and stepping on gives the same bits as never stopping.
   // A split world's processes save together: the whole world's state is gathered into process 0's archive (the
@@ -148,9 +159,6 @@ class World {
   // Per-particle values of the held particles (`held[k][i]`: array k, particle i), gathered on process 0 in the
   // whole world's order from their owners; the other processes get nothing. A whole world returns them as given.
   std::vector<std::vector<Vec<D>>> gather_whole(const std::vector<const std::vector<Vec<D>>*>& held) const;
-
-  std::size_t wall_slot_offset(int set) const { return wall_offset_[set]; }
-  std::size_t slot_offset(int set) const { return offset_[set]; }
 
  private:
   void rebuild();
@@ -217,17 +225,26 @@ class World {
   void own_members();  // the driven groups' and gauges' members held as own
   // Process 0's archive of a split world: the whole world's state gathered (world_split_save.cpp).
   void save_split(Archive& a) const;
-  // save()'s archive from the whole world's particles, neighbour-list positions, sets' bytes and slot forces;
+  // save()'s archive from the whole world's particles, neighbour-list positions, sets' bytes and contact forces;
   // the rest (walls, gauges, crack log, scalars, energy) is the same on every process.
   void write_archive(Archive& a, const Particles<D>& p, const std::vector<Vec<D>>& x_at_rebuild,
-                     std::vector<std::vector<std::uint8_t>> set_bytes, const std::vector<Vec<D>>& slot_f) const;
+                     std::vector<std::vector<std::uint8_t>> set_bytes, const std::vector<Vec<D>>& contact_f) const;
   void count_crack(const Crack<D>& c);
 
   Slots<D> slots_;
-  std::vector<std::size_t> offset_, wall_offset_, wall_moment_offset_;
-  SlotOffsets slot_offsets(std::size_t s) const { return {offset_[s], wall_offset_[s], wall_moment_offset_[s]}; }
-  void clear_a_sums();                            // Slots::a_force and a_moment, before a pass over the sets
+  // Per set: its far slots, wall slots, wall moments and kept pair forces start there.
+  std::vector<std::size_t> offset_, wall_offset_, wall_moment_offset_, pair_offset_;
+  SlotOffsets slot_offsets(std::size_t s) const {
+    return {offset_[s], wall_offset_[s], wall_moment_offset_[s], pair_offset_[s]};
+  }
+  void clear_sums();  // the particles' forces and Slots::sum_moment, before a pass over the sets
   std::vector<int> gather_start_, gather_items_;  // items: each particle's slots as B
+  // Kept forces only: each particle's contacts as B, ball pairs by their kept force (≥ 0) and wall contacts by
+  // their slot (−1 − slot), set by set: what for_each_contact_of visits after the pairs as A.
+  bool keep_forces_ = false;
+  std::vector<int> contact_start_, contact_items_;
+  const Slots<D>& kept() const;          // the slots, or logic_error when the forces are not kept
+  std::vector<int> group_begin() const;  // per group (kGroup) its first particle here, then the particle count
   std::vector<Vec<D>> x_at_rebuild_;
   std::vector<Vec<D>> wall_at_rebuild_;
   double moved_ = kInf;                       // max particle displacement since the last rebuild (+ walls)
@@ -243,30 +260,48 @@ class World {
 template <int D>
 template <class F>
 void World<D>::for_each_contact_of(int p, F&& fn) const {
-  auto visit = [&](std::size_t slot, bool as_b) {
-    const auto [a, b] = slot_pair(slot);
-    Vec<D> lever;
-    if (a < 0) {
-      const Vec<D> c = walls[-1 - a].closest(particles.x[p]);
-      lever = c - particles.x[p];
-      const double dist = lever.norm();
-      if (dist > 0) lever *= (particles.radius[p] - 0.5 * (particles.radius[p] - dist)) / dist;
-    } else {
-      const int o = a == p ? b : a;
-      const Vec<D> d = particles.x[o] - particles.x[p];
-      const double dist = d.norm();
-      const double overlap = particles.radius[p] + particles.radius[o] - dist;
-      lever = d * ((particles.radius[p] - 0.5 * overlap) / dist);  // Tang (3.4), (3.56)
-    }
-    fn(slot, as_b ? slots_.f[slot] : Vec<D>(-slots_.f[slot]), lever);
+  const Slots<D>& s = kept();
+  const auto& x = particles.x;
+  const auto& r = particles.radius;
+  auto ball = [&](int o, const Vec<D>& f) {
+    const Vec<D> d = x[o] - x[p];
+    const double dist = d.norm();
+    const double overlap = r[p] + r[o] - dist;
+    fn(f, Vec<D>(d * ((r[p] - 0.5 * overlap) / dist)));  // Tang (3.4), (3.56)
   };
-  // As A: its pairs, found in each set's sorted list; then as B: its gather list. The gather's order.
-  for (std::size_t s = 0; s < sets.size(); ++s) {
-    const auto& pairs = sets[s]->pairs();
+  // As A: its pairs, found in each set's sorted list; then as B, set by set: its pairs, then its wall contacts.
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    const auto& pairs = sets[k]->pairs();
     for (auto it = std::lower_bound(pairs.begin(), pairs.end(), Pair{p, -1}); it != pairs.end() && (*it)[0] == p; ++it)
-      visit(offset_[s] + static_cast<std::size_t>(it - pairs.begin()), false);
+      ball((*it)[1], Vec<D>(-s.pair_force[pair_offset_[k] + static_cast<std::size_t>(it - pairs.begin())]));
   }
-  for (int k = gather_start_[p]; k < gather_start_[p + 1]; ++k) visit(static_cast<std::size_t>(gather_items_[k]), true);
+  for (int k = contact_start_[p]; k < contact_start_[p + 1]; ++k) {
+    const int item = contact_items_[k];
+    if (item >= 0) {
+      std::size_t set = sets.size() - 1;
+      while (pair_offset_[set] > static_cast<std::size_t>(item)) --set;
+      ball(sets[set]->pairs()[item - pair_offset_[set]][0], s.pair_force[item]);
+      continue;
+    }
+    const std::size_t slot = static_cast<std::size_t>(-1 - item);
+    std::size_t set = sets.size() - 1;
+    while (wall_offset_[set] > slot) --set;
+    const Vec<D> c = walls[sets[set]->wall_pairs()[slot - wall_offset_[set]][0]].closest(x[p]);
+    Vec<D> lever = c - x[p];
+    const double dist = lever.norm();
+    if (dist > 0) lever *= (r[p] - 0.5 * (r[p] - dist)) / dist;
+    fn(s.f[slot], lever);
+  }
+}
+
+template <int D>
+template <class F>
+void World<D>::for_each_contact_force(F&& fn) const {
+  const Slots<D>& s = kept();
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    for (std::size_t c = 0; c < sets[k]->pairs().size(); ++c) fn(s.pair_force[pair_offset_[k] + c]);
+    for (std::size_t c = 0; c < sets[k]->wall_pairs().size(); ++c) fn(s.f[wall_offset_[k] + c]);
+  }
 }
 
 extern template class World<2>;

@@ -37,13 +37,22 @@ void World<D>::save(Archive& a) const {
   }
   std::vector<std::vector<std::uint8_t>> set_bytes;
   for (const auto& s : sets) set_bytes.push_back(s->save());
-  write_archive(a, particles, x_at_rebuild_, std::move(set_bytes), slots_.f);
+  std::vector<Vec<D>> contact_f;
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    if (keep_forces_) {
+      const auto first = slots_.pair_force.begin() + static_cast<std::ptrdiff_t>(pair_offset_[s]);
+      contact_f.insert(contact_f.end(), first, first + static_cast<std::ptrdiff_t>(sets[s]->pairs().size()));
+    }
+    const auto first = slots_.f.begin() + static_cast<std::ptrdiff_t>(wall_offset_[s]);
+    contact_f.insert(contact_f.end(), first, first + static_cast<std::ptrdiff_t>(sets[s]->wall_pairs().size()));
+  }
+  write_archive(a, particles, x_at_rebuild_, std::move(set_bytes), contact_f);
 }
 
 template <int D>
 void World<D>::write_archive(Archive& a, const Particles<D>& p, const std::vector<Vec<D>>& x_at_rebuild,
                              std::vector<std::vector<std::uint8_t>> set_bytes,
-                             const std::vector<Vec<D>>& slot_f) const {
+                             const std::vector<Vec<D>>& contact_f) const {
   a.put("radius", p.radius);
   a.put("stiffness", p.stiffness);
   a.put("mass", p.mass);
@@ -71,8 +80,9 @@ void World<D>::write_archive(Archive& a, const Particles<D>& p, const std::vecto
     a.reals["gauges"] = g;
   }
   for (std::size_t s = 0; s < set_bytes.size(); ++s) a.bytes["set" + std::to_string(s)] = std::move(set_bytes[s]);
-  // The last step's contact forces: the servo gain and the timestep refresh read them before the next force pass.
-  a.put("slot_f", slot_f);
+  // The last step's contact forces, set by set (the ball pairs' only when kept, then the wall contacts'): the servo
+  // gain and the timestep refresh read the walls' before the next force pass, the measurements the pairs'.
+  a.put("contact_f", contact_f);
   a.bytes["cracks"] = crack_bytes(cracks);
   a.reals["scalars"] = {dt,
                         dt_critical,
@@ -151,7 +161,25 @@ void World<D>::restore(const Archive& a) {
   // Slots, offsets and gather lists follow from the restored pair lists; no contact is re-detected, so the
   // next step sees exactly the lists it would have seen.
   relink();
-  a.get("slot_f", slots_.f);
+  std::vector<Vec<D>> contact_f;
+  a.get("contact_f", contact_f);
+  std::size_t expected = 0;
+  for (const auto& s : sets) expected += (keep_forces_ ? s->pairs().size() : 0) + s->wall_pairs().size();
+  if (contact_f.size() != expected)
+    throw InputError("the checkpoint holds " + std::to_string(contact_f.size()) + " contact forces where this scene " +
+                     (keep_forces_ ? "(which measures single contacts)" : "(which measures no single contact)") +
+                     " needs " + std::to_string(expected) + ": resume it with the scene that wrote it");
+  auto at = contact_f.begin();
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    const auto np = static_cast<std::ptrdiff_t>(sets[s]->pairs().size());
+    const auto nw = static_cast<std::ptrdiff_t>(sets[s]->wall_pairs().size());
+    if (keep_forces_) {
+      std::copy(at, at + np, slots_.pair_force.begin() + static_cast<std::ptrdiff_t>(pair_offset_[s]));
+      at += np;
+    }
+    std::copy(at, at + nw, slots_.f.begin() + static_cast<std::ptrdiff_t>(wall_offset_[s]));
+    at += nw;
+  }
   slots_.mark_all_live();
   // The crack log and its counts.
   const auto& cb = a.bytes.at("cracks");

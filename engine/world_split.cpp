@@ -185,12 +185,19 @@ void World<D>::split(const Exchange& exchange) {
   st.send.resize(exchange.size());
   st.fill.resize(exchange.size());
   split_ = std::move(st);
-  // The last step's contact forces of a restored world (the timestep refresh and the servos read them before the
-  // next force pass) stay with their pairs through the relink.
+  // The last step's contact forces of a restored world (the timestep refresh and the servos read the walls', the
+  // measurements the pairs' kept) stay with their pairs through the relink.
   std::vector<std::vector<Pair>> whole_pairs;
-  for (const auto& set : sets) whole_pairs.push_back(set->pairs()), whole_pairs.push_back(set->wall_pairs());
-  const std::vector<Vec<D>> whole_f = slots_.f;
-  const std::vector<std::size_t> whole_offset = offset_, whole_wall_offset = wall_offset_;
+  std::vector<std::vector<Vec<D>>> whole_f;
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    whole_pairs.push_back(sets[s]->pairs()), whole_pairs.push_back(sets[s]->wall_pairs());
+    const auto np = static_cast<std::ptrdiff_t>(sets[s]->pairs().size());
+    const auto nw = static_cast<std::ptrdiff_t>(sets[s]->wall_pairs().size());
+    const auto pf = slots_.pair_force.begin() + static_cast<std::ptrdiff_t>(pair_offset_[s]);
+    const auto wf = slots_.f.begin() + static_cast<std::ptrdiff_t>(wall_offset_[s]);
+    whole_f.push_back(keep_forces_ ? std::vector<Vec<D>>(pf, pf + np) : std::vector<Vec<D>>{});
+    whole_f.push_back(std::vector<Vec<D>>(wf, wf + nw));
+  }
   // Every process holds the whole world: its own particles are those of its region, the rest are ghosts until
   // the owners say which ones it needs.
   std::vector<Source> all;
@@ -198,22 +205,20 @@ void World<D>::split(const Exchange& exchange) {
   hold(all, {});
   send_ghosts();
   relink();
-  if (whole_f.empty()) return;
-  auto force_of = [&](const std::vector<Pair>& list, std::size_t first, const Pair& pair) {
-    const auto it = std::lower_bound(list.begin(), list.end(), pair);
-    return whole_f[first + static_cast<std::size_t>(it - list.begin())];
+  auto force_of = [&](std::size_t list, const Pair& pair) {
+    const auto it = std::lower_bound(whole_pairs[list].begin(), whole_pairs[list].end(), pair);
+    return whole_f[list][static_cast<std::size_t>(it - whole_pairs[list].begin())];
   };
   const auto& global = split_->global;
   for (std::size_t s = 0; s < sets.size(); ++s) {
     const auto& pairs = sets[s]->pairs();
-    for (std::size_t c = 0; c < pairs.size(); ++c)
-      slots_.f[offset_[s] + c] =
-          force_of(whole_pairs[2 * s], whole_offset[s],
-                   {static_cast<int>(global[pairs[c][0]]), static_cast<int>(global[pairs[c][1]])});
+    if (keep_forces_)
+      for (std::size_t c = 0; c < pairs.size(); ++c)
+        slots_.pair_force[pair_offset_[s] + c] =
+            force_of(2 * s, {static_cast<int>(global[pairs[c][0]]), static_cast<int>(global[pairs[c][1]])});
     const auto& walls_of = sets[s]->wall_pairs();
     for (std::size_t c = 0; c < walls_of.size(); ++c)
-      slots_.f[wall_offset_[s] + c] = force_of(whole_pairs[2 * s + 1], whole_wall_offset[s],
-                                               {walls_of[c][0], static_cast<int>(global[walls_of[c][1]])});
+      slots_.f[wall_offset_[s] + c] = force_of(2 * s + 1, {walls_of[c][0], static_cast<int>(global[walls_of[c][1]])});
   }
   slots_.mark_all_live();
 }

@@ -23,7 +23,7 @@ struct GatheredPair {
 
 template <int D>
 void put_pairs(Bytes& out, const ContactSetBase<D>& set, bool wall, const Particles<D>& p,
-               const std::vector<std::int64_t>& global, const std::vector<Vec<D>>& slot_f, std::size_t offset) {
+               const std::vector<std::int64_t>& global, const Vec<D>* forces) {
   const auto& pairs = wall ? set.wall_pairs() : set.pairs();
   std::vector<std::size_t> sent;
   for (std::size_t c = 0; c < pairs.size(); ++c)
@@ -33,7 +33,7 @@ void put_pairs(Bytes& out, const ContactSetBase<D>& set, bool wall, const Partic
     put_bytes(out, wall ? std::int64_t(pairs[c][0]) : global[pairs[c][0]]);
     put_bytes(out, global[pairs[c][1]]);
     set.history(c, wall, out);
-    put_bytes(out, slot_f[offset + c]);
+    put_bytes(out, forces ? forces[c] : Vec<D>(Vec<D>::Zero()));
   }
 }
 
@@ -83,7 +83,8 @@ std::vector<std::vector<Vec<D>>> World<D>::gather_whole(const std::vector<const 
 
 // Every process sends process 0 its own particles (with their neighbour-list positions) and, per set, the pairs
 // whose A it owns and its wall pairs, each with its history and last contact force. Process 0 lays them out as
-// the whole world holds them: particles by index, pairs sorted as the lists keep them, slots in relink()'s order.
+// the whole world holds them: particles by index, pairs sorted as the lists keep them, contact forces in save()'s
+// order.
 template <int D>
 void World<D>::save_split(Archive& a) const {
   const Exchange& ex = *split_->exchange;
@@ -106,8 +107,9 @@ void World<D>::save_split(Archive& a) const {
   }
   for (std::size_t s = 0; s < sets.size(); ++s) {
     put_bytes(mine, std::array<std::uint8_t, 2>{sets[s]->traced(false), sets[s]->traced(true)});
-    put_pairs(mine, *sets[s], false, p, split_->global, slots_.f, offset_[s]);
-    put_pairs(mine, *sets[s], true, p, split_->global, slots_.f, wall_offset_[s]);
+    put_pairs(mine, *sets[s], false, p, split_->global,
+              keep_forces_ ? slots_.pair_force.data() + pair_offset_[s] : nullptr);
+    put_pairs(mine, *sets[s], true, p, split_->global, slots_.f.data() + wall_offset_[s]);
   }
   // Process 0 reads its own part where it is; the others' come over (hundreds of megabytes each at 10^6 particles).
   std::vector<Bytes> out(ex.size());
@@ -136,7 +138,7 @@ void World<D>::save_split(Archive& a) const {
     }
   }
   std::vector<std::vector<std::uint8_t>> set_bytes;
-  std::vector<Vec<D>> slot_f;
+  std::vector<Vec<D>> contact_f;
   for (std::size_t s = 0; s < sets.size(); ++s) {
     std::array<bool, 2> traced{false, false};
     std::array<std::vector<GatheredPair<D>>, 2> lists;
@@ -157,12 +159,12 @@ void World<D>::save_split(Archive& a) const {
       for (const auto& g : list) {
         pairs[wall].push_back(g.pair);
         histories[wall].push_back(g.history);
-        slot_f.push_back(g.force);
+        if (wall || keep_forces_) contact_f.push_back(g.force);
       }
     }
     set_bytes.push_back(sets[s]->save_of(pairs[0], histories[0], traced[0], pairs[1], histories[1], traced[1]));
   }
-  write_archive(a, whole, x_at_rebuild, std::move(set_bytes), slot_f);
+  write_archive(a, whole, x_at_rebuild, std::move(set_bytes), contact_f);
 }
 
 template std::vector<std::vector<Vec<2>>> World<2>::gather_whole(const std::vector<const std::vector<Vec<2>>*>&) const;

@@ -36,10 +36,9 @@ double unbalanced_ratio(const World<D>& w) {
   double fp = 0, fc = 0;
   std::size_t nc = 0;
   for (const auto& f : w.particles.f) fp += f.norm();
-  for (std::size_t s = 0; s < w.slot_count(); ++s) {
-    const double f = w.slot_force(s).norm();
-    if (f > 0) fc += f, ++nc;
-  }
+  w.for_each_contact_force([&](const Vec<D>& force) {
+    if (const double f = force.norm(); f > 0) fc += f, ++nc;
+  });
   if (nc == 0) return kInf;
   return (fp / w.particles.size()) / (fc / static_cast<double>(nc));
 }
@@ -151,6 +150,7 @@ class Genesis {
     const Vec<D> size = s.hi - s.lo;
     w_.domain_lo = s.lo - size;
     w_.domain_hi = s.hi + size;
+    w_.keep_contact_forces();  // the unbalanced-force ratio reads every contact's force
     w_.init();
   }
 

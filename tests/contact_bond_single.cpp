@@ -33,7 +33,7 @@ void tension_break() {
   for (int step = 0; step < 10000 && w.cracks.empty(); ++step) {
     w.step();
     if (!w.cracks.empty()) break;
-    last = -w.slot_force(0)[0];  // tension on B points back to A
+    last = -w.contact_force(0, 0)[0];  // tension on B points back to A
     if (step == 1000) stiffness_ratio = last / (c.kn * stretch);
     stretch += rate * w.dt;  // the force pass of this step saw the particles before this step's move
   }
@@ -45,7 +45,7 @@ void tension_break() {
   CHECK(last / p.normal_mean == doctest::Approx(1.0).epsilon(5e-4));
   CHECK(last <= p.normal_mean);
   w.step();
-  CHECK(w.slot_force(0).norm() == 0.0);  // apart and unbonded: no force
+  CHECK(w.contact_force(0, 0).norm() == 0.0);  // apart and unbonded: no force
   CHECK(!ContactBond::bonded<D>(set.states()[0]));
   // Work of the moving particle = energy released by the crack (the stretched spring). Work is booked with
   // the force at the start of each step: the sum differs from ∫F dx by about one of the 4000 loading steps.
@@ -72,13 +72,13 @@ void shear_break_then_slide() {
   for (int step = 0; step < 12000; ++step) {
     w.step();
     if (!w.cracks.empty() && broke_at < 0) broke_at = w.step_count;
-    if (broke_at < 0) last = -w.slot_force(0)[1];  // the shear force on B opposes its motion (+y)
+    if (broke_at < 0) last = -w.contact_force(0, 0)[1];  // the shear force on B opposes its motion (+y)
   }
   REQUIRE(w.cracks.size() == 1);
   CHECK(w.cracks[0].mode == CrackMode::Shear);
   CHECK(last / p.shear_mean == doctest::Approx(1.0).epsilon(5e-4));  // held to its strength without slipping
   // Sliding after the break: |F_s| = μ F_n exactly (the normal force is that of the overlap).
-  const Vec<D> f = w.slot_force(0);
+  const Vec<D> f = w.contact_force(0, 0);
   const Vec<D> n = (w.particles.x[1] - w.particles.x[0]).normalized();
   const double f_n = f.dot(n), f_s = (f - f.dot(n) * n).norm();
   CHECK(f_s / (p.contact.friction * f_n) == doctest::Approx(1.0).epsilon(1e-6));  // round-off of |F_s| ≪ |F|

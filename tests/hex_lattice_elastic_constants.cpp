@@ -90,8 +90,9 @@ Tension virtual_tension(const LatticeStiffness& k, int per_row, int rows, double
     for (int i = 0; i < n; ++i)
       for (int c = 0; c < 2; ++c)
         if (!(P.fix[i] & (1u << c))) f_res += std::abs(P.f[i][c]), ++n_res;
-    for (std::size_t s = 0; s < w.slot_count(); ++s)
-      if (const double f = w.slot_force(s).norm(); f > 0) f_con += f, ++n_con;
+    w.for_each_contact_force([&](const Vec<2>& force) {
+      if (const double f = force.norm(); f > 0) f_con += f, ++n_con;
+    });
     return (f_res / n_res) / (f_con / std::max(n_con, 1));
   };
   for (int s = 0; s < ramp; ++s) w.step();

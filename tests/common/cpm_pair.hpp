@@ -40,7 +40,7 @@ struct CpmPair {
     const Vec<3> n = d().normalized();
     eps.push_back(strain());
     w.step();
-    const Vec<3> f = w.slot_force(0);  // on B
+    const Vec<3> f = w.contact_force(0, 0);  // on B
     sigma_n.push_back(-f.dot(n) / area);
     sigma_t.push_back((f - f.dot(n) * n).norm() / area);
   }

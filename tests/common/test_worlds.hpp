@@ -10,12 +10,12 @@
 
 #include "contact_models/hertz_mindlin.hpp"
 #include "contact_models/linear.hpp"
-#include "engine/world.hpp"
 #include "engine/random_stream.hpp"  // RandomStream: deterministic numbers for the test packings
+#include "engine/world.hpp"
 
 namespace mc::test {
 
-// A world whose single phase 0 interacts through one model; the domain is wide open.
+// A world whose single phase 0 interacts through one model; the domain is wide open; contact forces are kept.
 template <int D, class Model>
 World<D> single_model_world(const typename Model::Params& params) {
   World<D> w;
@@ -23,6 +23,7 @@ World<D> single_model_world(const typename Model::Params& params) {
   w.model_of = {{0}};
   w.domain_lo = Vec<D>::Constant(-1e3);
   w.domain_hi = Vec<D>::Constant(1e3);
+  w.keep_contact_forces();  // the tests read single contacts' forces
   return w;
 }
 
