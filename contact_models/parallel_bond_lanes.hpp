@@ -17,15 +17,15 @@ namespace mc {
 template <>
 struct LaneLaw<ParallelBond, 3> {
   using State = ParallelBond::State<3>;
-  static constexpr int kStride = sizeof(State) / sizeof(double);
+  static constexpr int kStride = sizeof(State) / sizeof(double), kStrideF = sizeof(State) / sizeof(float);
 
   // Contacts [c, c + kLanes) of `pairs` and `states`, results as store_slots puts them. False: nothing written, run
   // them one at a time.
   [[gnu::flatten]] static bool force(const ParallelBondParams& prm, const Particles<3>& p, const Pair* pairs,
                                      State* states, Slots<3>& s, BlockTarget& t, std::size_t record, double dt) {
     if (prm.contact.damping_ratio > 0) return false;
-    const Lane tensile = load_lanes<kStride>(&states[0].tensile);
-    const Lane shear = load_lanes<kStride>(&states[0].shear);
+    const Lane tensile = load_lanes<kStrideF>(&states[0].tensile);
+    const Lane shear = load_lanes<kStrideF>(&states[0].shear);
     const LaneMask bonded = tensile > 0.0;
     LaneGeometry g;
     if (!lane_geometry(p, pairs, bonded, dt, g)) return false;
