@@ -5,6 +5,7 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include "contact_models/bond_family.hpp"
 #include "contact_models/linear.hpp"
@@ -50,9 +51,11 @@ struct ParallelBond {
     double bond_fn = 0;               // F̄^n [N], positive in compression
     double bond_mn = 0;               // M̄^n, twisting [N m] (3D)
     double stiffness = 1;             // this bond's Ē_c over the scene's bond_modulus (heterogeneity, Tang §8.1.2)
-    // This bond's strengths σ̄_c, τ̄_c [Pa]; 0: no bond (never bonded or broken). Drawn numbers, single precision: 6e-8
-    // of a strength is far below its scatter, and 8 bytes less per pair (the state has no padding).
-    float tensile = 0, shear = 0;
+    // This bond's strengths σ̄_c, τ̄_c [Pa]; 0: no bond (never bonded or broken). Drawn numbers: in 3D single
+    // precision, as 6e-8 of a strength is far below its scatter, for 8 bytes less per pair. In 2D the state is
+    // aligned to 16 bytes (Vec<2>), so two floats would leave 8 bytes of padding instead: doubles there.
+    using Strength = std::conditional_t<D == 3, float, double>;
+    Strength tensile = 0, shear = 0;
   };
   // What the force pass needs of a pair, computed every step from the radii (cheaper than storing it: two
   // divisions and a few products, against 56 more bytes per bond to stream).
@@ -103,8 +106,8 @@ struct ParallelBond {
   static void install(const Params& p, const ContactGeometry<D>&, State<D>& s, Normal& normal) {
     s = State<D>{s.fs};
     s.stiffness = normal(p.modulus, p.modulus_std, p.modulus_weibull) / p.modulus;
-    s.tensile = static_cast<float>(normal(p.tensile_mean, p.tensile_std, p.tensile_weibull));
-    s.shear = static_cast<float>(normal(p.shear_mean, p.shear_std, p.shear_weibull));
+    s.tensile = static_cast<typename State<D>::Strength>(normal(p.tensile_mean, p.tensile_std, p.tensile_weibull));
+    s.shear = static_cast<typename State<D>::Strength>(normal(p.shear_mean, p.shear_std, p.shear_weibull));
   }
 
   // Tang (3.41): the beam's largest tensile and shear stresses.
@@ -206,6 +209,10 @@ struct ParallelBond {
     return bonded(s);
   }
 };
+
+// Checkpoints copy states as bytes: no padding, whose bytes would be undetermined.
+static_assert(sizeof(ParallelBond::State<2>) == 10 * sizeof(double) &&
+              sizeof(ParallelBond::State<3>) == 13 * sizeof(double));
 
 // Compiled in parallel_bond.cpp.
 extern template class ContactSet<ParallelBond, 2>;
