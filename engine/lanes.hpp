@@ -8,6 +8,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "engine/cell_grid.hpp"
@@ -216,30 +217,40 @@ template <class Slots>
   const Lane3 mb = moment ? cross(g.cb, force) + *moment : 0.0 + cross(g.cb, force);
   const Lane f2 = dot(force, force);
   if (!s.pair_force.empty()) store_lanes3<kVec>(s.pair_force[record].data(), pick(written, force, 0.0));
+  // Locals: the live bytes' stores could alias anything the loop reads through `s` and `t`.
+  Vec<3>* sum_f = s.sum_force;
+  Rot<3>* sum_m = s.sum_moment.data();
+  Vec<3>* slot_f = s.f.data();
+  Rot<3>* slot_m = s.mb.data();
+  std::uint8_t* live = s.live.data();
+  const int near_end = t.near_end;
+  const bool ghosts = !p.ghost.empty();
+  std::size_t far = t.far, touching = t.touching;
   for (int l = 0; l < kLanes; ++l) {
     const int a = g.ia[l], b = g.ib[l];
-    const bool far = b >= t.near_end;
-    const std::size_t slot = far ? t.far++ : 0;
-    if (!written[l]) {
-      if (far && s.live[slot]) s.f[slot].setZero(), s.mb[slot].setZero(), s.live[slot] = 0;
+    const bool is_far = b >= near_end;
+    const std::size_t slot = is_far ? far++ : 0;
+    if (!written[l]) [[unlikely]] {
+      if (is_far && live[slot]) slot_f[slot].setZero(), slot_m[slot].setZero(), live[slot] = 0;
       continue;
     }
-    if (f2[l] > 0 && !p.is_ghost(a)) ++t.touching;
-    double* fa = s.sum_force[a].data();
+    touching += f2[l] > 0 && !(ghosts && p.ghost[a]);
+    double* fa = sum_f[a].data();
     fa[0] -= force.x[l], fa[1] -= force.y[l], fa[2] -= force.z[l];
-    double* mo = s.sum_moment[a].data();
+    double* mo = sum_m[a].data();
     mo[0] += ma.x[l], mo[1] += ma.y[l], mo[2] += ma.z[l];
-    if (far) {
-      s.f[slot] = Vec<3>(force.x[l], force.y[l], force.z[l]);
-      s.mb[slot] = Vec<3>(mb.x[l], mb.y[l], mb.z[l]);
-      s.live[slot] = 1;
+    double* fb = is_far ? slot_f[slot].data() : sum_f[b].data();
+    double* mob = is_far ? slot_m[slot].data() : sum_m[b].data();
+    if (is_far) {
+      fb[0] = force.x[l], fb[1] = force.y[l], fb[2] = force.z[l];
+      mob[0] = mb.x[l], mob[1] = mb.y[l], mob[2] = mb.z[l];
+      live[slot] = 1;
     } else {
-      double* fb = s.sum_force[b].data();
       fb[0] += force.x[l], fb[1] += force.y[l], fb[2] += force.z[l];
-      double* mob = s.sum_moment[b].data();
       mob[0] += mb.x[l], mob[1] += mb.y[l], mob[2] += mb.z[l];
     }
   }
+  t.far = far, t.touching = touching;
 }
 
 }  // namespace mc
