@@ -309,7 +309,7 @@ TEST_CASE("resume_extends_a_finished_run_like_one_long_run") {
 // ================================================================ 6. resume with servo walls
 
 // Four servo walls squeezing a small box of discs, in contact with the discs from a few hundred steps on.
-// A checkpoint must carry the contact forces of the last step (World::save, "slot_f"): a run resumed at a step where
+// A checkpoint must carry the contact forces of the last step (World::save, "contact_f"): a run resumed at a step where
 // the timestep is refreshed (step % timestep.every == 0; every checkpoint at a multiple of 10 steps with the
 // default every = 10) recomputes each wall's contact_kn from those forces, and without them would find no touching
 // contact and drive the walls at max_speed for up to `every` steps, departing from the uninterrupted run.

@@ -1,7 +1,7 @@
 // Determinism across thread counts (ARCHITECTURE: "same scene + same seed → identical results, for any
-// thread count"): every contact writes its force on B into its own slot and adds its force on A to A's sum, on
-// the one thread that computes all of A's pairs; each particle adds its slots as B in a fixed order, and sums
-// over contacts or particles are taken in fixed blocks added in order. So one and two threads must give the
+// thread count"): one thread computes all the pairs whose A is of one group of particles and adds their forces to
+// A's sum, and to B's when B is of the group; the other pairs write slots, which each particle adds in a fixed
+// order; sums over contacts or particles are taken in fixed blocks added in order. So one and two threads must give the
 // same bits, not merely close numbers.
 #include <doctest/doctest.h>
 #include <omp.h>
@@ -143,9 +143,10 @@ TEST_CASE("one_and_two_threads_give_bit_identical_positions") {
   CHECK(one.contacts == two.contacts);
 }
 
-// A particle that is A in more pairs than a block of the force pass holds (kBlock = 1024, engine/parallel.hpp): a
-// sphere of radius 1 m pressed by 5 000 spheres of radius 2 cm, each overlapping it by δ = 0.1 mm, on the upper half
-// of a Fibonacci lattice over its surface (5 000 pairs: more than kParallelMin, so the pass is split between threads).
+// A particle that is A in more pairs than its group has particles (kGroup = 512, engine/parallel.hpp): a sphere of
+// radius 1 m pressed by 5 000 spheres of radius 2 cm, each overlapping it by δ = 0.1 mm, on the upper half of a
+// Fibonacci lattice over its surface (5 000 pairs: more than kParallelMin, so the pass is split between threads). Its
+// first 511 partners are of its group (near pairs, summed in the force pass on both sides), the others write slots.
 // Its pairs as A must all be summed by one thread, in pair order: the resultant is then the closed form −Σ k_n δ n_k
 // (about 2 500 contacts' force, downwards), and the same bits on one and two threads.
 TEST_CASE("resultant_on_a_sphere_touching_more_contacts_than_a_block_holds") {
