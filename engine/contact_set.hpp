@@ -12,6 +12,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "engine/bytes.hpp"
 #include "engine/cell_grid.hpp"
 #include "engine/contact_geometry.hpp"
 #include "engine/contact_model.hpp"
@@ -304,12 +305,12 @@ class ContactSet final : public ContactSetBase<D> {
 
   std::vector<std::uint8_t> save() const override {
     std::vector<std::uint8_t> out;
-    put(out, pairs_);
-    put(out, states_);
-    put(out, wall_pairs_);
-    put(out, wall_states_);
-    put(out, dashpot_);
-    put(out, wall_dashpot_);
+    put_array(out, pairs_);
+    put_array(out, states_);
+    put_array(out, wall_pairs_);
+    put_array(out, wall_states_);
+    put_array(out, dashpot_);
+    put_array(out, wall_dashpot_);
     return out;
   }
   bool traced(bool wall) const override { return !(wall ? wall_dashpot_ : dashpot_).empty(); }
@@ -328,9 +329,9 @@ class ContactSet final : public ContactSetBase<D> {
       if (kept)
         for (const std::uint8_t* h : from) out.insert(out.end(), h + offset, h + offset + size);
     };
-    put(out, pairs);
+    put_array(out, pairs);
     part(histories, 0, sizeof(State), true);
-    put(out, wall_pairs);
+    put_array(out, wall_pairs);
     part(wall_histories, 0, sizeof(State), true);
     part(histories, sizeof(State), sizeof(Vec<D>), traced);
     part(wall_histories, sizeof(State), sizeof(Vec<D>), wall_traced);
@@ -338,12 +339,12 @@ class ContactSet final : public ContactSetBase<D> {
   }
   void load(const std::vector<std::uint8_t>& in) override {
     std::size_t at = 0;
-    get(in, at, pairs_);
-    get(in, at, states_);
-    get(in, at, wall_pairs_);
-    get(in, at, wall_states_);
-    get(in, at, dashpot_);
-    get(in, at, wall_dashpot_);
+    take_array(in, at, pairs_);
+    take_array(in, at, states_);
+    take_array(in, at, wall_pairs_);
+    take_array(in, at, wall_states_);
+    take_array(in, at, dashpot_);
+    take_array(in, at, wall_dashpot_);
   }
 
   bool persistent(std::size_t c) const override { return Model::template persistent<D>(states_[c]); }
@@ -588,25 +589,6 @@ class ContactSet final : public ContactSetBase<D> {
     pairs.resize(out);
     states.resize(out);
     if (traced) dashpot.resize(out);
-  }
-
-  template <class T>
-  static void put(std::vector<std::uint8_t>& out, const std::vector<T>& v) {
-    const std::uint64_t n = v.size();
-    const std::size_t at = out.size(), bytes = n * sizeof(T);
-    out.resize(at + sizeof n + bytes);
-    std::memcpy(out.data() + at, &n, sizeof n);
-    if (bytes > 0) std::memcpy(out.data() + at + sizeof n, static_cast<const void*>(v.data()), bytes);
-  }
-  template <class T>
-  static void get(const std::vector<std::uint8_t>& in, std::size_t& at, std::vector<T>& v) {
-    std::uint64_t n;
-    std::memcpy(&n, in.data() + at, sizeof n);
-    at += sizeof n;
-    v.resize(n);
-    // States are plain numbers (see the class comment): their bytes are their value.
-    std::memcpy(static_cast<void*>(v.data()), in.data() + at, n * sizeof(T));
-    at += n * sizeof(T);
   }
 
   typename Model::Params params_;

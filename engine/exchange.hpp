@@ -2,12 +2,11 @@
 // launch (studies/ranks.hpp) provides it, so the engine itself never includes MPI.
 #pragma once
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
-namespace mc {
+#include "engine/bytes.hpp"
 
-using Bytes = std::vector<std::uint8_t>;
+namespace mc {
 
 class Exchange {
  public:
@@ -26,20 +25,5 @@ class Exchange {
   // Element-wise sum over the ranks, in place: integers, so exact in any order.
   virtual void sum(std::vector<std::int64_t>& values) const = 0;
 };
-
-// Plain numbers in and out of a byte buffer.
-template <class T>
-void put_bytes(Bytes& out, const T& value) {
-  const std::size_t at = out.size();
-  out.resize(at + sizeof(T));
-  std::memcpy(out.data() + at, static_cast<const void*>(&value), sizeof(T));
-}
-template <class T>
-T take_bytes(const Bytes& in, std::size_t& at) {
-  T value;
-  std::memcpy(static_cast<void*>(&value), in.data() + at, sizeof(T));
-  at += sizeof(T);
-  return value;
-}
 
 }  // namespace mc
