@@ -19,6 +19,7 @@
 #include "engine/contact_points.hpp"
 #include "engine/exact_sum.hpp"
 #include "engine/lanes.hpp"
+#include "engine/pair_blocks.hpp"
 #include "engine/parallel.hpp"
 #include "engine/particles.hpp"
 #include "engine/random.hpp"
@@ -138,30 +139,11 @@ class ContactSet final : public ContactSetBase<D> {
   void set_pairs(const std::vector<Pair>& c) override { merge(pairs_, states_, dashpot_, c); }
 
   void partition(const std::vector<int>& group_begin) override {
-    const std::size_t groups = group_begin.size() - 1;
-    block_first_.assign(groups + 1, pairs_.size());
-    block_near_end_.resize(groups);
-    block_far_.assign(groups + 1, 0);
-    std::size_t c = 0, far = 0;
-    for (std::size_t k = 0; k < groups; ++k) {
-      block_first_[k] = c;
-      block_far_[k] = far;
-      const int end = group_begin[k + 1];
-      block_near_end_[k] = end;
-      for (; c < pairs_.size() && pairs_[c][0] < end; ++c) far += pairs_[c][1] >= end;
-    }
-    block_far_[groups] = far;
+    blocks_.build(pairs_, group_begin);
     touching_ = 0;
   }
-  std::size_t far_count() const override { return block_far_.empty() ? 0 : block_far_.back(); }
-  std::vector<std::size_t> far_pairs() const override {
-    std::vector<std::size_t> out;
-    out.reserve(far_count());
-    for (std::size_t k = 0; k + 1 < block_first_.size(); ++k)
-      for (std::size_t c = block_first_[k]; c < block_first_[k + 1]; ++c)
-        if (pairs_[c][1] >= block_near_end_[k]) out.push_back(c);
-    return out;
-  }
+  std::size_t far_count() const override { return blocks_.far_count(); }
+  std::vector<std::size_t> far_pairs() const override { return blocks_.far_pairs(pairs_); }
   std::size_t touching() const override { return touching_; }
   void set_wall_pairs(const std::vector<Pair>& c) override { merge(wall_pairs_, wall_states_, wall_dashpot_, c); }
 
@@ -173,12 +155,12 @@ class ContactSet final : public ContactSetBase<D> {
   void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness<D>& k, const SlotOffsets& at,
                  double margin) const override {
     const std::size_t n = pairs_.size();
-    const int blocks = static_cast<int>(block_near_end_.size());
+    const int blocks = blocks_.count();
 #pragma omp parallel for schedule(static) if (n > std::size_t(kParallelMin))
     for (int b = 0; b < blocks; ++b) {
-      const int near_end = block_near_end_[b];
-      std::size_t far = at.far + block_far_[b];
-      for (std::size_t c = block_first_[b]; c < block_first_[b + 1]; ++c) {
+      const int near_end = blocks_.near_end[b];
+      std::size_t far = at.far + blocks_.far[b];
+      for (std::size_t c = blocks_.first[b]; c < blocks_.first[b + 1]; ++c) {
         const auto [i, j] = pairs_[c];
         const bool is_far = j >= near_end;
         const std::size_t slot = is_far ? far++ : 0;
@@ -411,7 +393,7 @@ class ContactSet final : public ContactSetBase<D> {
     // A local copy: the compiler then knows no store in the loop changes it, and hoists what depends on the
     // parameters alone (reciprocals) out of the loop.
     const typename Model::Params prm = params_;
-    const int blocks = static_cast<int>(block_near_end_.size());
+    const int blocks = blocks_.count();
     std::vector<Dissipated> part(Energy ? blocks : 0);
     if (Energy && dashpot_.size() != n) dashpot_.assign(n, Vec<D>::Zero());
     if (Energy && wall_dashpot_.size() != wall_pairs_.size()) wall_dashpot_.assign(wall_pairs_.size(), Vec<D>::Zero());
@@ -426,8 +408,8 @@ class ContactSet final : public ContactSetBase<D> {
     auto counted = [&p](int a) { return !p.is_ghost(a); };
 #pragma omp parallel for schedule(static) if (n > std::size_t(kParallelMin))
     for (int b = 0; b < blocks; ++b) {
-      const std::size_t end = block_first_[b + 1];
-      BlockTarget t{block_near_end_[b], at.far + block_far_[b], 0};
+      const std::size_t end = blocks_.first[b + 1];
+      BlockTarget t{blocks_.near_end[b], at.far + blocks_.far[b], 0};
       Dissipated dissipated;
       auto one = [&](std::size_t c) __attribute__((always_inline)) {
         const auto [i, j] = pairs_[c];
@@ -491,7 +473,7 @@ class ContactSet final : public ContactSetBase<D> {
           dashpot_[c] = r.dashpot;
         }
       };
-      std::size_t c = block_first_[b];
+      std::size_t c = blocks_.first[b];
       if constexpr (!Energy && requires { LaneLaw<Model, D>::force; }) {
         for (; c + kLanes <= end; c += kLanes)
           if (!LaneLaw<Model, D>::force(prm, p, &pairs_[c], &states_[c], s, t, at.pair + c, dt))
@@ -599,10 +581,7 @@ class ContactSet final : public ContactSetBase<D> {
   std::vector<PairEvent<D>> events_;
   static constexpr std::size_t kNone = static_cast<std::size_t>(-1);
   std::vector<std::size_t> block_passing_;  // per block: its first contact passing through, or kNone
-  // The blocks of the force pass (partition): per group its first pair (then the pair count), the first particle of
-  // the next group (a pair whose B is below it is near), and the far slots before it (then their count).
-  std::vector<std::size_t> block_first_, block_far_;
-  std::vector<int> block_near_end_;
+  PairBlocks blocks_;                       // of the force pass (partition)
   std::vector<std::size_t> block_touching_;
   std::size_t touching_ = 0;
   std::optional<Pair> passing_;
