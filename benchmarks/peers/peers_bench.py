@@ -4,8 +4,10 @@ this machine, interleaved and repeated, with the ratios and their spread (`make 
 
 Each round runs, for each specimen, every pairing one after the other: the peer, then mesocrack on the same
 specimen and model, so that a slower stretch of the machine falls on both. A ratio is taken within a round; the
-table gives its mean and its range over the rounds. A peer that is not installed is skipped with a line saying so
-(`--install` installs the Debian packages first: never a project dependency, never needed by `make test`).
+table gives its mean and its range over the rounds, and is written to a new file in benchmarks/results/peers/
+(`--out`), named by the thread count and the date, headed by the processor and the commit. A peer that is not
+installed is skipped with a line saying so (`--install` installs the Debian packages first: never a project
+dependency, never needed by `make test`).
 
 Pairings (like with like):
   - parallel bonds against ESyS-Particle's RotBond (bonds with bending and twisting moments; a worker process per
@@ -95,6 +97,34 @@ def install(engines):
     subprocess.run(cmd, check=True, env={**os.environ, "DEBIAN_FRONTEND": "noninteractive"})
 
 
+def machine():
+    """The processor's model name as the kernel reports it, and the core count."""
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return f"{line.split(':', 1)[1].strip()}, {os.cpu_count()} cores"
+    except OSError:
+        pass
+    return f"{platform.machine()}, {os.cpu_count()} cores"
+
+
+def commit():
+    """The commit the build was made from, marked when the tree has uncommitted changes to tracked files."""
+    def git(*args):
+        return subprocess.run(["git", "-C", str(ROOT), *args], capture_output=True, text=True).stdout.strip()
+    head = git("rev-parse", "--short", "HEAD") or "unknown"
+    return head + (" with uncommitted changes" if git("status", "--porcelain", "--untracked-files=no") else "")
+
+
+def results_file(out, threads, suffix):
+    """A new file for each run (date, then a count): a run never overwrites the figures of one kept before."""
+    stem = f"peers_{threads}thread{suffix}_{datetime.date.today()}"
+    path, k = out / f"{stem}.md", 2
+    while path.exists():
+        path, k = out / f"{stem}_{k}.md", k + 1
+    return path
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--install", action="store_true", help="apt-get install the peers that are missing")
@@ -136,7 +166,7 @@ def main():
                 print(f"round {rnd + 1}, {name}, {label}: {peer:.3g} particle-steps/s; mesocrack {ours_model}: "
                       f"{ours:.3g}; ratio {ours / peer:.2f}", flush=True)
     lines = [f"`benchmarks/peers/peers_bench.py --specimens {a.specimens} --rounds {a.rounds} --threads {a.threads}`, "
-             f"{datetime.date.today()}, {platform.node()}, {os.cpu_count()} cores; particle-steps per second of "
+             f"{datetime.date.today()}, {machine()}, commit {commit()}; particle-steps per second of "
              "the stepping loop, each pairing run peer then mesocrack, the rounds one after another.", "",
              "| specimen | mesocrack against | peer (rounds) | mesocrack (rounds) | ratio: mean (range) |",
              "|---|---|---|---|---|"]
@@ -148,8 +178,10 @@ def main():
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     suffix = "" if a.pairings == ",".join(PAIRINGS) else "_" + a.pairings.replace(",", "_")
-    (out / f"peers_{a.threads}thread{suffix}.md").write_text("\n".join(lines) + "\n")
+    path = results_file(out, a.threads, suffix)
+    path.write_text("\n".join(lines) + "\n")
     print("\n".join(lines))
+    print(f"written to {path}")
 
 
 if __name__ == "__main__":
