@@ -1,8 +1,7 @@
 // Throughput benchmark of the engine's stepping loop (World::step), printed as markdown tables.
 //
-//  a) shared (throughput_shared.hpp): the specimen of benchmarks/specimens/README.md, on which Yade,
-//     ESyS-Particle and LAMMPS were timed; our figures beside theirs: unbonded linear contacts, parallel bonds
-//     beside them (the peers' 6-DOF bonds), and the Concrete Particle Model (beside Yade's CPM figures).
+//  a) shared (throughput_shared.hpp): the specimen of benchmarks/specimens/README.md with unbonded linear contacts,
+//     parallel bonds beside them, and the Concrete Particle Model; the peers are timed on it by make peers-bench.
 //  b) scaling (throughput_scaling.hpp): dense random 2D and 3D assemblies from 1e3 to 1e6 particles, and a
 //     parallel-bonded 3D block from 1e4 to 1e7 with its memory and bandwidth; the cost per particle-step must stay
 //     flat (O(N)).

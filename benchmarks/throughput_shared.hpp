@@ -1,6 +1,6 @@
 // Section a) of the throughput benchmark (benchmarks/throughput.cpp): the shared specimen of
-// benchmarks/specimens/README.md, on which Yade, ESyS-Particle and LAMMPS were timed, loaded as the README says,
-// and our figures beside theirs.
+// benchmarks/specimens/README.md, loaded as that README says, and our figures on it (the peers on the same machine:
+// make peers-bench).
 #pragma once
 #include <omp.h>
 
@@ -19,18 +19,6 @@
 #include "preprocess/spatial_order.hpp"
 
 namespace mc::bench {
-
-struct Peer {
-  const char* name;
-  double pss[4];  // n10k 1 core, n10k 2 cores, n50k 1 core, n50k 2 cores (particle-steps/s)
-};
-// benchmarks/specimens/README.md, "What the peers did on it".
-inline constexpr Peer kPeers[] = {
-    {"ESyS-Particle, RotBond (6-DOF bond)", {1.17e6, 1.40e6, 8.3e5, 1.15e6}},
-    {"Yade, CohFrict (6-DOF bond)", {6.0e5, 1.02e6, 4.8e5, 8.1e5}},
-    {"Yade, CPM", {6.4e5, 1.24e6, 5.3e5, 9.4e5}},
-    {"LAMMPS, central harmonic bonds + granular pair (no moments)", {9.3e6, 1.9e7, 6.6e6, 1.14e7}},
-};
 
 struct SharedRun {
   std::string name;
@@ -162,8 +150,8 @@ inline void print_shared_setup(const Options& opt, const Material& mat, bool bon
   std::printf("## a) The shared specimen (benchmarks/specimens): %s\n\n", shared_model(bonded, cpm));
   if (cpm)
     std::printf(
-        "Model: **Concrete Particle Model** (`ContactSet<Cpm,3>`, Šmilauer; the peers' line to compare is "
-        "Yade, CPM): cohesive contacts on every pair with d <= 1.05 (R_i + R_j) (R_I = 1.05, the README's bond "
+        "Model: **Concrete Particle Model** (`ContactSet<Cpm,3>`, Šmilauer; make peers-bench sets it against "
+        "Yade's CPM): cohesive contacts on every pair with d <= 1.05 (R_i + R_j) (R_I = 1.05, the README's bond "
         "pairs), k_N = E_c below, k_T/k_N = 0.2, c_T0 = 3.5 MPa, tan φ = 0.8, ε_f/ε_0 = 30, ε_0 = 1e-3 (no "
         "damage in the window), compressive hardening and the logarithmic surface on; no linear contacts: the "
         "keys below other than the modulus and density do not apply. Bond-steps/s = cohesive contacts x "
@@ -180,9 +168,8 @@ inline void print_shared_setup(const Options& opt, const Material& mat, bool bon
       "tag 2 moved down at constant velocity (all 6 DOFs fixed, prescribed v_z) for a z strain of 1e-4 "
       "after 2010 steps; %d warm-up steps, then %d timed steps%s; best of %d fresh runs.\n\n",
       mat.modulus, mat.kn_ks, mat.friction, mat.density,
-      bonded ? "The peers ran bonded specimens too: the ratios compare bond loop with bond loop."
-             : "The peers ran *bonded* specimens: the ratios below compare our unbonded contact loop with "
-               "their bond loops (section a, bonded, compares like with like).",
+      bonded ? "The peers' runs of this specimen (make peers-bench) are bonded too: bond loop against bond loop."
+             : "make peers-bench sets this unbonded loop against LIGGGHTS's Hertz contacts, which have no bonds.",
       kSharedWarmup, steps, opt.quick ? " (--quick: 200 instead of 2000)" : "", opt.reps);
 }
 
@@ -226,40 +213,29 @@ inline void print_shared_runs(const std::vector<SharedRun>& runs, int steps) {
       "\n\n");
 }
 
-// Our figures beside the peers', in the README's columns.
-inline void print_shared_peers(const std::vector<SharedRun>& runs, bool bonded, bool cpm) {
+// Our figures in the columns of benchmarks/specimens/README.md. No ratio to a peer: one counts only when both ran in
+// the same session on the same machine, which make peers-bench does.
+inline void print_shared_rates(const std::vector<SharedRun>& runs, bool bonded, bool cpm) {
   auto ours = [&](int col) -> double {
     const int spec = col / 2, ti = col % 2;
     return spec < static_cast<int>(runs.size()) ? runs[spec].t[ti].particle_steps() : kNaN;
   };
-  std::printf("Particle-steps per second, stepping loop only (peers: README table):\n\n");
+  std::printf(
+      "Particle-steps per second, stepping loop only (against the peers on this machine: make peers-bench):\n\n");
   std::printf("| engine, model | n10k, 1 core | n10k, 2 cores | n50k, 1 core | n50k, 2 cores |\n");
   std::printf("|---|---|---|---|---|\n");
-  for (const auto& p : kPeers)
-    std::printf("| %s | %s | %s | %s | %s |\n", p.name, sci(p.pss[0], 3).c_str(), sci(p.pss[1], 3).c_str(),
-                sci(p.pss[2], 3).c_str(), sci(p.pss[3], 3).c_str());
-  std::printf("| **mesocrack, %s (this run)** | **%s** | **%s** | **%s** | **%s** |\n\n", shared_model(bonded, cpm),
-              sci(ours(0)).c_str(), sci(ours(1)).c_str(), sci(ours(2)).c_str(), sci(ours(3)).c_str());
-  std::printf("Ratio ours / peer (> 1: mesocrack faster; %s):\n\n", cpm      ? "the CPM line is like with like"
-                                                                    : bonded ? "both sides bonded"
-                                                                             : "ours without bonds here");
-  if (bonded)
-    for (const auto& r : runs)
-      for (int ti = 0; ti < 2; ++ti)
-        std::printf("- %s, %d thread(s): bond-steps/s = %s\n", r.name.c_str(), kThreads[ti],
-                    sci(r.t[ti].candidates * r.t[ti].particle_steps() / r.t[ti].n).c_str());
-  if (bonded) std::printf("\n");
-  std::printf("| ours / peer | n10k, 1 core | n10k, 2 cores | n50k, 1 core | n50k, 2 cores |\n");
-  std::printf("|---|---|---|---|---|\n");
-  for (const auto& p : kPeers)
-    std::printf("| %s | %s | %s | %s | %s |\n", p.name, fix(ours(0) / p.pss[0], 2).c_str(),
-                fix(ours(1) / p.pss[1], 2).c_str(), fix(ours(2) / p.pss[2], 2).c_str(),
-                fix(ours(3) / p.pss[3], 2).c_str());
+  std::printf("| mesocrack, %s | %s | %s | %s | %s |\n\n", shared_model(bonded, cpm), sci(ours(0)).c_str(),
+              sci(ours(1)).c_str(), sci(ours(2)).c_str(), sci(ours(3)).c_str());
+  if (!bonded) return;
+  for (const auto& r : runs)
+    for (int ti = 0; ti < 2; ++ti)
+      std::printf("- %s, %d thread(s): bond-steps/s = %s\n", r.name.c_str(), kThreads[ti],
+                  sci(r.t[ti].candidates * r.t[ti].particle_steps() / r.t[ti].n).c_str());
   std::printf("\n");
 }
 
 inline void print_shared_memory(const std::vector<SharedRun>& runs) {
-  std::printf("Memory (peers, README: ESyS 44 MiB, Yade ~340 MiB with Python, for n10k):\n\n");
+  std::printf("Memory:\n\n");
   std::printf(
       "| specimen | VmRSS before the worlds | peak resident (VmHWM) | engine containers (estimate) | "
       "bytes / particle: particles | contacts (pairs + histories) | slots | gather lists | "
@@ -316,7 +292,7 @@ inline void section_shared(const Options& opt, bool bonded, bool cpm = false) {
   }
   print_shared_setup(opt, mat, bonded, cpm, steps);
   print_shared_runs(runs, steps);
-  print_shared_peers(runs, bonded, cpm);
+  print_shared_rates(runs, bonded, cpm);
   print_shared_memory(runs);
 }
 
