@@ -10,7 +10,8 @@
 //  d) deposition (throughput_deposition.hpp): a poured flow with a fixed and an adaptive Verlet skin.
 //
 // Only the stepping loop is timed (std::chrono::steady_clock); each timing is repeated (default 3) on a fresh
-// world and the best is kept. Ratios are always taken within one run: the machine is shared and noisy.
+// world, or for the bonded block as windows of one world, and the best is kept. Ratios are always taken within one
+// run: the machine is shared and noisy.
 //
 //   throughput [--quick] [--only shared|bonded|cpm|scaling|bonded-scaling|effects|deposition] [--specimen-dir DIR]
 //              [--reps N] [--max-bonded N]

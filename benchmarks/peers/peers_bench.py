@@ -109,7 +109,8 @@ def machine():
 
 
 def commit():
-    """The commit the build was made from, marked when the tree has uncommitted changes to tracked files."""
+    """This tree's checked-out commit, marked when tracked files have uncommitted changes. The build named by
+    --build is taken to be of this tree: a build folder made from another checkout is not detected."""
     def git(*args):
         return subprocess.run(["git", "-C", str(ROOT), *args], capture_output=True, text=True).stdout.strip()
     head = git("rev-parse", "--short", "HEAD") or "unknown"
