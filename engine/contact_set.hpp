@@ -56,10 +56,11 @@ class ContactSetBase {
   virtual void partition(const std::vector<int>& group_begin) = 0;
   virtual std::size_t far_count() const = 0;               // pairs whose B another block holds
   virtual std::vector<std::size_t> far_pairs() const = 0;  // their indices, in the order of their slots
-  // Forces into the particles' sums and the slots at `at` (Slots). Returns the energy dissipated this step when
-  // `energy` is set, else zeros.
+  // Forces into the particles' sums and the slots at `at` (Slots); with `zero_sums` (the first set of a pass) each
+  // block zeroes its group's sums before adding to them. Returns the energy dissipated this step when `energy` is
+  // set, else zeros.
   virtual Dissipated forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy,
-                            Slots<D>& slots, const SlotOffsets& at) = 0;
+                            bool zero_sums, Slots<D>& slots, const SlotOffsets& at) = 0;
   // Per-slot stiffnesses for the timestep. A pair that is neither persistent (bonded) nor within `margin` of
   // touching counts nothing (kInf: every pair counts).
   virtual void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness<D>& k,
@@ -147,9 +148,10 @@ class ContactSet final : public ContactSetBase<D> {
   std::size_t touching() const override { return touching_; }
   void set_wall_pairs(const std::vector<Pair>& c) override { merge(wall_pairs_, wall_states_, wall_dashpot_, c); }
 
-  Dissipated forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy, Slots<D>& s,
-                    const SlotOffsets& at) override {
-    return energy ? forces_impl<true>(p, walls, dt, s, at) : forces_impl<false>(p, walls, dt, s, at);
+  Dissipated forces(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool energy, bool zero_sums,
+                    Slots<D>& s, const SlotOffsets& at) override {
+    return energy ? forces_impl<true>(p, walls, dt, zero_sums, s, at)
+                  : forces_impl<false>(p, walls, dt, zero_sums, s, at);
   }
 
   void stiffness(const Particles<D>& p, const std::vector<Wall<D>>& walls, SlotStiffness<D>& k, const SlotOffsets& at,
@@ -387,8 +389,8 @@ class ContactSet final : public ContactSetBase<D> {
 
  private:
   template <bool Energy>
-  Dissipated forces_impl(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, Slots<D>& s,
-                         const SlotOffsets& at) {
+  Dissipated forces_impl(const Particles<D>& p, const std::vector<Wall<D>>& walls, double dt, bool zero_sums,
+                         Slots<D>& s, const SlotOffsets& at) {
     const std::size_t n = pairs_.size();
     // A local copy: the compiler then knows no store in the loop changes it, and hoists what depends on the
     // parameters alone (reciprocals) out of the loop.
@@ -410,6 +412,13 @@ class ContactSet final : public ContactSetBase<D> {
     for (int b = 0; b < blocks; ++b) {
       const std::size_t end = blocks_.first[b + 1];
       BlockTarget t{blocks_.near_end[b], at.far + blocks_.far[b], 0};
+      // Only this block adds to its group's sums (Slots): zeroed here, they are still in the cache when its pairs add
+      // to them, where a pass of their own beforehand would stream them from memory twice.
+      if (zero_sums)
+        for (int i = b == 0 ? 0 : blocks_.near_end[b - 1]; i < t.near_end; ++i) {
+          s.sum_force[i].setZero();
+          s.sum_moment[i].setZero();
+        }
       Dissipated dissipated;
       auto one = [&](std::size_t c) __attribute__((always_inline)) {
         const auto [i, j] = pairs_[c];

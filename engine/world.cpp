@@ -270,23 +270,15 @@ void World<D>::refresh_timestep(bool forces_follow) {
 }
 
 template <int D>
-void World<D>::clear_sums() {
-  const int n = particles.size();
-  // A split world's ghosts get partial sums here, which nothing reads: their owners send them whole.
-  slots_.sum_force = particles.f.data();
-#pragma omp parallel for schedule(static) if (n > kParallelMin)
-  for (int i = 0; i < n; ++i) {
-    particles.f[i].setZero();
-    slots_.sum_moment[i].setZero();
-  }
-}
-
-template <int D>
 void World<D>::compute_forces() {
-  clear_sums();  // each set's pass adds to them, set after set
+  // Each set's pass adds to the sums, set after set; the first zeroes them, group by group. A split world's ghosts get
+  // partial sums, which nothing reads: their owners send them whole.
+  slots_.sum_force = particles.f.data();
+  if (sets.empty())
+    for (int i = 0; i < particles.size(); ++i) particles.f[i].setZero(), slots_.sum_moment[i].setZero();
   Dissipated e;
   for (std::size_t s = 0; s < sets.size(); ++s) {
-    e += sets[s]->forces(particles, walls, dt, trace_energy, slots_, slot_offsets(s));
+    e += sets[s]->forces(particles, walls, dt, trace_energy, s == 0, slots_, slot_offsets(s));
     if (const auto pr = sets[s]->passing_through()) [[unlikely]] {
       if (!split_) throw InstabilityError(passing_message(*pr));
       // A split world fails at the end of the step, on every process together (agree_on_step).

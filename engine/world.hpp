@@ -237,7 +237,6 @@ class World {
   SlotOffsets slot_offsets(std::size_t s) const {
     return {offset_[s], wall_offset_[s], wall_moment_offset_[s], pair_offset_[s]};
   }
-  void clear_sums();  // the particles' forces and Slots::sum_moment, before a pass over the sets
   std::vector<int> gather_start_, gather_items_;  // items: each particle's slots as B
   // Kept forces only: each particle's contacts as B, ball pairs by their kept force (≥ 0) and wall contacts by
   // their slot (−1 − slot), set by set: what for_each_contact_of visits after the pairs as A.
