@@ -71,7 +71,8 @@ Footprint footprint(const World<D>& w) {
 // moment on B, live byte) written and read back by the gather; per particle its sums zeroed, added to and read by the
 // gather, its gather list,
 // the state the law of motion reads and writes, and the partners' positions, velocities, spins and radii the
-// contacts read. Caches only make the real traffic smaller; this is what a machine without them would move.
+// contacts read; and the timestep estimate's share of the steps between estimates. Caches only make the real traffic
+// smaller; this is what a machine without them would move.
 template <int D>
 double streamed_bytes_per_step(const World<D>& w) {
   const double n = w.particles.size();
@@ -85,7 +86,14 @@ double streamed_bytes_per_step(const World<D>& w) {
   const double motion = n * (2 * 3 * vec + 2 * vec + 2 * sizeof(double) + sizeof(FixMask) + vec);
   // The contacts' reads of the particles: position, velocity, spin, radius, stiffness factor.
   const double partners = n * (2 * vec + rot + 2 * sizeof(double));
-  return contacts + slot_traffic + gather + motion + partners;
+  // The timestep estimate, once every `every` steps (World::critical_timestep): pairs and states read once, the
+  // partners' positions, radii and stiffness factors, two stiffnesses per slot written and read back and its live
+  // byte set, two sums per particle zeroed, added to and read, the gather lists, masses and inertias.
+  const double d = sizeof(double);
+  const double estimate =
+      contacts / 2 + n * (vec + 2 * d) + slots * (2 * 2 * d + 1) + n * 3 * 2 * d + gather + n * 2 * d;
+  const int every = w.timestep.every;
+  return contacts + slot_traffic + gather + motion + partners + (every > 0 ? estimate / every : 0.0);
 }
 
 inline double cpu_now() {
