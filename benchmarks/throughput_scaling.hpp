@@ -177,19 +177,15 @@ inline void print_bonded_scaling(const std::vector<BondedRow>& rows, const doubl
   std::printf(
       "| N | ns / particle-step, 1 thread | 2 threads | containers per particle | against the block before, 1 thread | "
       "2 threads |\n|---|---|---|---|---|---|\n");
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    const BondedRow& r = rows[k];
-    const BondedRow& before = rows[k == 0 ? 0 : k - 1];
-    auto ratio = [&](const BondedRow& base, int ti) {
-      return fix(r.t[ti].ns_per_particle_step() / base.t[ti].ns_per_particle_step(), 2);
-    };
-    std::printf("| %d | %s | %s | %s | %s | %s |\n", r.t[0].n, ratio(rows[0], 0).c_str(), ratio(rows[0], 1).c_str(),
-                fix(static_cast<double>(r.t[0].fp.total()) / r.t[0].n /
-                        (static_cast<double>(rows[0].t[0].fp.total()) / rows[0].t[0].n),
-                    2)
-                    .c_str(),
-                k == 0 ? "" : ratio(before, 0).c_str(), k == 0 ? "" : ratio(before, 1).c_str());
-  }
+  // Row k against row `base`: time per particle-step on thread count ti, and containers per particle.
+  auto time_ratio = [&](std::size_t k, std::size_t base, int ti) {
+    return fix(rows[k].t[ti].ns_per_particle_step() / rows[base].t[ti].ns_per_particle_step(), 2);
+  };
+  auto memory = [&](std::size_t k) { return static_cast<double>(rows[k].t[0].fp.total()) / rows[k].t[0].n; };
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    std::printf("| %d | %s | %s | %s | %s | %s |\n", rows[k].t[0].n, time_ratio(k, 0, 0).c_str(),
+                time_ratio(k, 0, 1).c_str(), fix(memory(k) / memory(0), 2).c_str(),
+                k == 0 ? "" : time_ratio(k, k - 1, 0).c_str(), k == 0 ? "" : time_ratio(k, k - 1, 1).c_str());
   std::printf("\n");
 }
 

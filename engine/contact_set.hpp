@@ -415,7 +415,7 @@ class ContactSet final : public ContactSetBase<D> {
       // Only this block adds to its group's sums (Slots): zeroed here, they are still in the cache when its pairs add
       // to them, where a pass of their own beforehand would stream them from memory twice.
       if (zero_sums)
-        for (int i = b == 0 ? 0 : blocks_.near_end[b - 1]; i < t.near_end; ++i) {
+        for (int i = blocks_.group_first(b); i < t.near_end; ++i) {
           s.sum_force[i].setZero();
           s.sum_moment[i].setZero();
         }

@@ -30,6 +30,7 @@ struct PairBlocks {
     far[groups] = n_far;
   }
   int count() const { return static_cast<int>(near_end.size()); }
+  int group_first(int k) const { return k == 0 ? 0 : near_end[k - 1]; }  // block k's group starts where k − 1's ends
   std::size_t far_count() const { return far.empty() ? 0 : far.back(); }
   // The far pairs' indices, in the order of their slots.
   std::vector<std::size_t> far_pairs(const std::vector<Pair>& pairs) const {
