@@ -484,9 +484,17 @@ class ContactSet final : public ContactSetBase<D> {
       };
       std::size_t c = blocks_.first[b];
       if constexpr (!Energy && requires { LaneLaw<Model, D>::force; }) {
-        for (; c + kLanes <= end; c += kLanes)
+        // Beyond the caches a batch of lanes waits on its far partners B (one pair in fourteen has its B more
+        // than 4 096 particles further along the Morton curve). Asking for the B's of the batch after next while
+        // this one computes overlaps those misses with its arithmetic: 9–12 % less time per step on bonded blocks
+        // of 10^6 and 10^7, none in the cache (README, Throughput).
+        constexpr std::size_t kAhead = 2 * kLanes;
+        for (; c + kLanes <= end; c += kLanes) {
+          for (std::size_t k = c + kAhead; k < std::min(end, c + kAhead + kLanes); ++k)
+            p.prefetch_contact_fields(pairs_[k][1]);
           if (!LaneLaw<Model, D>::force(prm, p, &pairs_[c], &states_[c], s, t, at.pair + c, dt))
             for (int l = 0; l < kLanes; ++l) one(c + l);
+        }
       }
       for (; c < end; ++c) one(c);
       block_touching_[b] = t.touching;
