@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "engine/errors.hpp"
+#include "engine/parallel.hpp"
 
 namespace mc {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "engine/archive.hpp"
-#include "engine/contact_set.hpp"
+#include "engine/contact_set_base.hpp"
 #include "engine/decomposition.hpp"
 #include "engine/driven_group.hpp"
 #include "engine/exchange.hpp"
