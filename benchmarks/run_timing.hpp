@@ -69,10 +69,9 @@ Footprint footprint(const World<D>& w) {
 // Bytes one step moves through memory, counted from the arrays it streams (read once, written once when it
 // changes them): per contact its pair, its state read and written; per far pair and wall contact its slot (force,
 // moment on B, live byte) written and read back by the gather; per particle its sums zeroed, added to and read by the
-// gather, its gather list,
-// the state the law of motion reads and writes, and the partners' positions, velocities, spins and radii the
-// contacts read; and the timestep estimate's share of the steps between estimates. Caches only make the real traffic
-// smaller; this is what a machine without them would move.
+// gather, its gather list, the state the law of motion reads and writes, and the partners' positions, velocities,
+// spins and radii the contacts read; and the timestep estimate's share of the steps between estimates. Caches only
+// make the real traffic smaller; this is what a machine without them would move.
 template <int D>
 double streamed_bytes_per_step(const World<D>& w) {
   const double n = w.particles.size();

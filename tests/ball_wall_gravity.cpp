@@ -26,12 +26,6 @@ WallMaterial wall_material(double kn) {
   return m;
 }
 
-// The engine stores p.v as the velocity at t − Δt/2 (particles.hpp; move_particles does v += a Δt, then
-// x += v Δt, Tang 3.18–3.20). Starting from x(0) = x0 and v(−Δt/2) = v0 under a constant g, after n steps
-//   v(t_n − Δt/2) = v0 + n g Δt
-//   x(t_n)        = x0 + Σ_{k=1..n} (v0 + k g Δt) Δt = x0 + v0 t_n + ½ g t_n² + ½ g Δt t_n.
-// This is the exact trajectory x0 + u0 t + ½ g t² with u0 = v(0) = v0 + g Δt/2 (the velocity half a step
-// later): for a constant acceleration the scheme has no truncation error, only round-off.
 // A world whose only phase interacts with nothing: no contact set, so nothing zeroes the particles' force sums in a
 // force pass (World::compute_forces does), and no stiffness to take a timestep from (a fixed one).
 template <int D>
@@ -44,9 +38,14 @@ World<D> world_without_contacts() {
   return w;
 }
 
+// The engine stores p.v as the velocity at t − Δt/2 (particles.hpp; move_particles does v += a Δt, then
+// x += v Δt, Tang 3.18–3.20). Starting from x(0) = x0 and v(−Δt/2) = v0 under a constant g, after n steps
+//   v(t_n − Δt/2) = v0 + n g Δt
+//   x(t_n)        = x0 + Σ_{k=1..n} (v0 + k g Δt) Δt = x0 + v0 t_n + ½ g t_n² + ½ g Δt t_n.
+// This is the exact trajectory x0 + u0 t + ½ g t² with u0 = v(0) = v0 + g Δt/2 (the velocity half a step
+// later): for a constant acceleration the scheme has no truncation error, only round-off.
 template <int D>
-void free_fall(const Vec<D>& g, const Vec<D>& x0, const Vec<D>& v0, int steps, bool contact_model) {
-  World<D> w = contact_model ? test::single_model_world<D, Linear>(stiff_linear()) : world_without_contacts<D>();
+void free_fall(World<D> w, const Vec<D>& g, const Vec<D>& x0, const Vec<D>& v0, int steps) {
   const double r = 1e-3;
   w.particles.add(x0, r, 2600, 0);
   w.particles.v[0] = v0;
@@ -131,15 +130,18 @@ void rest_on_wall() {
 }  // namespace
 
 TEST_CASE("ball_free_fall_is_exact_for_central_differences") {
-  free_fall<2>(Vec<2>(0.7, -9.81), Vec<2>(0.01, 0.2), Vec<2>(0.3, 1.5), 5000, true);
-  free_fall<3>(Vec<3>(0.4, -0.3, -9.81), Vec<3>(0.01, -0.02, 0.2), Vec<3>(0.3, 0.1, 1.5), 5000, true);
+  free_fall<2>(test::single_model_world<2, Linear>(stiff_linear()), Vec<2>(0.7, -9.81), Vec<2>(0.01, 0.2),
+               Vec<2>(0.3, 1.5), 5000);
+  free_fall<3>(test::single_model_world<3, Linear>(stiff_linear()), Vec<3>(0.4, -0.3, -9.81), Vec<3>(0.01, -0.02, 0.2),
+               Vec<3>(0.3, 0.1, 1.5), 5000);
 }
 
 // The same flight in a world without any contact model: the weight must not pile up from step to step in the
 // particle's force sum (which holds the last step's resultant until the next force pass zeroes it).
 TEST_CASE("ball_free_fall_without_a_contact_model_is_exact_for_central_differences") {
-  free_fall<2>(Vec<2>(0.7, -9.81), Vec<2>(0.01, 0.2), Vec<2>(0.3, 1.5), 5000, false);
-  free_fall<3>(Vec<3>(0.4, -0.3, -9.81), Vec<3>(0.01, -0.02, 0.2), Vec<3>(0.3, 0.1, 1.5), 5000, false);
+  free_fall<2>(world_without_contacts<2>(), Vec<2>(0.7, -9.81), Vec<2>(0.01, 0.2), Vec<2>(0.3, 1.5), 5000);
+  free_fall<3>(world_without_contacts<3>(), Vec<3>(0.4, -0.3, -9.81), Vec<3>(0.01, -0.02, 0.2), Vec<3>(0.3, 0.1, 1.5),
+               5000);
 }
 
 TEST_CASE("ball_resting_on_wall_carries_mg") {
