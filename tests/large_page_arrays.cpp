@@ -44,17 +44,16 @@ std::string huge_page_setting() {
 
 }  // namespace
 
-TEST_CASE("large_page_arrays: a particle array of 4 MiB starts on a 2 MiB page, advised for huge pages") {
-  std::vector<mc::Vec<3>> x(4 * (std::size_t(1) << 20) / sizeof(mc::Vec<3>), mc::Vec<3>::Ones());
+TEST_CASE("particle_array_of_four_mebibytes_starts_on_a_large_page_advised_for_huge_pages") {
+  const std::vector<mc::Vec<3>> x(4 * (std::size_t(1) << 20) / sizeof(mc::Vec<3>));
   CHECK(reinterpret_cast<std::uintptr_t>(x.data()) % kLargePage == 0);
-  CHECK(x.back() == mc::Vec<3>::Ones());
   // Eligible when the kernel lets a program ask ("[always]" or "[madvise]"); no assertion where it reports nothing.
   const std::string setting = huge_page_setting();
   const int eligible = huge_page_eligible(x.data());
   if (eligible >= 0 && setting.find("[never]") == std::string::npos) CHECK(eligible == 1);
 }
 
-TEST_CASE("large_page_arrays: small arrays stay with malloc, unaligned to the large page") {
+TEST_CASE("small_arrays_stay_with_malloc_off_the_large_page_boundaries") {
   // 1000 blocks of 1 KiB: were they all put on 2 MiB boundaries, the process would reserve 2 GiB.
   std::vector<std::vector<double>> small(1000, std::vector<double>(128, 1.0));
   int on_boundary = 0;
