@@ -67,7 +67,8 @@ Footprint footprint(const World<D>& w) {
 }
 
 // Bytes one step moves through memory, counted from the arrays it streams (read once, written once when it
-// changes them): per contact its pair, its state read and written; per far pair and wall contact its slot (force,
+// changes them): per contact its pair and state read, and its history written back (a split state's properties
+// are only read: engine/state_columns.hpp); per far pair and wall contact its slot (force,
 // moment on B, live byte) written and read back by the gather; per particle its sums zeroed, added to and read by the
 // gather, its gather list, the state the law of motion reads and writes, and the partners' positions, velocities,
 // spins and radii the contacts read; and the timestep estimate's share of the steps between estimates. Caches only
@@ -75,8 +76,11 @@ Footprint footprint(const World<D>& w) {
 template <int D>
 double streamed_bytes_per_step(const World<D>& w) {
   const double n = w.particles.size();
-  double contacts = 0;
-  for (const auto& s : w.sets) contacts += static_cast<double>(s->memory_bytes()) * 2.0;  // read and write
+  double contacts = 0, read_only = 0;
+  for (const auto& s : w.sets) {
+    contacts += static_cast<double>(s->memory_bytes() + s->rewritten_bytes());
+    read_only += static_cast<double>(s->memory_bytes() - s->rewritten_bytes());
+  }
   const double slots = static_cast<double>(w.slot_count());
   const double vec = sizeof(Vec<D>), rot = sizeof(Rot<D>);
   const double slot_traffic = 2 * slots * (vec + rot + 1) + 4 * n * (vec + rot);
@@ -85,12 +89,12 @@ double streamed_bytes_per_step(const World<D>& w) {
   const double motion = n * (2 * 3 * vec + 2 * vec + 2 * sizeof(double) + sizeof(FixMask) + vec);
   // The contacts' reads of the particles: position, velocity, spin, radius, stiffness factor.
   const double partners = n * (2 * vec + rot + 2 * sizeof(double));
-  // The timestep estimate, once every `every` steps (World::critical_timestep): pairs and states read once, the
+  // The timestep estimate, once every `every` steps (World::critical_timestep): the pairs and, of a split state,
+  // the properties read once (a whole state's reads are not counted: of the parallel bond's, the properties), the
   // partners' positions, radii and stiffness factors, two stiffnesses per slot written and read back and its live
   // byte set, two sums per particle zeroed, added to and read, the gather lists, masses and inertias.
   const double d = sizeof(double);
-  const double estimate =
-      contacts / 2 + n * (vec + 2 * d) + slots * (2 * 2 * d + 1) + n * 3 * 2 * d + gather + n * 2 * d;
+  const double estimate = read_only + n * (vec + 2 * d) + slots * (2 * 2 * d + 1) + n * 3 * 2 * d + gather + n * 2 * d;
   const int every = w.timestep.every;
   return contacts + slot_traffic + gather + motion + partners + (every > 0 ? estimate / every : 0.0);
 }

@@ -23,7 +23,7 @@ struct LaneLaw<Cpm, 3> {
   // Contacts [c, c + kLanes) of `pairs` and `states`, results as store_slots puts them. False: nothing written, run
   // them one at a time.
   [[gnu::flatten]] static bool force(const CpmParams& prm, const Particles<3>& p, const Pair* pairs, State* states,
-                                     Slots<3>& s, BlockTarget& t, std::size_t record, double dt) {
+                                     const NoProperties*, Slots<3>& s, BlockTarget& t, std::size_t record, double dt) {
     if (prm.damage_time > 0 || prm.plastic_time > 0) return false;
     const Lane length = load_lanes<kStride>(&states[0].length);
     const LaneMask cohesive = length > 0.0;

@@ -43,20 +43,43 @@ struct BondSection {
 struct ParallelBond {
   static constexpr const char* name = "parallel_bond";
   using Params = ParallelBondParams;
+  // What the force pass rewrites every step.
   template <int D>
-  struct State {
+  struct History {
     Vec<D> fs = Vec<D>::Zero();       // linear contact shear force [N]
     Vec<D> bond_fs = Vec<D>::Zero();  // F̄^s [N]
     Rot<D> bond_ms = Rot<D>::Zero();  // M̄^s, bending [N m] (2D: the only moment)
     double bond_fn = 0;               // F̄^n [N], positive in compression
     double bond_mn = 0;               // M̄^n, twisting [N m] (3D)
-    double stiffness = 1;             // this bond's Ē_c over the scene's bond_modulus (heterogeneity, Tang §8.1.2)
-    // This bond's strengths σ̄_c, τ̄_c [Pa]; 0: no bond (never bonded or broken). Drawn numbers: in 3D single
-    // precision, as 6e-8 of a strength is far below its scatter, for 8 bytes less per pair. In 2D the state is
-    // aligned to 16 bytes (Vec<2>), so two floats would leave 8 bytes of padding instead: doubles there.
-    using Strength = std::conditional_t<D == 3, float, double>;
-    Strength tensile = 0, shear = 0;
   };
+  // What is drawn when the pair bonds, and reset when the bond breaks; the default: no bond.
+  template <int D>
+  struct Properties {
+    double stiffness = 1;  // this bond's Ē_c over the scene's bond_modulus (heterogeneity, Tang §8.1.2)
+    // This bond's strengths σ̄_c, τ̄_c [Pa]; 0: no bond (never bonded or broken). Drawn numbers, in single
+    // precision, as 6e-8 of a strength is far below its scatter: 8 bytes less per pair.
+    float tensile = 0, shear = 0;
+  };
+  // In 3D the contact set keeps the two parts in two arrays (engine/state_columns.hpp), so that the force pass
+  // writes 88 bytes per bond instead of 104. In 2D the history of 7 doubles would be padded to 8 by Vec<2>'s
+  // 16-byte alignment, and two floats would leave 8 bytes of padding too: the state stays one array of 10 doubles.
+  template <int D>
+  struct Split : History<D>, Properties<D> {};
+  template <int D>
+  struct Whole {
+    Vec<D> fs = Vec<D>::Zero(), bond_fs = Vec<D>::Zero();
+    Rot<D> bond_ms = Rot<D>::Zero();
+    double bond_fn = 0, bond_mn = 0, stiffness = 1, tensile = 0, shear = 0;
+  };
+  template <int D>
+  using State = std::conditional_t<D == 3, Split<D>, Whole<D>>;
+  // The state of a pair that holds no bond: its grain contact's shear force alone.
+  template <int D>
+  static State<D> unbonded(const State<D>& s) {
+    State<D> u;
+    u.fs = s.fs;
+    return u;
+  }
   // What the force pass needs of a pair, computed every step from the radii (cheaper than storing it: two
   // divisions and a few products, against 56 more bytes per bond to stream).
   struct Coeffs {
@@ -104,10 +127,11 @@ struct ParallelBond {
   // A new bond: stress-free, with its own strengths drawn from the scene's distributions (Tang Table 5.1).
   template <int D, class Normal>
   static void install(const Params& p, const ContactGeometry<D>&, State<D>& s, Normal& normal) {
-    s = State<D>{s.fs};
+    s = unbonded<D>(s);
     s.stiffness = normal(p.modulus, p.modulus_std, p.modulus_weibull) / p.modulus;
-    s.tensile = static_cast<typename State<D>::Strength>(normal(p.tensile_mean, p.tensile_std, p.tensile_weibull));
-    s.shear = static_cast<typename State<D>::Strength>(normal(p.shear_mean, p.shear_std, p.shear_weibull));
+    using Strength = decltype(s.tensile);
+    s.tensile = static_cast<Strength>(normal(p.tensile_mean, p.tensile_std, p.tensile_weibull));
+    s.shear = static_cast<Strength>(normal(p.shear_mean, p.shear_std, p.shear_weibull));
   }
 
   // Tang (3.41): the beam's largest tensile and shear stresses.
@@ -138,7 +162,7 @@ struct ParallelBond {
   template <int D, bool Energy>
   [[gnu::always_inline]] static ContactForce<D> force(const Coeffs& c, const ContactGeometry<D>& g, State<D>& s) {
     ContactForce<D> out = GrainContact::force<D, Energy>(c.contact, g, s);  // the grain contact, in parallel
-    if (!bonded(s)) return out;
+    if (!bonded<D>(s)) return out;
     const double dt = g.dt;
     const State<D> before = s;
     const double vn = g.v_rel.dot(g.n);
@@ -161,7 +185,7 @@ struct ParallelBond {
       out.event.mode = CrackMode::Shear;
     if (out.event.mode != CrackMode::None) [[unlikely]] {
       if constexpr (Energy) out.fractured += bond_energy<D>(c, before, s);  // released with the crack
-      s = State<D>{s.fs};
+      s = unbonded<D>(s);
       return out;
     }
     out.force += s.bond_fn * g.n + s.bond_fs;
@@ -175,7 +199,7 @@ struct ParallelBond {
   template <int D>
   static ContactStiffness stiffness(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
     ContactStiffness k = GrainContact::stiffness<D>(c.contact, g, s);
-    if (!bonded(s)) return k;
+    if (!bonded<D>(s)) return k;
     k.normal += c.kn_a * s.stiffness;
     k.shear += c.ks_a * s.stiffness;
     k.rotational += (c.kn_i + c.ks_j) * s.stiffness;
@@ -198,7 +222,7 @@ struct ParallelBond {
   }
   template <int D>
   static double strain_energy(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
-    return GrainContact::strain_energy<D>(c.contact, g, s) + (bonded(s) ? strain_energy_bond<D>(c, s) : 0.0);
+    return GrainContact::strain_energy<D>(c.contact, g, s) + (bonded<D>(s) ? strain_energy_bond<D>(c, s) : 0.0);
   }
   template <int D>
   static double released_energy(const Coeffs& c, const State<D>& s) {
@@ -206,7 +230,7 @@ struct ParallelBond {
   }
   template <int D>
   static bool persistent(const State<D>& s) {
-    return bonded(s);
+    return bonded<D>(s);
   }
 };
 

@@ -16,16 +16,20 @@ namespace mc {
 
 template <>
 struct LaneLaw<ParallelBond, 3> {
-  using State = ParallelBond::State<3>;
-  static constexpr int kStride = sizeof(State) / sizeof(double), kStrideF = sizeof(State) / sizeof(float);
+  using History = ParallelBond::History<3>;
+  using Properties = ParallelBond::Properties<3>;
+  static constexpr int kStride = sizeof(History) / sizeof(double);
+  static constexpr int kStrideP = sizeof(Properties) / sizeof(double), kStridePF = sizeof(Properties) / sizeof(float);
 
-  // Contacts [c, c + kLanes) of `pairs` and `states`, results as store_slots puts them. False: nothing written, run
-  // them one at a time.
+  // Contacts [c, c + kLanes) of `pairs`, `states` and `props`, results as store_slots puts them. False: nothing
+  // written, run them one at a time. The properties are only read: an unbonded pair's are the defaults
+  // (ParallelBond::unbonded), so a pair found apart keeps them as they are.
   [[gnu::flatten]] static bool force(const ParallelBondParams& prm, const Particles<3>& p, const Pair* pairs,
-                                     State* states, Slots<3>& s, BlockTarget& t, std::size_t record, double dt) {
+                                     History* states, const Properties* props, Slots<3>& s, BlockTarget& t,
+                                     std::size_t record, double dt) {
     if (prm.contact.damping_ratio > 0) return false;
-    const Lane tensile = load_lanes<kStrideF>(&states[0].tensile);
-    const Lane shear = load_lanes<kStrideF>(&states[0].shear);
+    const Lane tensile = load_lanes<kStridePF>(&props[0].tensile);
+    const Lane shear = load_lanes<kStridePF>(&props[0].shear);
     const LaneMask bonded = tensile > 0.0;
     LaneGeometry g;
     if (!lane_geometry(p, pairs, bonded, dt, g)) return false;
@@ -60,7 +64,7 @@ struct LaneLaw<ParallelBond, 3> {
     const Lane3 grain = pick(touching, fn * n + fs, 0.0);
 
     // The bond, Tang (3.37), its stresses (3.41).
-    const Lane kdt = load_lanes<kStride>(&states[0].stiffness) * dt;
+    const Lane kdt = load_lanes<kStrideP>(&props[0].stiffness) * dt;
     const Lane bfn = load_lanes<kStride>(&states[0].bond_fn) - kn_a * vn * kdt;
     const Lane3 bfs =
         carry_shear(load_lanes3<kStride>(states[0].bond_fs.data()), n, angle, turn, bonded, tilted) - ks_a * vs * kdt;
@@ -88,9 +92,6 @@ struct LaneLaw<ParallelBond, 3> {
     keep3(states[0].bond_ms.data(), bms, bonded);
     keep(&states[0].bond_fn, bfn, bonded, 0.0);
     keep(&states[0].bond_mn, bmn, bonded, 0.0);
-    store_lanes<kStrideF>(&states[0].tensile, pick(kept, tensile, 0.0));
-    store_lanes<kStrideF>(&states[0].shear, pick(kept, shear, 0.0));
-    store_lanes<kStride>(&states[0].stiffness, pick(kept, load_lanes<kStride>(&states[0].stiffness), 1.0));
     store_slots(s, t, record, p, g, force, &moment);
     return true;
   }

@@ -26,13 +26,16 @@
 #include "engine/particles.hpp"
 #include "engine/random.hpp"
 #include "engine/slots.hpp"
+#include "engine/state_columns.hpp"
 #include "engine/wall.hpp"
 
 namespace mc {
 
 // A model may also give its law for kLanes consecutive contacts at once (engine/lanes.hpp): a specialisation of
-// LaneLaw with a static force(params, particles, pairs, states, slots, first slot, dt) that returns false, having
-// written nothing, when any of them needs the one-contact law. Steps without energy tracing use it.
+// LaneLaw with a static force(params, particles, pairs, histories, properties, slots, first slot, dt) that returns
+// false, having written nothing, when any of them needs the one-contact law. Steps without energy tracing use it.
+// It never writes the properties (state_columns.hpp): a batch in which a bond is made or broken goes back to the
+// one-contact law.
 template <class Model, int D>
 struct LaneLaw {};
 
@@ -41,6 +44,7 @@ requires ContactModel<Model, D>
 class ContactSet final : public ContactSetBase<D> {
  public:
   using State = typename Model::template State<D>;
+  using Columns = StateColumns<Model, D>;
   // States hold plain numbers (fixed-size Eigen vectors, doubles, flags): checkpoints copy them as bytes.
   static_assert(sizeof(State) % sizeof(double) == 0 || sizeof(State) < sizeof(double));
 
@@ -49,9 +53,7 @@ class ContactSet final : public ContactSetBase<D> {
   const char* model() const override { return Model::name; }
   const std::vector<Pair>& pairs() const override { return pairs_; }
   const std::vector<Pair>& wall_pairs() const override { return wall_pairs_; }
-  std::vector<State>& states() { return states_; }
-  const std::vector<State>& states() const { return states_; }
-  const std::vector<State>& wall_states() const { return wall_states_; }
+  State state(std::size_t c) const { return states_.get(c); }
 
   void set_pairs(const std::vector<Pair>& c) override { merge(pairs_, states_, dashpot_, c); }
 
@@ -83,14 +85,14 @@ class ContactSet final : public ContactSetBase<D> {
         const bool is_far = j >= near_end;
         const std::size_t slot = is_far ? far++ : 0;
         const double reach = p.radius[i] + p.radius[j] + margin;
-        if ((p.x[j] - p.x[i]).squaredNorm() >= reach * reach && !Model::template persistent<D>(states_[c])) {
+        if ((p.x[j] - p.x[i]).squaredNorm() >= reach * reach && !Model::template persistent<D>(states_.get(c))) {
           if (is_far) k.kt(slot) = k.krb(slot) = 0;
           continue;
         }
         Vec<D> ca, cb;
         const auto g = ball_geometry(p, i, j, 0.0, ca, cb);
-        const auto st =
-            Model::template stiffness<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g, states_[c]);
+        const auto st = Model::template stiffness<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g,
+                                                     states_.get(c));
         const double kt = st.normal + st.shear;
         const double kr_b = st.shear * cb.squaredNorm() + st.rotational;
         k.sum_kt(i) += kt;
@@ -115,7 +117,7 @@ class ContactSet final : public ContactSetBase<D> {
         continue;
       }
       const auto st = Model::template stiffness<D>(Model::template wall<D>(params_, walls[w].material, g.r_b, g.k_b), g,
-                                                   wall_states_[c]);
+                                                   wall_states_.get(c));
       k.kt(slot) = st.normal + st.shear;
       k.krb(slot) = st.shear * cb.squaredNorm() + st.rotational;
     }
@@ -131,15 +133,20 @@ class ContactSet final : public ContactSetBase<D> {
   const std::vector<PairEvent<D>>& events() const override { return events_; }
   std::optional<Pair> passing_through() const override { return passing_; }
 
-  std::size_t memory_bytes() const override {
-    return (pairs_.capacity() + wall_pairs_.capacity()) * sizeof(Pair) +
-           (states_.capacity() + wall_states_.capacity()) * sizeof(State) +
+  std::size_t rewritten_bytes() const override {
+    return states_.history_bytes() + wall_states_.history_bytes() +
            (dashpot_.capacity() + wall_dashpot_.capacity()) * sizeof(Vec<D>);
+  }
+  std::size_t memory_bytes() const override {
+    return (pairs_.capacity() + wall_pairs_.capacity()) * sizeof(Pair) + states_.capacity_bytes() +
+           wall_states_.capacity_bytes() + (dashpot_.capacity() + wall_dashpot_.capacity()) * sizeof(Vec<D>);
   }
 
   std::size_t bond_count() const override {
     if constexpr (BondModel<Model, D>) {
-      return std::count_if(states_.begin(), states_.end(), [](const State& s) { return Model::template bonded<D>(s); });
+      std::size_t n = 0;
+      for (std::size_t c = 0; c < states_.size(); ++c) n += Model::template bonded<D>(states_.get(c));
+      return n;
     } else {
       return 0;
     }
@@ -154,7 +161,10 @@ class ContactSet final : public ContactSetBase<D> {
         PairRandom rng(seed, pr);
         Vec<D> ca, cb;
         const auto g = ball_geometry(p, pr[0], pr[1], 0.0, ca, cb);
-        Model::template install<D>(params_, g, states_[it - pairs_.begin()], rng);
+        const std::size_t c = it - pairs_.begin();
+        State st = states_.get(c);
+        Model::template install<D>(params_, g, st, rng);
+        states_.set(c, st);
         ++n;
       }
       return n;
@@ -188,7 +198,7 @@ class ContactSet final : public ContactSetBase<D> {
         Vec<D> ca, cb;
         const auto g = ball_geometry(p, pairs_[c][0], pairs_[c][1], 0.0, ca, cb);
         part[b].add(Model::template strain_energy<D>(Model::template pair<D>(params_, g.r_a, g.r_b, g.k_a, g.k_b), g,
-                                                     states_[c]));
+                                                     states_.get(c)));
       }
     }
     ExactSum e;
@@ -198,7 +208,7 @@ class ContactSet final : public ContactSetBase<D> {
       Vec<D> cw, cb;
       const auto g = wall_geometry(p, walls[w], j, 0.0, cw, cb);
       e.add(Model::template strain_energy<D>(Model::template wall<D>(params_, walls[w].material, g.r_b, g.k_b), g,
-                                             wall_states_[c]));
+                                             wall_states_.get(c)));
     }
     return e;
   }
@@ -206,9 +216,9 @@ class ContactSet final : public ContactSetBase<D> {
   std::vector<std::uint8_t> save() const override {
     std::vector<std::uint8_t> out;
     put_array(out, pairs_);
-    put_array(out, states_);
+    states_.put(out);
     put_array(out, wall_pairs_);
-    put_array(out, wall_states_);
+    wall_states_.put(out);
     put_array(out, dashpot_);
     put_array(out, wall_dashpot_);
     return out;
@@ -240,19 +250,17 @@ class ContactSet final : public ContactSetBase<D> {
   void load(const std::vector<std::uint8_t>& in) override {
     std::size_t at = 0;
     take_array(in, at, pairs_);
-    take_array(in, at, states_);
+    states_.take(in, at);
     take_array(in, at, wall_pairs_);
-    take_array(in, at, wall_states_);
+    wall_states_.take(in, at);
     take_array(in, at, dashpot_);
     take_array(in, at, wall_dashpot_);
   }
 
-  bool persistent(std::size_t c) const override { return Model::template persistent<D>(states_[c]); }
+  bool persistent(std::size_t c) const override { return Model::template persistent<D>(states_.get(c)); }
   std::size_t history_size() const override { return sizeof(State) + sizeof(Vec<D>); }
   void history(std::size_t c, bool wall, std::vector<std::uint8_t>& out) const override {
-    const State& st = wall ? wall_states_[c] : states_[c];
-    const auto* b = reinterpret_cast<const std::uint8_t*>(&st);
-    out.insert(out.end(), b, b + sizeof(State));
+    (wall ? wall_states_ : states_).append_bytes(c, out);
     const auto& dp = wall ? wall_dashpot_ : dashpot_;
     const Vec<D> d = c < dp.size() ? dp[c] : Vec<D>::Zero();
     const auto* e = reinterpret_cast<const std::uint8_t*>(d.data());
@@ -277,19 +285,17 @@ class ContactSet final : public ContactSetBase<D> {
     const bool traced = !dashpot.empty();
     const std::size_t size = history_size();
     std::vector<Pair> np;
-    std::vector<State> ns;
+    Columns ns;
     std::vector<Vec<D>> nd;
     std::size_t a = 0, b = 0;
     while (a < own.size() || b < pairs.size()) {
       if (b == pairs.size() || (a < own.size() && own[a] <= pairs[b])) {
         if (b < pairs.size() && own[a] == pairs[b]) ++b;
-        np.push_back(own[a]), ns.push_back(states[a]);
+        np.push_back(own[a]), ns.push_back(states.get(a));
         if (traced) nd.push_back(dashpot[a]);
         ++a;
       } else {
-        State st;
-        std::memcpy(static_cast<void*>(&st), histories.data() + b * size, sizeof(State));
-        np.push_back(pairs[b]), ns.push_back(st);
+        np.push_back(pairs[b]), ns.push_back(Columns::from_bytes(histories.data() + b * size));
         if (traced) {
           Vec<D> d;
           std::memcpy(d.data(), histories.data() + b * size + sizeof(State), sizeof(Vec<D>));
@@ -338,16 +344,16 @@ class ContactSet final : public ContactSetBase<D> {
       Dissipated dissipated;
       auto one = [&](std::size_t c) __attribute__((always_inline)) {
         const auto [i, j] = pairs_[c];
-        State& st = states_[c];
         const bool far = j >= t.near_end;
         const std::size_t slot = far ? t.far++ : 0;
         const Vec<D> d = p.x[j] - p.x[i];
         const double reach = p.radius[i] + p.radius[j];
-        if (d.squaredNorm() >= reach * reach && !Model::template persistent<D>(st)) {
+        if (d.squaredNorm() >= reach * reach && !Model::template persistent<D>(states_.get(c))) {
           if constexpr (Energy) {
             if (counted(i))
               dissipated.contacts.add(Model::template released_energy<D>(
-                  Model::template pair<D>(prm, p.radius[i], p.radius[j], p.stiffness[i], p.stiffness[j]), st));
+                  Model::template pair<D>(prm, p.radius[i], p.radius[j], p.stiffness[i], p.stiffness[j]),
+                  states_.get(c)));
             if (dashpot_[c].squaredNorm() > 0) {  // the last step's dashpot force acted as the pair parted
               Vec<D> ca, cb;
               if (counted(i))
@@ -355,7 +361,7 @@ class ContactSet final : public ContactSetBase<D> {
               dashpot_[c].setZero();
             }
           }
-          st = State{};  // apart and unbonded: no force, no history
+          states_.set(c, State{});  // apart and unbonded: no force, no history
           if (kept) s.pair_force[at.pair + c].setZero();
           if (far && s.live[slot]) {
             s.f[slot].setZero();
@@ -369,10 +375,10 @@ class ContactSet final : public ContactSetBase<D> {
         if (g.overlap > 0.5 * std::min(g.r_a, g.r_b)) [[unlikely]]
           block_passing_[b] = std::min(block_passing_[b], c);
         // The model works on a copy in registers; one store back.
-        State local = st;
+        State local = states_.get(c);
         const auto r =
             Model::template force<D, Energy>(Model::template pair<D>(prm, g.r_a, g.r_b, g.k_a, g.k_b), g, local);
-        st = local;
+        states_.set(c, local);
         const Rot<D> mb = Dim<D>::cross(cb, r.force) + r.moment;
         s.sum_force[i] -= r.force;
         s.sum_moment[i] += Dim<D>::cross(ca, Vec<D>(-r.force)) - r.moment;
@@ -408,7 +414,8 @@ class ContactSet final : public ContactSetBase<D> {
         for (; c + kLanes <= end; c += kLanes) {
           for (std::size_t k = c + kAhead; k < std::min(end, c + kAhead + kLanes); ++k)
             p.prefetch_contact_fields(pairs_[k][1]);
-          if (!LaneLaw<Model, D>::force(prm, p, &pairs_[c], &states_[c], s, t, at.pair + c, dt))
+          if (!LaneLaw<Model, D>::force(prm, p, &pairs_[c], states_.history(c), states_.properties(c), s, t,
+                                        at.pair + c, dt))
             for (int l = 0; l < kLanes; ++l) one(c + l);
         }
       }
@@ -438,8 +445,10 @@ class ContactSet final : public ContactSetBase<D> {
       const auto g = wall_geometry(p, walls[w], j, dt, cw, cb);
       if (g.overlap > 0.5 * g.r_b && !passing_) [[unlikely]]
         passing_ = Pair{-1 - w, j};
-      const auto r = Model::template force<D, Energy>(Model::template wall<D>(prm, walls[w].material, g.r_b, g.k_b), g,
-                                                      wall_states_[c]);
+      State st = wall_states_.get(c);
+      const auto r =
+          Model::template force<D, Energy>(Model::template wall<D>(prm, walls[w].material, g.r_b, g.k_b), g, st);
+      wall_states_.set(c, st);
       s.f[slot] = r.force;
       s.wall_moment[at.wall_moment + c] = Dim<D>::cross(cw, Vec<D>(-r.force)) - r.moment;  // about its origin
       s.mb[slot] = Dim<D>::cross(cb, r.force) + r.moment;
@@ -455,22 +464,21 @@ class ContactSet final : public ContactSetBase<D> {
 
   // Sorted merge of the old (pair, state) list with the new candidates.
   // The dashpot forces of the last step (energy tracing only) travel with their pairs.
-  void merge(std::vector<Pair>& pairs, std::vector<State>& states, std::vector<Vec<D>>& dashpot,
-             const std::vector<Pair>& cand) {
+  void merge(std::vector<Pair>& pairs, Columns& states, std::vector<Vec<D>>& dashpot, const std::vector<Pair>& cand) {
     const bool traced = !dashpot.empty();
     std::vector<Pair> np;
-    std::vector<State> ns;
+    Columns ns;
     std::vector<Vec<D>> nd;
     np.reserve(cand.size());
     ns.reserve(cand.size());
     auto keep = [&](std::size_t a) {
-      np.push_back(pairs[a]), ns.push_back(states[a]);
+      np.push_back(pairs[a]), ns.push_back(states.get(a));
       if (traced) nd.push_back(dashpot[a]);
     };
     std::size_t a = 0, b = 0;
     while (a < pairs.size() || b < cand.size()) {
       if (b == cand.size() || (a < pairs.size() && pairs[a] < cand[b])) {
-        if (Model::template persistent<D>(states[a])) keep(a);
+        if (Model::template persistent<D>(states.get(a))) keep(a);
         ++a;
       } else if (a < pairs.size() && pairs[a] == cand[b]) {
         keep(a);
@@ -489,15 +497,14 @@ class ContactSet final : public ContactSetBase<D> {
   // Keeps the pairs that keep(pair, renumbered) accepts, renumbered; the order stays sorted, as the
   // renumbering keeps the particles' order.
   template <class Keep>
-  static void renumber_list(std::vector<Pair>& pairs, std::vector<State>& states, std::vector<Vec<D>>& dashpot,
-                            Keep&& keep) {
+  static void renumber_list(std::vector<Pair>& pairs, Columns& states, std::vector<Vec<D>>& dashpot, Keep&& keep) {
     const bool traced = !dashpot.empty();
     std::size_t out = 0;
     for (std::size_t c = 0; c < pairs.size(); ++c) {
       Pair renumbered;
       if (!keep(pairs[c], renumbered)) continue;
       pairs[out] = renumbered;
-      states[out] = states[c];
+      states.copy(c, out);
       if (traced) dashpot[out] = dashpot[c];
       ++out;
     }
@@ -508,7 +515,7 @@ class ContactSet final : public ContactSetBase<D> {
 
   typename Model::Params params_;
   std::vector<Pair> pairs_, wall_pairs_;
-  std::vector<State> states_, wall_states_;
+  Columns states_, wall_states_;
   std::vector<Vec<D>> dashpot_, wall_dashpot_;  // last step's dashpot forces, only while energy is traced
   std::vector<std::vector<PairEvent<D>>> block_events_;
   std::vector<PairEvent<D>> events_;

@@ -74,7 +74,8 @@ class ContactSetBase {
   // Pairs that gave a force in the last pass, of those whose A is held as its own (0 until a pass after the lists
   // were last set).
   virtual std::size_t touching() const = 0;
-  virtual std::size_t memory_bytes() const = 0;  // pairs, histories and side arrays, as allocated
+  virtual std::size_t memory_bytes() const = 0;     // pairs, histories and side arrays, as allocated
+  virtual std::size_t rewritten_bytes() const = 0;  // of those, what a force pass writes back: the histories
   // The whole history as bytes (checkpoints): pairs, wall pairs and states.
   virtual std::vector<std::uint8_t> save() const = 0;
   virtual void load(const std::vector<std::uint8_t>& bytes) = 0;

@@ -22,8 +22,10 @@ std::vector<double> drawn_tensile_strengths(const ParallelBondParams& p, std::ui
   w.init();
   w.install_bonds(1e-6, seed);
   std::vector<double> s;
-  for (const auto& st : static_cast<const ContactSet<ParallelBond, 2>&>(*w.sets[0]).states())
-    if (ParallelBond::bonded<2>(st)) s.push_back(moduli ? st.stiffness * p.modulus : st.tensile);
+  const auto& set = static_cast<const ContactSet<ParallelBond, 2>&>(*w.sets[0]);
+  for (std::size_t c = 0; c < set.pairs().size(); ++c)
+    if (const auto st = set.state(c); ParallelBond::bonded<2>(st))
+      s.push_back(moduli ? st.stiffness * p.modulus : st.tensile);
   return s;
 }
 
@@ -72,7 +74,7 @@ TEST_CASE("weibull_bond_moduli_have_the_moments_of_tang_8_4_and_set_each_bonds_s
   auto w = test::held_bonded_pair<2, ParallelBond>(p, r, r, 0.0);
   w.particles.v[1][0] = v;
   w.step();
-  const auto& st = static_cast<const ContactSet<ParallelBond, 2>&>(*w.sets[0]).states()[0];
+  const auto st = static_cast<const ContactSet<ParallelBond, 2>&>(*w.sets[0]).state(0);
   const double area = 2 * r;                    // 2D, λ̄ = 1, Tang (3.39)
   CHECK(st.stiffness != doctest::Approx(1.0));  // this bond drew its own modulus
   CHECK(-st.bond_fn == doctest::Approx(st.stiffness * lambda / (2 * r) * area * v * w.dt).epsilon(1e-12));

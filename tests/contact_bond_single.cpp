@@ -46,7 +46,7 @@ void tension_break() {
   CHECK(last <= p.normal_mean);
   w.step();
   CHECK(w.contact_force(0, 0).norm() == 0.0);  // apart and unbonded: no force
-  CHECK(!ContactBond::bonded<D>(set.states()[0]));
+  CHECK(!ContactBond::bonded<D>(set.state(0)));
   // Work of the moving particle = energy released by the crack (the stretched spring). Work is booked with
   // the force at the start of each step: the sum differs from ∫F dx by about one of the 4000 loading steps.
   w.update_energy();

@@ -155,7 +155,7 @@ TEST_CASE("cpm: cohesive contacts within the interaction radius, non-cohesive on
     const double expected = overlap > 0 ? 30e9 * overlap / (2 * r) * M_PI * r * r : 0.0;  // force on B along +x
     max_dev = std::max(max_dev, std::abs(f - expected));
     peak = std::max(peak, expected);
-    if (it != pairs.end()) CHECK(!Cpm::bonded<3>(set.states()[it - pairs.begin()]));
+    if (it != pairs.end()) CHECK(!Cpm::bonded<3>(set.state(it - pairs.begin())));
   }
   MESSAGE("non-cohesive contact: peak force ", peak, " N, max deviation ", max_dev, " N");
   CHECK(peak > 0);

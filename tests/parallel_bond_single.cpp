@@ -69,7 +69,7 @@ Outcome drive(const ParallelBondParams& p, Load load) {
   for (int step = 0; step < 10000; ++step) {
     w.step();
     motion += rate * w.dt;  // the deformation applied by the force pass of this step
-    const auto& s = set.states().at(0);
+    const auto s = set.state(0);
     if (!ParallelBond::bonded<D>(s)) {
       out.cracks = w.cracks.size();
       REQUIRE(out.cracks == 1);

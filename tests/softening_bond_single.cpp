@@ -23,8 +23,8 @@ SofteningBondParams params(double normal, double shear) {
 }
 
 template <int D>
-const SofteningBond::State<D>& bond_of(const World<D>& w) {
-  return static_cast<const ContactSet<SofteningBond, D>&>(*w.sets[0]).states()[0];
+SofteningBond::State<D> bond_of(const World<D>& w) {
+  return static_cast<const ContactSet<SofteningBond, D>&>(*w.sets[0]).state(0);
 }
 
 // A pull along the line of centres until the bond breaks: at each force pass the opening since bonding and

@@ -30,7 +30,7 @@ struct CpmPair {
   double length = 0, area = 0;                // L (centre distance at bonding), A = π r²
   std::vector<double> eps, sigma_n, sigma_t;  // per force pass: ε_N, σ_N (tension positive), |σ_T|
 
-  const Cpm::State<3>& state() const { return static_cast<const ContactSet<Cpm, 3>&>(*w.sets[0]).states()[0]; }
+  Cpm::State<3> state() const { return static_cast<const ContactSet<Cpm, 3>&>(*w.sets[0]).state(0); }
   Vec<3> d() const { return w.particles.x[1] - w.particles.x[0]; }
   double strain() const { return (d().norm() - length) / length; }
 
