@@ -5,7 +5,9 @@
 // Optional traits, each asked for with `requires`:
 //   BondModel: `bondable`, bonded(State), install(Params, geometry, State, PairRandom&): the model glues pairs;
 //   `yields`: its bonds report first yields to the crack log too (softening, damage);
-//   `only_3d`: a law for spheres only; interaction_radius(Params): it bonds by centre distance (CPM's R_I).
+//   `only_3d`: a law for spheres only; interaction_radius(Params): it bonds by centre distance (CPM's R_I);
+//   History<D> and Properties<D> that State<D> derives from: the contact set keeps them in two arrays, and a force
+//   pass writes no byte of the properties (engine/state_columns.hpp).
 #pragma once
 #include <concepts>
 
