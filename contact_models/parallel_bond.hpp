@@ -237,6 +237,8 @@ struct ParallelBond {
 // Checkpoints copy states as bytes: no padding, whose bytes would be undetermined.
 static_assert(sizeof(ParallelBond::State<2>) == 10 * sizeof(double) &&
               sizeof(ParallelBond::State<3>) == 13 * sizeof(double));
+// The 3D contact sets keep history and properties apart (engine/state_columns.hpp); the 2D ones keep states whole.
+static_assert(SplitState<ParallelBond, 3> && !SplitState<ParallelBond, 2>);
 
 // Compiled in parallel_bond.cpp.
 extern template class ContactSet<ParallelBond, 2>;

@@ -15,12 +15,18 @@
 namespace mc {
 
 template <class Model, int D>
-concept SplitState = requires {
+concept HasStateParts = requires {
   typename Model::template History<D>;
   typename Model::template Properties<D>;
+};
+template <class Model, int D>
+constexpr bool state_derives_from_parts() {
+  using State = typename Model::template State<D>;
+  return std::is_base_of_v<typename Model::template History<D>, State> &&
+         std::is_base_of_v<typename Model::template Properties<D>, State>;
 }
-&&std::is_base_of_v<typename Model::template History<D>, typename Model::template State<D>>&&
-    std::is_base_of_v<typename Model::template Properties<D>, typename Model::template State<D>>;
+template <class Model, int D>
+concept SplitState = HasStateParts<Model, D> && state_derives_from_parts<Model, D>();
 
 struct NoProperties {};
 
