@@ -68,11 +68,11 @@ Footprint footprint(const World<D>& w) {
 
 // Bytes one step moves through memory, counted from the arrays it streams (read once, written once when it
 // changes them): per contact its pair and state read, and its history written back (a split state's properties
-// are only read: engine/state_columns.hpp); per far pair and wall contact its slot (force,
-// moment on B, live byte) written and read back by the gather; per particle its sums zeroed, added to and read by the
-// gather, its gather list, the state the law of motion reads and writes, and the partners' positions, velocities,
-// spins and radii the contacts read; and the timestep estimate's share of the steps between estimates. Caches only
-// make the real traffic smaller; this is what a machine without them would move.
+// are only read: engine/state_columns.hpp); per far pair and wall contact its slot (force, moment on B, live byte)
+// written and read back by the gather; per particle its sums zeroed, added to and read by the gather, its gather
+// list, the state the law of motion reads and writes, and the partners' positions, velocities, spins and radii the
+// contacts read; and the timestep estimate's share of the steps between estimates. Caches only make the real
+// traffic smaller; this is what a machine without them would move.
 template <int D>
 double streamed_bytes_per_step(const World<D>& w) {
   const double n = w.particles.size();
@@ -89,8 +89,8 @@ double streamed_bytes_per_step(const World<D>& w) {
   const double motion = n * (2 * 3 * vec + 2 * vec + 2 * sizeof(double) + sizeof(FixMask) + vec);
   // The contacts' reads of the particles: position, velocity, spin, radius, stiffness factor.
   const double partners = n * (2 * vec + rot + 2 * sizeof(double));
-  // The timestep estimate, once every `every` steps (World::critical_timestep): the pairs and, of a split state,
-  // the properties read once (a whole state's reads are not counted: of the parallel bond's, the properties), the
+  // The timestep estimate, once every `every` steps (World::critical_timestep): the pairs and a split state's
+  // properties read once (what it reads of a whole state, as the CPM's, is not counted), the
   // partners' positions, radii and stiffness factors, two stiffnesses per slot written and read back and its live
   // byte set, two sums per particle zeroed, added to and read, the gather lists, masses and inertias.
   const double d = sizeof(double);

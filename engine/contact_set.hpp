@@ -34,8 +34,8 @@ namespace mc {
 // A model may also give its law for kLanes consecutive contacts at once (engine/lanes.hpp): a specialisation of
 // LaneLaw with a static force(params, particles, pairs, histories, properties, slots, first slot, dt) that returns
 // false, having written nothing, when any of them needs the one-contact law. Steps without energy tracing use it.
-// It never writes the properties (state_columns.hpp): a batch in which a bond is made or broken goes back to the
-// one-contact law.
+// It never writes the properties (state_columns.hpp): bonds are made outside the force pass (install_bonds), and a
+// batch in which one breaks goes back to the one-contact law.
 template <class Model, int D>
 struct LaneLaw {};
 

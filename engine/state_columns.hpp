@@ -102,9 +102,7 @@ class StateColumns {
     properties_.swap(other.properties_);
   }
   std::size_t history_bytes() const { return history_.capacity() * sizeof(History); }
-  std::size_t capacity_bytes() const {
-    return history_.capacity() * sizeof(History) + (kSplit ? properties_.capacity() * sizeof(Properties) : 0);
-  }
+  std::size_t capacity_bytes() const { return history_bytes() + properties_.capacity() * sizeof(Properties); }
 
   // The bytes of one State, appended; and a State from such bytes.
   void append_bytes(std::size_t c, Bytes& out) const {
@@ -119,17 +117,23 @@ class StateColumns {
   }
   // As put_array and take_array (bytes.hpp) of a std::vector<State>: the same bytes, split or whole.
   void put(Bytes& out) const {
-    if constexpr (!kSplit) return put_array(out, history_);
-    put_bytes(out, static_cast<std::uint64_t>(size()));
-    out.reserve(out.size() + size() * sizeof(State));
-    for (std::size_t c = 0; c < size(); ++c) append_bytes(c, out);
+    if constexpr (kSplit) {
+      put_bytes(out, static_cast<std::uint64_t>(size()));
+      out.reserve(out.size() + size() * sizeof(State));
+      for (std::size_t c = 0; c < size(); ++c) append_bytes(c, out);
+    } else {
+      put_array(out, history_);
+    }
   }
   void take(const Bytes& in, std::size_t& at) {
-    if constexpr (!kSplit) return take_array(in, at, history_);
-    const auto n = take_bytes<std::uint64_t>(in, at);
-    history_.clear(), properties_.clear();
-    reserve(n);
-    for (std::uint64_t c = 0; c < n; ++c, at += sizeof(State)) push_back(from_bytes(in.data() + at));
+    if constexpr (kSplit) {
+      const auto n = take_bytes<std::uint64_t>(in, at);
+      history_.clear(), properties_.clear();
+      reserve(n);
+      for (std::uint64_t c = 0; c < n; ++c, at += sizeof(State)) push_back(from_bytes(in.data() + at));
+    } else {
+      take_array(in, at, history_);
+    }
   }
 
  private:
