@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "benchmarks/dense_assembly.hpp"
+#include "benchmarks/bonded_block.hpp"
 #include "benchmarks/run_timing.hpp"
 #include "benchmarks/throughput_world.hpp"
 #include "engine/parallel.hpp"
@@ -198,20 +198,6 @@ class Skeleton {
   std::size_t slots_ = 0;
 };
 
-// The bonded-scaling block of `throughput` (every gap ≤ 0.1 R_min parallel-bonded, the particles near the faces
-// held).
-World<3> block(int target) {
-  const Assembly<3> a = tile(cell_for_dim<3>(false), kR0, target, false);
-  Material mat;
-  mat.bonded = true;
-  World<3> w = make_world<3>(a.x, a.r, mat);
-  for (std::size_t i = 0; i < a.x.size(); ++i)
-    if (a.edge[i]) w.particles.fix[i] = 0x3f;
-  w.init();
-  w.install_bonds(0.1, 1);
-  return w;
-}
-
 // ns per particle-step of the walk's parts, and their sum last; the estimate runs every 10th step, as the engine's.
 std::array<double, 4> walk_ns(Skeleton& sk, int n, int steps) {
   std::array<double, 3> seconds{};
@@ -258,7 +244,7 @@ int main(int argc, char** argv) {
   std::printf("|---|---|---|---|---|---|---|---|\n");
   double engine0 = 0, walk0 = 0;
   for (int target = 10000; target <= max_n; target *= 10) {
-    World<3> w = block(target);
+    World<3> w = bonded_block(target);
     const int n = w.particles.size();
     const int steps = std::max(20, static_cast<int>(2e7 / n));
     Skeleton sk(w.particles, w.sets[0]->pairs());

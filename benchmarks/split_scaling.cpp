@@ -15,7 +15,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "benchmarks/dense_assembly.hpp"
+#include "benchmarks/bonded_block.hpp"
 #include "benchmarks/run_timing.hpp"
 #include "benchmarks/throughput_shared.hpp"
 #include "benchmarks/throughput_world.hpp"
@@ -76,19 +76,6 @@ int option(int argc, char** argv, const std::string& name, int fallback) {
   return text.empty() ? fallback : std::atoi(text.c_str());
 }
 
-// The bonded-scaling block of about `target` particles.
-World<3> block(int target) {
-  const Assembly<3> a = tile(cell_for_dim<3>(false), kR0, target, false);
-  Material mat;
-  mat.bonded = true;
-  World<3> w = make_world<3>(a.x, a.r, mat);
-  for (std::size_t i = 0; i < a.x.size(); ++i)
-    if (a.edge[i]) w.particles.fix[i] = 0x3f;
-  w.init();
-  w.install_bonds(0.1, 1);
-  return w;
-}
-
 // The shared specimen `name` (benchmarks/specimens) under the shared loading, with the README's step when the
 // engine accepts it, as `throughput` runs it.
 World<3> shared(const std::string& name, const std::string& model) {
@@ -117,7 +104,7 @@ int main(int argc, char** argv) {
   const std::string specimen = option(argc, argv, "--specimen", std::string());
   const std::string model = option(argc, argv, "--model", std::string("parallel"));
   omp_set_num_threads(threads);
-  World<3> w = specimen.empty() ? block(target) : shared(specimen, model);
+  World<3> w = specimen.empty() ? bonded_block(target) : shared(specimen, model);
   const int n = w.particles.size();
   const RanksExchange launch(ranks);
   const TimedExchange exchange(launch);

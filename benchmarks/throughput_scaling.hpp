@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "benchmarks/bonded_block.hpp"
 #include "benchmarks/dense_assembly.hpp"
 #include "benchmarks/run_timing.hpp"
 #include "benchmarks/stream_triad.hpp"
@@ -116,26 +117,20 @@ struct BondedRow {
   double peak_bytes = 0;  // growth of the peak resident set while the worlds existed, per particle
 };
 
-// The 3D assembly of the unbonded rows, every pair with a gap ≤ 0.1 R_min bonded by parallel bonds that do not
-// break (the shared specimen's model); the particles near the faces held. One fresh world per thread count.
+// The 3D assembly of the unbonded rows as the bonded block (bonded_block.hpp). One fresh world per thread count.
 inline BondedRow bonded_row(int target, bool quick, int reps) {
   const Assembly<3> a = tile(cell_for_dim<3>(quick), kR0, target, false);
   const int n = static_cast<int>(a.x.size());
   const int steps = std::max(20, static_cast<int>((quick ? 2e6 : 2e7) / n));
-  Material mat;
-  mat.bonded = true;
-  const FixMask all = static_cast<FixMask>((1u << 6) - 1);
   BondedRow row;
   const long rss0 = status_kib("VmRSS");
   reset_peak_rss();
   for (int ti = 0; ti < 2; ++ti) {
     omp_set_num_threads(kThreads[ti]);
     progress("  bonded 3D N = %d, %d steps, %d thread(s) ...", n, steps, kThreads[ti]);
-    World<3> w = make_world<3>(a.x, a.r, mat);
-    for (int i = 0; i < n; ++i)
-      if (a.edge[i]) w.particles.fix[i] = all;
-    w.init();
-    row.bonds = static_cast<double>(w.install_bonds(0.1, 1)) / n;
+    std::size_t bonds = 0;
+    World<3> w = bonded_block(a, &bonds);
+    row.bonds = static_cast<double>(bonds) / n;
     // The best of `reps` windows of the same world (the block neither breaks nor flows): a slow stretch of a shared
     // machine falls on one window, and generating a block of 10^7 costs more than timing it.
     for (int rep = 0; rep < reps; ++rep) row.t[ti].keep_best(time_steps(w, rep == 0 ? 5 : 0, steps));
