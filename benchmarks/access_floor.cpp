@@ -47,9 +47,9 @@ struct Properties {
 };
 
 // The step's arrays, sized and linked as the engine's are for the same pairs.
-class Skeleton {
+class MemoryWalk {
  public:
-  Skeleton(const Particles<3>& p, const std::vector<Pair>& pairs) : pairs_(pairs) {
+  MemoryWalk(const Particles<3>& p, const std::vector<Pair>& pairs) : pairs_(pairs) {
     n_ = p.size();
     x_ = p.x, v_ = p.v, w_ = p.w, x0_ = p.x;
     f_.assign(n_, Vec<3>::Zero());
@@ -199,11 +199,11 @@ class Skeleton {
 };
 
 // ns per particle-step of the walk's parts, and their sum last; the estimate runs every 10th step, as the engine's.
-std::array<double, 4> walk_ns(Skeleton& sk, int n, int steps) {
+std::array<double, 4> walk_ns(MemoryWalk& mw, int n, int steps) {
   std::array<double, 3> seconds{};
-  for (int s = 0; s < 5; ++s) sk.step(s % 10 == 0, seconds);
+  for (int s = 0; s < 5; ++s) mw.step(s % 10 == 0, seconds);
   seconds = {};
-  for (int s = 0; s < steps; ++s) sk.step(s % 10 == 0, seconds);
+  for (int s = 0; s < steps; ++s) mw.step(s % 10 == 0, seconds);
   const double per = 1e9 / (static_cast<double>(n) * steps);
   return {seconds[0] * per, seconds[1] * per, seconds[2] * per, (seconds[0] + seconds[1] + seconds[2]) * per};
 }
@@ -247,17 +247,17 @@ int main(int argc, char** argv) {
     World<3> w = bonded_block(target);
     const int n = w.particles.size();
     const int steps = std::max(20, static_cast<int>(2e7 / n));
-    Skeleton sk(w.particles, w.sets[0]->pairs());
+    MemoryWalk mw(w.particles, w.sets[0]->pairs());
     double engine = kInf;
     std::array<double, 4> walk{kInf, kInf, kInf, kInf};
     for (int r = 0; r < reps; ++r) {  // in turns, the best of each kept
       engine = std::min(engine, time_steps(w, r == 0 ? 5 : 0, steps).ns_per_particle_step());
-      const std::array<double, 4> t = walk_ns(sk, n, steps);
+      const std::array<double, 4> t = walk_ns(mw, n, steps);
       if (t[3] < walk[3]) walk = t;
     }
     if (target == 10000) engine0 = engine, walk0 = walk[3];
     std::printf("| %d | %.2f | %.1f | %.1f | %.1f / %.1f / %.1f | %.2f | %+.1f | %+.1f |\n", n,
-                static_cast<double>(sk.far_slots()) / n, engine, walk[3], walk[0], walk[1], walk[2], walk[3] / engine,
+                static_cast<double>(mw.far_slots()) / n, engine, walk[3], walk[0], walk[1], walk[2], walk[3] / engine,
                 engine - engine0, walk[3] - walk0);
     std::fflush(stdout);
   }
