@@ -10,8 +10,9 @@
 // - force pass: the pairs sorted by A in blocks of kGroup particles; a block zeroes its group's sums, then each pair
 //   reads A's and B's position, velocity, spin, radius and stiffness factor, its 16 B of properties, reads and
 //   writes its 88 B of history, adds to A's sums, and to B's when B is of the block's group, else writes its slot
-//   (force, moment on B, live byte); the B of the pair 2 × 8 ahead is asked for early, as the lanes do, and the
-//   history of the pair 16 ahead, which the engine does not;
+//   (force, moment on B, live byte); the B of the pair 16 ahead is asked for early
+//   (Particles::prefetch_contact_fields), as 8-wide lanes do, and the history of the same pair, which the engine
+//   does not;
 // - law of motion: per particle its sums, its far slots through its gather list, its fixity, velocity, spin, mass,
 //   inertia, position, position at the last rebuild and radius read, and its force, velocity, spin and position
 //   written;
@@ -29,6 +30,7 @@
 #include "benchmarks/bonded_block.hpp"
 #include "benchmarks/run_timing.hpp"
 #include "benchmarks/throughput_world.hpp"
+#include "engine/pair_blocks.hpp"
 #include "engine/parallel.hpp"
 
 using namespace mc;
@@ -41,44 +43,32 @@ volatile double g_zero = 0.0;
 // Where the passes' reductions go, so that the compiler keeps them.
 volatile double g_sink = 0.0;
 
-struct Properties {
-  double stiffness;
-  float tensile, shear;
-};
-
-// The step's arrays, sized and linked as the engine's are for the same pairs.
+// The step's arrays, sized and linked as the engine's are for the same pairs: the particles' own arrays, the parallel
+// bond's history and properties, the blocks of the force pass (PairBlocks) and the far slots with their gather lists.
 class MemoryWalk {
  public:
-  MemoryWalk(const Particles<3>& p, const std::vector<Pair>& pairs) : pairs_(pairs) {
-    n_ = p.size();
-    x_ = p.x, v_ = p.v, w_ = p.w, x0_ = p.x;
-    f_.assign(n_, Vec<3>::Zero());
-    m_.assign(n_, Vec<3>::Zero());
-    radius_ = p.radius, mass_ = p.mass, inertia_ = p.inertia, stiffness_ = p.stiffness, fix_ = p.fix;
-    history_.assign(pairs.size(), {});
-    properties_.assign(pairs.size(), {1.0, 1e6f, 1e6f});
-    // As the engine: a pair is far when B is beyond A's group; the far pairs take slots in pair order, and each
-    // particle gathers those whose B it is.
-    std::vector<int> per_b(n_ + 1, 0);
-    block_begin_.assign(n_ / kGroup + 2, pairs.size());
-    block_far_.assign(block_begin_.size(), 0);
-    for (std::size_t c = pairs.size(); c-- > 0;) block_begin_[pairs[c][0] / kGroup] = c;
-    for (std::size_t g = block_begin_.size() - 1; g-- > 0;)
-      block_begin_[g] = std::min(block_begin_[g], block_begin_[g + 1]);
-    for (std::size_t g = 0; g + 1 < block_begin_.size(); ++g) {
-      block_far_[g] = slots_;
-      for (std::size_t c = block_begin_[g]; c < block_begin_[g + 1]; ++c)
-        if (far(g, pairs[c][1])) ++slots_, ++per_b[pairs[c][1] + 1];
-    }
-    for (int i = 0; i < n_; ++i) per_b[i + 1] += per_b[i];
-    gather_start_ = per_b;
-    gather_.assign(slots_, 0);
-    for (std::size_t g = 0, slot = 0; g + 1 < block_begin_.size(); ++g)
-      for (std::size_t c = block_begin_[g]; c < block_begin_[g + 1]; ++c)
-        if (far(g, pairs[c][1])) gather_[per_b[pairs[c][1]]++] = static_cast<int>(slot++);
-    sf_.assign(slots_, Vec<3>::Zero());
-    smb_.assign(slots_, Vec<3>::Zero());
-    live_.assign(slots_, 1);
+  using History = ParallelBond::History<3>;
+  using Properties = ParallelBond::Properties<3>;
+
+  MemoryWalk(const Particles<3>& p, const std::vector<Pair>& pairs)
+      : p_(p), pairs_(pairs), x0_(p.x), history_(pairs.size()), properties_(pairs.size(), Properties{1.0, 1e6f, 1e6f}) {
+    const int n = p.size();
+    m_.assign(n, Vec<3>::Zero());
+    std::vector<int> groups;
+    for (int i = 0; i < n; i += kGroup) groups.push_back(i);
+    groups.push_back(n);
+    blocks_.build(pairs, groups);
+    // Each particle's far slots as B, in slot order (World::relink).
+    const std::vector<std::size_t> far = blocks_.far_pairs(pairs);
+    gather_start_.assign(n + 1, 0);
+    for (std::size_t c : far) ++gather_start_[pairs[c][1] + 1];
+    for (int i = 0; i < n; ++i) gather_start_[i + 1] += gather_start_[i];
+    gather_.resize(far.size());
+    std::vector<int> fill(gather_start_.begin(), gather_start_.end() - 1);
+    for (std::size_t k = 0; k < far.size(); ++k) gather_[fill[pairs[far[k]][1]]++] = static_cast<int>(k);
+    sf_.assign(far.size(), Vec<3>::Zero());
+    smb_.assign(far.size(), Vec<3>::Zero());
+    live_.assign(far.size(), 1);
   }
 
   // One step, each part's wall time added to `seconds` (force pass, law of motion, timestep estimate).
@@ -94,45 +84,38 @@ class MemoryWalk {
     seconds[1] += std::chrono::duration<double>(t2 - t1).count();
     seconds[2] += std::chrono::duration<double>(t3 - t2).count();
   }
-  std::size_t far_slots() const { return slots_; }
+  std::size_t far_slots() const { return blocks_.far_count(); }
 
  private:
-  void prefetch_history(std::size_t c) const {
-    const char* h = reinterpret_cast<const char*>(&history_[c]);
-    __builtin_prefetch(h), __builtin_prefetch(h + 64);
-  }
-  static bool far(std::size_t group, int b) { return static_cast<std::size_t>(b) / kGroup != group; }
-
   void force_pass() {
     const double z = g_zero;
     const std::size_t np = pairs_.size();
-    for (std::size_t g = 0; g + 1 < block_begin_.size(); ++g) {
-      const int first = static_cast<int>(g) * kGroup, last = std::min(n_, first + kGroup);
-      for (int i = first; i < last; ++i) f_[i].setZero(), m_[i].setZero();
-      std::size_t slot = block_far_[g];
-      for (std::size_t c = block_begin_[g]; c < block_begin_[g + 1]; ++c) {
+    for (int k = 0; k < blocks_.count(); ++k) {
+      const int near_end = blocks_.near_end[k];
+      for (int i = blocks_.group_first(k); i < near_end; ++i) p_.f[i].setZero(), m_[i].setZero();
+      std::size_t slot = blocks_.far[k];
+      for (std::size_t c = blocks_.first[k]; c < blocks_.first[k + 1]; ++c) {
         if (c + 16 < np) {
-          const int ahead = pairs_[c + 16][1];
-          __builtin_prefetch(&x_[ahead]), __builtin_prefetch(&v_[ahead]), __builtin_prefetch(&w_[ahead]);
-          __builtin_prefetch(&radius_[ahead]), __builtin_prefetch(&stiffness_[ahead]);
+          p_.prefetch_contact_fields(pairs_[c + 16][1]);
+          // A walk without arithmetic issues its loads faster than the hardware's prefetchers keep up with on the
+          // history: at 10⁶ its force pass took 87–91 ns per particle-step without this request, 74–75 with it.
+          // The engine's lanes asking for the same gained nothing measurable.
+          const char* ahead = reinterpret_cast<const char*>(&history_[c + 16]);
+          __builtin_prefetch(ahead), __builtin_prefetch(ahead + 64);
         }
-        // A walk without arithmetic issues its loads faster than the hardware's prefetchers keep up with on the
-        // history: at 10⁶ its force pass took 87–91 ns per particle-step without this request, 74–75 with it. The
-        // engine's lanes asking for the same gained nothing measurable.
-        if (c + 16 < np) prefetch_history(c + 16);
         const auto [i, j] = pairs_[c];
         const Properties& q = properties_[c];
+        History& h = history_[c];
         // Summed as a tree, so that the walk waits on its loads and not on a chain of adds.
-        auto& h = history_[c];
-        const double hs = ((h[0] + h[1]) + (h[2] + h[3])) + ((h[4] + h[5]) + (h[6] + h[7])) + ((h[8] + h[9]) + h[10]);
-        const double s = ((radius_[i] + radius_[j]) + (stiffness_[i] + stiffness_[j])) +
-                         ((q.stiffness + (q.tensile + q.shear)) + hs) +
-                         ((x_[j] - x_[i]) + (v_[j] - v_[i]) + (w_[j] + w_[i])).sum();
-        for (double& hk : h) hk += z * s;
+        const double s =
+            ((p_.radius[i] + p_.radius[j]) + (p_.stiffness[i] + p_.stiffness[j])) +
+            ((q.stiffness + (q.tensile + q.shear)) + (h.bond_fn + h.bond_mn)) +
+            ((h.fs + h.bond_fs + h.bond_ms) + (p_.x[j] - p_.x[i]) + (p_.v[j] - p_.v[i]) + (p_.w[j] + p_.w[i])).sum();
         const Vec<3> r = Vec<3>::Constant(z * s);
-        f_[i] -= r, m_[i] += r;
-        if (!far(g, j)) {
-          f_[j] += r, m_[j] += r;
+        h.fs += r, h.bond_fs += r, h.bond_ms += r, h.bond_fn += z * s, h.bond_mn += z * s;
+        p_.f[i] -= r, m_[i] += r;
+        if (j < near_end) {
+          p_.f[j] += r, m_[j] += r;
         } else {
           sf_[slot] = r, smb_[slot] = r, live_[slot] = 1;
           ++slot;
@@ -144,58 +127,58 @@ class MemoryWalk {
   void law_of_motion() {
     const double z = g_zero;
     double sink = 0;
-    for (int i = 0; i < n_; ++i) {
-      Vec<3> f = f_[i], m = m_[i];
+    for (int i = 0; i < p_.size(); ++i) {
+      Vec<3> f = p_.f[i], m = m_[i];
       for (int k = gather_start_[i]; k < gather_start_[i + 1]; ++k) {
         const int slot = gather_[k];
         if (!live_[slot]) continue;
         f += sf_[slot], m += smb_[slot];
       }
-      f_[i] = f;
-      const double s = f.sum() + m.sum() + mass_[i] + inertia_[i] + radius_[i] + fix_[i];
-      v_[i] += Vec<3>::Constant(z * s);
-      w_[i] += Vec<3>::Constant(z * s);
-      x_[i] += z * v_[i];
-      sink += (x_[i] - x0_[i]).squaredNorm() + w_[i].sum();
+      p_.f[i] = f;
+      const double s = f.sum() + m.sum() + p_.mass[i] + p_.inertia[i] + p_.radius[i] + p_.fix[i];
+      p_.v[i] += Vec<3>::Constant(z * s);
+      p_.w[i] += Vec<3>::Constant(z * s);
+      p_.x[i] += z * p_.v[i];
+      sink += (p_.x[i] - x0_[i]).squaredNorm() + p_.w[i].sum();
     }
     g_sink = g_sink + sink;
   }
 
   void timestep_pass() {
-    std::vector<double> sums(2 * static_cast<std::size_t>(n_), 0.0);
-    for (std::size_t g = 0, slot = 0; g + 1 < block_begin_.size(); ++g)
-      for (std::size_t c = block_begin_[g]; c < block_begin_[g + 1]; ++c) {
+    const int n = p_.size();
+    std::vector<double> sums(2 * static_cast<std::size_t>(n), 0.0);
+    for (int k = 0; k < blocks_.count(); ++k) {
+      std::size_t slot = blocks_.far[k];
+      for (std::size_t c = blocks_.first[k]; c < blocks_.first[k + 1]; ++c) {
         const auto [i, j] = pairs_[c];
-        const double k =
-            properties_[c].stiffness + radius_[i] + radius_[j] + stiffness_[i] + stiffness_[j] + (x_[j] - x_[i]).sum();
-        sums[2 * i] += k, sums[2 * i + 1] += k;
-        if (!far(g, j)) {
-          sums[2 * j] += k, sums[2 * j + 1] += k;
+        const double kc = properties_[c].stiffness + p_.radius[i] + p_.radius[j] + p_.stiffness[i] + p_.stiffness[j] +
+                          (p_.x[j] - p_.x[i]).sum();
+        sums[2 * i] += kc, sums[2 * i + 1] += kc;
+        if (j < blocks_.near_end[k]) {
+          sums[2 * j] += kc, sums[2 * j + 1] += kc;
         } else {
-          sf_[slot][0] = k, smb_[slot][0] = k, live_[slot] = 1;
+          sf_[slot][0] = kc, smb_[slot][0] = kc, live_[slot] = 1;
           ++slot;
         }
       }
+    }
     double tmin = 1e300;
-    for (int i = 0; i < n_; ++i) {
+    for (int i = 0; i < n; ++i) {
       double kt = sums[2 * i], kr = sums[2 * i + 1];
       for (int k = gather_start_[i]; k < gather_start_[i + 1]; ++k) kt += sf_[gather_[k]][0], kr += smb_[gather_[k]][0];
-      tmin = std::min(tmin, mass_[i] / (kt + 1) + inertia_[i] / (kr + 1));
+      tmin = std::min(tmin, p_.mass[i] / (kt + 1) + p_.inertia[i] / (kr + 1));
     }
     g_sink = g_sink + tmin;
   }
 
-  int n_ = 0;
+  Particles<3> p_;  // a copy: the walk's sums and moves leave the engine's world as it was
   const std::vector<Pair>& pairs_;
-  std::vector<Vec<3>> x_, v_, w_, x0_, f_, m_, sf_, smb_;
-  std::vector<double> radius_, mass_, inertia_, stiffness_;
-  std::vector<FixMask> fix_;
-  std::vector<std::array<double, 11>> history_;
+  std::vector<Vec<3>> x0_, m_, sf_, smb_;  // positions at the last rebuild, moment sums, far slots
+  std::vector<History> history_;
   std::vector<Properties> properties_;
+  PairBlocks blocks_;
   std::vector<int> gather_start_, gather_;
   std::vector<std::uint8_t> live_;
-  std::vector<std::size_t> block_begin_, block_far_;  // per group: its first pair, its first far slot
-  std::size_t slots_ = 0;
 };
 
 // ns per particle-step of the walk's parts, and their sum last; the estimate runs every 10th step, as the engine's.
