@@ -171,8 +171,8 @@ class MemoryWalk {
     g_sink = g_sink + tmin;
   }
 
-  Particles<3> p_;  // a copy: the walk's sums and moves leave the engine's world as it was
-  const std::vector<Pair>& pairs_;
+  Particles<3> p_;                         // a copy: the walk's sums and moves leave the engine's world as it was
+  const std::vector<Pair> pairs_;          // a copy: a rebuild of the engine's lists would not reach the walk's blocks
   std::vector<Vec<3>> x0_, m_, sf_, smb_;  // positions at the last rebuild, moment sums, far slots
   std::vector<History> history_;
   std::vector<Properties> properties_;
