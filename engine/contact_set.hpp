@@ -409,7 +409,7 @@ class ContactSet final : public ContactSetBase<D> {
         // Beyond the caches a batch of lanes waits on its far partners B (one pair in fourteen has its B more
         // than 4 096 particles further along the Morton curve). Asking for the B's of the batch after next while
         // this one computes overlaps those misses with its arithmetic: 9–12 % less time per step on bonded blocks
-        // of 10^6 and 10^7, none in the cache (README, Throughput).
+        // of 10^6 and 10^7, none in the cache (benchmarks/results/bonded_scaling_notes.md).
         constexpr std::size_t kAhead = 2 * kLanes;
         for (; c + kLanes <= end; c += kLanes) {
           for (std::size_t k = c + kAhead; k < std::min(end, c + kAhead + kLanes); ++k)
