@@ -15,9 +15,8 @@ inline World<3> bonded_block(const Assembly<3>& a, std::size_t* bonds = nullptr)
   Material mat;
   mat.bonded = true;
   World<3> w = make_world<3>(a.x, a.r, mat);
-  const FixMask all = static_cast<FixMask>((1u << 6) - 1);
   for (std::size_t i = 0; i < a.x.size(); ++i)
-    if (a.edge[i]) w.particles.fix[i] = all;
+    if (a.edge[i]) w.particles.fix[i] = fix_all(3);
   w.init();
   const std::size_t made = w.install_bonds(0.1, 1);
   if (bonds) *bonds = made;

@@ -39,12 +39,11 @@ inline void add_box_walls(World<3>& w, const Vec<3>& lo, const Vec<3>& hi, const
 
 // One repetition of one effect on a fresh world: the assembly held at its faces as in b), in the walls [lo, hi].
 inline Timing effect_once(const Assembly<3>& a, const Effect& ef, const Vec<3>& lo, const Vec<3>& hi, int steps) {
-  const FixMask all = static_cast<FixMask>((1u << 6) - 1);
   Material mat;
   if (ef.dashpots) mat.damping = 0.1;
   World<3> w = make_world<3>(a.x, a.r, mat);
   for (std::size_t i = 0; i < a.x.size(); ++i)
-    if (a.edge[i]) w.particles.fix[i] = all;
+    if (a.edge[i]) w.particles.fix[i] = fix_all(3);
   add_box_walls(w, lo, hi, mat);
   if (ef.gravity) w.gravity = Vec<3>(0, 0, -9.81);
   if (ef.local_damping) w.local_damping = 0.7;

@@ -11,6 +11,8 @@ namespace mc {
 // Per-degree-of-freedom fixity: bit k (k < D) holds translation k, bit D+k holds rotation k.
 // A fixed degree of freedom keeps its current velocity (PFC "fix").
 using FixMask = std::uint8_t;
+// Every degree of freedom of a particle in d dimensions: d translations and 1 (2D) or 3 (3D) rotations.
+constexpr FixMask fix_all(int d) { return static_cast<FixMask>((1u << (d + (d == 2 ? 1 : 3))) - 1); }
 
 template <int D>
 struct Particles {

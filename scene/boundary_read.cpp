@@ -92,7 +92,7 @@ FixMask parse_fix(const Table& t, int d) {
   std::string w;
   while (ss >> w) {
     if (w == "all")
-      m |= static_cast<FixMask>((1u << (d + (d == 2 ? 1 : 3))) - 1);
+      m |= fix_all(d);
     else if (w == "translation")
       m |= static_cast<FixMask>((1u << d) - 1);
     else if (w == "rotation")
