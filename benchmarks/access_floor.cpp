@@ -20,11 +20,11 @@
 //   factor, into two transient sums per particle or its slot; per particle its sums, far slots, mass and inertia.
 #include <omp.h>
 
+#include <CLI/CLI.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
-#include <cstdlib>
-#include <string>
 #include <vector>
 
 #include "benchmarks/bonded_block.hpp"
@@ -191,35 +191,22 @@ std::array<double, 4> walk_ns(MemoryWalk& mw, int n, int steps) {
   return {seconds[0] * per, seconds[1] * per, seconds[2] * per, (seconds[0] + seconds[1] + seconds[2]) * per};
 }
 
-// The value of `--max` or `--reps`; any other argument, or a value out of range, stops the run with a message.
-struct Arguments {
-  int max_n = 10000000, reps = 3;
-};
-
-Arguments read_arguments(int argc, char** argv) {
-  Arguments a;
-  for (int k = 1; k < argc; k += 2) {
-    const std::string name = argv[k];
-    int* target = name == "--max" ? &a.max_n : name == "--reps" ? &a.reps : nullptr;
-    const long lo = name == "--max" ? 10000 : 1, hi = name == "--max" ? 20000000 : 100;
-    char* rest = nullptr;
-    const long v = k + 1 < argc ? std::strtol(argv[k + 1], &rest, 10) : 0;
-    if (!target || k + 1 >= argc || *rest != '\0' || v < lo || v > hi) {
-      std::fprintf(stderr,
-                   "access_floor: %s %s: allowed are --max N (10000 to 20000000 particles) and --reps N (1 to 100)\n",
-                   argv[k], k + 1 < argc ? argv[k + 1] : "(no value)");
-      std::exit(2);
-    }
-    *target = static_cast<int>(v);
-  }
-  return a;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  const Arguments args = read_arguments(argc, argv);
-  const int max_n = args.max_n, reps = args.reps;
+  int max_n = 10000000, reps = 3;
+  CLI::App app{"access_floor: the bonded block's step against a walk of its memory accesses alone (one thread)"};
+  app.add_option("--max", max_n, "the largest block, particles (blocks of 10^4, 10^5, ... up to it)")
+      ->check(CLI::Range(10000, 20000000));
+  app.add_option("--reps", reps, "timed windows of the engine and of the walk, in turns; the best of each kept")
+      ->check(CLI::Range(1, 100));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    std::fprintf(stderr, "access_floor: %s\n", e.what());
+    return 2;
+  }
   omp_set_num_threads(1);
   std::printf(
       "| N | far slots / particle | engine, ns / particle-step | walk alone | walk: force pass / law of motion / "
