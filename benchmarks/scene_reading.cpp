@@ -11,11 +11,12 @@
 //
 //   scene_reading [--kind wide|particles|one_line] [--sizes N,N,...] [--repeat R]
 #include <unistd.h>
-#include <algorithm>
 
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -86,35 +87,30 @@ Reading read(const std::string& file) {
   return r;
 }
 
-std::vector<std::size_t> sizes_of(const std::string& list) {
-  std::vector<std::size_t> out;
-  std::istringstream in(list);
-  for (std::string item; std::getline(in, item, ',');) out.push_back(std::stoul(item));
-  return out;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string kind = "wide", sizes = "10000,20000,40000";
+  std::string kind = "wide";
+  std::vector<std::size_t> sizes{10000, 20000, 40000};
   int repeat = 1;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string opt = argv[i];
-    if (opt == "--kind")
-      kind = argv[i + 1];
-    else if (opt == "--sizes")
-      sizes = argv[i + 1];
-    else if (opt == "--repeat")
-      repeat = std::max(1, std::atoi(argv[i + 1]));
-    else
-      return std::fprintf(stderr, "usage: scene_reading [--kind wide|particles|one_line] [--sizes N,...]\n"), 2;
+  CLI::App app{"scene_reading: the time to read and check a large scene file, against its size"};
+  app.add_option("--kind", kind, "what grows: one table's keys, particle sections, or one inline array")
+      ->check(CLI::IsMember({"wide", "particles", "one_line"}));
+  app.add_option("--sizes", sizes, "N,N,...: keys or particles of each file")
+      ->delimiter(',')
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
+  app.add_option("--repeat", repeat, "readings of each file, the best kept")->check(CLI::Range(1, 100));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    std::fprintf(stderr, "scene_reading: %s\n", e.what());
+    return 2;
   }
-  if (kind != "wide" && kind != "particles" && kind != "one_line")
-    return std::fprintf(stderr, "--kind: wide, particles or one_line\n"), 2;
   const auto dir = std::filesystem::temp_directory_path() / ("scene_reading_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   std::printf("| kind | N | MB | seconds | MB/s | outcome |\n|---|---|---|---|---|---|\n");
-  for (const std::size_t n : sizes_of(sizes)) {
+  for (const std::size_t n : sizes) {
     const std::string text = kind == "wide" ? wide(n) : kind == "particles" ? particles(n) : one_line(n);
     const std::string file = (dir / "scene.toml").string();
     std::ofstream(file, std::ios::binary) << text;

@@ -8,9 +8,10 @@
 // n50k) and --model parallel (or cpm, linear), the shared specimen loaded as `throughput` loads it.
 #include <omp.h>
 
+#include <CLI/CLI.hpp>
+
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -65,17 +66,6 @@ class TimedExchange final : public Exchange {
   const Exchange& inner_;
 };
 
-std::string option(int argc, char** argv, const std::string& name, const std::string& fallback) {
-  for (int k = 1; k + 1 < argc; ++k)
-    if (argv[k] == name) return argv[k + 1];
-  return fallback;
-}
-
-int option(int argc, char** argv, const std::string& name, int fallback) {
-  const std::string text = option(argc, argv, name, std::string());
-  return text.empty() ? fallback : std::atoi(text.c_str());
-}
-
 // The shared specimen `name` (benchmarks/specimens) under the shared loading, with the README's step when the
 // engine accepts it, as `throughput` runs it.
 World<3> shared(const std::string& name, const std::string& model) {
@@ -98,11 +88,23 @@ World<3> shared(const std::string& name, const std::string& model) {
 int main(int argc, char** argv) {
   Ranks::start(&argc, &argv);
   const Ranks& ranks = Ranks::world();
-  const int target = option(argc, argv, "--particles", 1000000);
-  const int threads = option(argc, argv, "--threads", 1);
-  const int steps = option(argc, argv, "--steps", 200);
-  const std::string specimen = option(argc, argv, "--specimen", std::string());
-  const std::string model = option(argc, argv, "--model", std::string("parallel"));
+  int target = 1000000, threads = 1, steps = 200;
+  std::string specimen, model = "parallel";
+  CLI::App app{"split_scaling: a bonded block (or a shared specimen) split across the ranks of a launch, timed"};
+  app.add_option("--particles", target, "the bonded block's particles")->check(CLI::Range(1000, 100000000));
+  app.add_option("--threads", threads, "OpenMP threads per rank")->check(CLI::Range(1, 256));
+  app.add_option("--steps", steps, "timed steps")->check(CLI::Range(1, 1000000));
+  app.add_option("--specimen", specimen, "a shared specimen instead of the block")
+      ->check(CLI::IsMember({"n10k", "n50k"}));
+  app.add_option("--model", model, "the shared specimen's contacts")
+      ->check(CLI::IsMember({"parallel", "cpm", "linear"}));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return ranks.root() ? app.exit(e) : 0;  // --help
+    if (ranks.root()) std::fprintf(stderr, "split_scaling: %s\n", e.what());
+    return 2;
+  }
   omp_set_num_threads(threads);
   World<3> w = specimen.empty() ? bonded_block(target) : shared(specimen, model);
   const int n = w.particles.size();

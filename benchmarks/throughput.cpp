@@ -19,6 +19,9 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
+
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -36,65 +39,55 @@ namespace {
 
 using namespace mc::bench;
 
-[[noreturn]] void usage(const std::string& why) {
-  std::fprintf(stderr,
-               "%s\nusage: throughput [--quick] [--only shared|bonded|cpm|scaling|bonded-scaling|effects|deposition] "
-               "[--specimen-dir DIR]\n"
-               "                  [--reps N] [--max-bonded N]\n"
-               "       throughput --one SPECIMEN:MODEL:THREADS [--specimen-dir DIR]\n",
-               why.c_str());
-  std::exit(2);
+// --one SPECIMEN:MODEL:THREADS into its parts; empty when it reads, else what is allowed.
+std::string read_one(const std::string& v, Options& o) {
+  const auto c1 = v.find(':'), c2 = v.rfind(':');
+  if (c1 == std::string::npos || c2 == c1) return "give SPECIMEN:MODEL:THREADS";
+  o.one_specimen = v.substr(0, c1), o.one_model = v.substr(c1 + 1, c2 - c1 - 1);
+  if (o.one_model != "unbonded" && o.one_model != "parallel" && o.one_model != "cpm")
+    return "model '" + o.one_model + "': allowed unbonded, parallel, cpm";
+  const std::string t = v.substr(c2 + 1);
+  const char* last = t.data() + t.size();
+  const auto [end, ec] = std::from_chars(t.data(), last, o.one_threads);
+  if (ec != std::errc() || end != last || o.one_threads < 1 || o.one_threads > 64)
+    return "threads '" + t + "': allowed an integer from 1 to 64";
+  return "";
 }
 
-// An integer option's value, or the usage message naming the allowed range.
-long integer(const std::string& v, const std::string& option, long lo, long hi, const char* range) {
-  char* end = nullptr;
-  const long x = std::strtol(v.c_str(), &end, 10);
-  if (v.empty() || *end || x < lo || x > hi) usage(option + " '" + v + "': allowed an integer from " + range);
-  return x;
-}
-
+// The options, read with CLI11 as the command reads its own: a bad one exits with 2 and a message naming the
+// option, the value and what is allowed.
 Options parse(int argc, char** argv) {
   Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage("option " + a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--quick") {
-      o.quick = true;
-    } else if (a == "--only") {
-      const std::string v = value();
-      if (v != "shared" && v != "bonded" && v != "cpm" && v != "scaling" && v != "bonded-scaling" && v != "effects" &&
-          v != "deposition")
-        usage("--only '" + v + "': allowed shared, bonded, cpm, scaling, bonded-scaling, effects, deposition");
-      o.shared = v == "shared" || v == "bonded" || v == "cpm", o.effects = v == "effects";
-      o.deposition = v == "deposition";
-      o.scaling = v == "scaling" || v == "bonded-scaling", o.unbonded_scaling = v == "scaling";
-      o.unbonded = v == "shared", o.parallel = v != "cpm", o.cpm = v != "bonded";
-    } else if (a == "--specimen-dir") {
-      o.specimen_dir = value();
-    } else if (a == "--reps") {
-      o.reps = static_cast<int>(integer(value(), a, 1, 100, "1 to 100"));
-      o.reps_given = true;
-    } else if (a == "--max-bonded") {
-      o.max_bonded = static_cast<int>(integer(value(), a, 100000, 100000000, "1e5 to 1e8"));
-    } else if (a == "--one") {
-      const std::string v = value();
-      const auto c1 = v.find(':'), c2 = v.rfind(':');
-      if (c1 == std::string::npos || c2 == c1) usage("--one '" + v + "': give SPECIMEN:MODEL:THREADS");
-      o.one_specimen = v.substr(0, c1), o.one_model = v.substr(c1 + 1, c2 - c1 - 1);
-      o.one_threads = std::atoi(v.c_str() + c2 + 1);
-      if (o.one_model != "unbonded" && o.one_model != "parallel" && o.one_model != "cpm")
-        usage("--one: model '" + o.one_model + "': allowed unbonded, parallel, cpm");
-      if (o.one_threads < 1 || o.one_threads > 64) usage("--one: threads must be an integer from 1 to 64");
-    } else if (a == "--help" || a == "-h") {
-      usage("Throughput of the stepping loop, as markdown tables.");
-    } else {
-      usage("unknown option '" + a + "'");
-    }
+  std::string only, one;
+  CLI::App app{"throughput: the stepping loop's throughput, as markdown tables"};
+  app.add_flag("--quick", o.quick, "small sizes, and one timing each unless --reps is given");
+  app.add_option("--only", only, "one section")
+      ->check(CLI::IsMember({"shared", "bonded", "cpm", "scaling", "bonded-scaling", "effects", "deposition"}));
+  app.add_option("--specimen-dir", o.specimen_dir, "the folder of the shared specimens");
+  const CLI::Option* reps =
+      app.add_option("--reps", o.reps, "timings of each figure, the best kept")->check(CLI::Range(1, 100));
+  app.add_option("--max-bonded", o.max_bonded, "the largest bonded block of the scaling section, particles")
+      ->check(CLI::Range(100000, 100000000));
+  app.add_option("--one", one, "SPECIMEN:MODEL:THREADS: that run of the shared section alone, as one RESULT line")
+      ->check([](const std::string& v) {
+        Options parts;
+        return read_one(v, parts);
+      });
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) std::exit(app.exit(e));  // --help
+    std::fprintf(stderr, "throughput: %s\n", e.what());
+    std::exit(2);
   }
+  if (!only.empty()) {
+    o.shared = only == "shared" || only == "bonded" || only == "cpm", o.effects = only == "effects";
+    o.deposition = only == "deposition";
+    o.scaling = only == "scaling" || only == "bonded-scaling", o.unbonded_scaling = only == "scaling";
+    o.unbonded = only == "shared", o.parallel = only != "cpm", o.cpm = only != "bonded";
+  }
+  if (!one.empty()) read_one(one, o);
+  o.reps_given = reps->count() > 0;
   if (o.quick && !o.reps_given) o.reps = 1;
   return o;
 }
