@@ -20,14 +20,13 @@
 //   factor, into two transient sums per particle or its slot; per particle its sums, far slots, mass and inertia.
 #include <omp.h>
 
-#include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cstdio>
 #include <vector>
 
 #include "benchmarks/bonded_block.hpp"
+#include "benchmarks/options.hpp"
 #include "benchmarks/run_timing.hpp"
 #include "benchmarks/throughput_world.hpp"
 #include "engine/pair_blocks.hpp"
@@ -200,13 +199,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(10000, 20000000));
   app.add_option("--reps", reps, "timed windows of the engine and of the walk, in turns; the best of each kept")
       ->check(CLI::Range(1, 100));
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    std::fprintf(stderr, "access_floor: %s\n", e.what());
-    return 2;
-  }
+  if (const auto code = read_options(app, argc, argv, "access_floor")) return *code;
   omp_set_num_threads(1);
   std::printf(
       "| N | far slots / particle | engine, ns / particle-step | walk alone | walk: force pass / law of motion / "

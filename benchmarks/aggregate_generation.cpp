@@ -15,8 +15,6 @@
 // below 0.9 means the machine was busy with something else. Lengths in mm.
 //
 //   aggregate_generation [--quick] [--seeds N]    (N: seeds per success-rate point, default 50 (2D) / 20 (3D))
-#include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -24,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/options.hpp"
 #include "preprocess/aggregate_placement.hpp"
 
 namespace {
@@ -201,13 +200,7 @@ int main(int argc, char** argv) {
   app.add_flag("--quick", quick, "fewer sizes and seeds");
   app.add_option("--seeds", seeds, "seeds per success-rate point (default 50 in 2D, 20 in 3D; 10 and 5 with --quick)")
       ->check(CLI::Range(1, 10000));
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    std::fprintf(stderr, "aggregate_generation: %s\n", e.what());
-    return 2;
-  }
+  if (const auto code = mc::bench::read_options(app, argc, argv, "aggregate_generation")) return *code;
   const int seeds2 = seeds > 0 ? seeds : (quick ? 10 : 50), seeds3 = seeds > 0 ? seeds : (quick ? 5 : 20);
   std::printf("## Mesostructure generation (Tang 2013 ch. 4)%s\n", quick ? " — quick" : "");
   specimens_table(quick ? 3 : 10);

@@ -12,8 +12,6 @@
 //   scene_reading [--kind wide|particles|one_line] [--sizes N,N,...] [--repeat R]
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -23,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/options.hpp"
 #include "engine/errors.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
@@ -100,13 +99,7 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
   app.add_option("--repeat", repeat, "readings of each file, the best kept")->check(CLI::Range(1, 100));
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    std::fprintf(stderr, "scene_reading: %s\n", e.what());
-    return 2;
-  }
+  if (const auto code = mc::bench::read_options(app, argc, argv, "scene_reading")) return *code;
   const auto dir = std::filesystem::temp_directory_path() / ("scene_reading_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   std::printf("| kind | N | MB | seconds | MB/s | outcome |\n|---|---|---|---|---|---|\n");

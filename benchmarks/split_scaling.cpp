@@ -8,8 +8,6 @@
 // n50k) and --model parallel (or cpm, linear), the shared specimen loaded as `throughput` loads it.
 #include <omp.h>
 
-#include <CLI/CLI.hpp>
-
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -17,6 +15,7 @@
 #include <vector>
 
 #include "benchmarks/bonded_block.hpp"
+#include "benchmarks/options.hpp"
 #include "benchmarks/run_timing.hpp"
 #include "benchmarks/throughput_shared.hpp"
 #include "benchmarks/throughput_world.hpp"
@@ -98,13 +97,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"n10k", "n50k"}));
   app.add_option("--model", model, "the shared specimen's contacts")
       ->check(CLI::IsMember({"parallel", "cpm", "linear"}));
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return ranks.root() ? app.exit(e) : 0;  // --help
-    if (ranks.root()) std::fprintf(stderr, "split_scaling: %s\n", e.what());
-    return 2;
-  }
+  if (const auto code = read_options(app, argc, argv, "split_scaling", ranks.root())) return *code;
   omp_set_num_threads(threads);
   World<3> w = specimen.empty() ? bonded_block(target) : shared(specimen, model);
   const int n = w.particles.size();

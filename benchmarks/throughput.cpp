@@ -19,8 +19,6 @@
 #include <omp.h>
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
-
 #include <charconv>
 #include <chrono>
 #include <cstdio>
@@ -28,6 +26,7 @@
 #include <exception>
 #include <string>
 
+#include "benchmarks/options.hpp"
 #include "benchmarks/run_timing.hpp"
 #include "benchmarks/throughput_deposition.hpp"
 #include "benchmarks/throughput_effects.hpp"
@@ -73,13 +72,7 @@ Options parse(int argc, char** argv) {
         Options parts;
         return read_one(v, parts);
       });
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) std::exit(app.exit(e));  // --help
-    std::fprintf(stderr, "throughput: %s\n", e.what());
-    std::exit(2);
-  }
+  if (const auto code = read_options(app, argc, argv, "throughput")) std::exit(*code);
   if (!only.empty()) {
     o.shared = only == "shared" || only == "bonded" || only == "cpm", o.effects = only == "effects";
     o.deposition = only == "deposition";
