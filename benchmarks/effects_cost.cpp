@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/options.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
 #include "studies/runner.hpp"
@@ -67,13 +68,11 @@ double run_once(const std::string& text, const std::vector<std::string>& sets, c
 int main(int argc, char** argv) {
   std::string specimen = MESOCRACK_SPECIMEN_DIR "/n10k.spheres";
   long steps = 2000;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string a = argv[i];
-    if (a == "--specimen")
-      specimen = std::filesystem::absolute(argv[i + 1]).string();
-    else if (a == "--steps")
-      steps = std::stol(argv[i + 1]);
-  }
+  CLI::App app{"effects_cost: what each optional effect costs, as the ratio of wall times with and without it"};
+  app.add_option("--specimen", specimen, "a .spheres specimen file")->check(CLI::ExistingFile);
+  app.add_option("--steps", steps, "steps of each run")->check(CLI::Range(1L, 100000000L));
+  if (const auto code = mc::bench::read_options(app, argc, argv, "effects_cost")) return *code;
+  specimen = std::filesystem::absolute(specimen).string();
   const std::string text = base_scene(specimen, steps);
   const std::string out = (std::filesystem::temp_directory_path() / "mesocrack_effects.h5").string();
   struct Variant {

@@ -11,6 +11,7 @@
 #include <map>
 #include <string>
 
+#include "benchmarks/options.hpp"
 #include "tests/robustness/scene_mutations.hpp"
 
 namespace {
@@ -44,25 +45,12 @@ int show_one(const std::vector<SeedScene>& seeds, const Options& o) {
 
 int main(int argc, char** argv) {
   Options o;
-  const char* usage = "usage: fuzz_scenes [--seed S] [--count N] [--show M] [--only K] (whole numbers)\n";
-  if (argc % 2 == 0) return std::fprintf(stderr, "%s", usage), 2;  // an option without its value, or --help
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string opt = argv[i];
-    char* end = nullptr;
-    const unsigned long long v = std::strtoull(argv[i + 1], &end, 10);
-    if (*argv[i + 1] == '\0' || *argv[i + 1] == '-' || *end != '\0')
-      return std::fprintf(stderr, "fuzz_scenes: %s '%s' is not a whole number\n%s", opt.c_str(), argv[i + 1], usage), 2;
-    if (opt == "--seed")
-      o.seed = v;
-    else if (opt == "--count")
-      o.count = v;
-    else if (opt == "--show")
-      o.show = v;
-    else if (opt == "--only")
-      o.only = static_cast<long long>(v);
-    else
-      return std::fprintf(stderr, "%s", usage), 2;
-  }
+  CLI::App app{"fuzz_scenes: the scene reader under mutated shipped scenes, by the million"};
+  app.add_option("--seed", o.seed, "the mutations' seed (default: the test's)")->check(mc::bench::kWholeNumber);
+  app.add_option("--count", o.count, "inputs")->check(mc::bench::kWholeNumber);
+  app.add_option("--show", o.show, "wrong outcomes shown at most")->check(mc::bench::kWholeNumber);
+  app.add_option("--only", o.only, "input K alone: its text, overrides and outcome")->check(mc::bench::kWholeNumber);
+  if (const auto code = mc::bench::read_options(app, argc, argv, "fuzz_scenes")) return *code;
   const auto seeds = shipped_scenes(MESOCRACK_SOURCE_DIR);
   if (seeds.empty()) return std::fprintf(stderr, "no scenes under %s\n", MESOCRACK_SOURCE_DIR), 2;
   if (o.only >= 0) return show_one(seeds, o);

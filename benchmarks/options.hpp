@@ -4,8 +4,18 @@
 
 #include <cstdio>
 #include <optional>
+#include <string>
 
 namespace mc::bench {
+
+// A whole number in decimal digits alone: CLI11 would read "-1" into an unsigned option as its largest value.
+inline const CLI::Validator kWholeNumber(
+    [](const std::string& v) {
+      return !v.empty() && v.find_first_not_of("0123456789") == std::string::npos
+                 ? std::string()
+                 : "'" + v + "': allowed a whole number";
+    },
+    "WHOLE");
 
 // Reads argv into `app`. Empty when the run goes on; else its exit code: 0 after --help (printed), 2 after a bad
 // option, whose message (the option, the value and what is allowed) goes to stderr after the benchmark's name.

@@ -14,20 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/options.hpp"
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double option(int argc, char** argv, const std::string& name, double fallback) {
-  for (int k = 1; k + 1 < argc; ++k)
-    if (argv[k] == name) return std::atof(argv[k + 1]);
-  return fallback;
-}
-std::string text_option(int argc, char** argv, const std::string& name, const std::string& fallback) {
-  for (int k = 1; k + 1 < argc; ++k)
-    if (argv[k] == name) return argv[k + 1];
-  return fallback;
-}
 
 // Seconds from a barrier to the slowest rank's end of f().
 template <class F>
@@ -60,9 +51,17 @@ int main(int argc, char** argv) {
   int rank = 0, ranks = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-  const double megabytes = option(argc, argv, "--megabytes", 789);
-  const int rounds = static_cast<int>(option(argc, argv, "--rounds", 3));
-  const std::string dir = text_option(argc, argv, "--dir", "/tmp");
+  double megabytes = 789;
+  int rounds = 3;
+  std::string dir = "/tmp";
+  CLI::App app{"checkpoint_write: a split run's checkpoint gathered on rank 0 against parallel HDF5"};
+  app.add_option("--megabytes", megabytes, "the checkpoint's size, MB")->check(CLI::Range(1.0, 1e6));
+  app.add_option("--rounds", rounds, "rounds of both ways, in turns")->check(CLI::Range(1, 100));
+  app.add_option("--dir", dir, "where the two files are written")->check(CLI::ExistingDirectory);
+  if (const auto code = mc::bench::read_options(app, argc, argv, "checkpoint_write", rank == 0)) {
+    MPI_Finalize();
+    return *code;
+  }
   const auto n = static_cast<hsize_t>(megabytes * 1e6 / sizeof(double));
   const hsize_t share = n / ranks, first = share * rank, count = rank == ranks - 1 ? n - first : share;
   std::vector<double> mine(count);
@@ -96,8 +95,7 @@ int main(int argc, char** argv) {
       write_part(parallel, fapl, dxpl, n, first, count, mine.data());
       H5Pclose(dxpl), H5Pclose(fapl);
     });
-    if (rank == 0)
-      std::printf("| %d | %.0f | %.3f | %.3f |\n", ranks, n * sizeof(double) / 1e6, t_gather, t_parallel);
+    if (rank == 0) std::printf("| %d | %.0f | %.3f | %.3f |\n", ranks, n * sizeof(double) / 1e6, t_gather, t_parallel);
   }
   if (rank == 0) std::remove(gathered.c_str()), std::remove(parallel.c_str());
   MPI_Finalize();

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "benchmarks/options.hpp"
 #include "engine/errors.hpp"
 #include "rigid_cell/free_stiffness.hpp"
 #include "rigid_cell/newmark.hpp"
@@ -221,24 +222,14 @@ int main(int argc, char** argv) {
   omp_set_max_active_levels(0);
   std::vector<int> sizes{1000, 3000, 10000, 30000, 100000};
   int steps = 5, newmark_steps = 40;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string a = argv[i];
-    if (a == "--dofs") {
-      sizes.clear();
-      for (std::string s = argv[i + 1]; !s.empty();) {
-        const auto comma = s.find(',');
-        sizes.push_back(std::stoi(s.substr(0, comma)));
-        s = comma == std::string::npos ? "" : s.substr(comma + 1);
-      }
-    } else if (a == "--steps") {
-      steps = std::stoi(argv[i + 1]);
-    } else if (a == "--newmark-steps") {
-      newmark_steps = std::stoi(argv[i + 1]);
-    } else {
-      std::fprintf(stderr, "usage: %s [--dofs 1000,3000,...] [--steps N] [--newmark-steps N]\n", argv[0]);
-      return 2;
-    }
-  }
+  CLI::App app{"static_iteration_cost: what a secant iteration of the rigid-cell model costs as the prism grows"};
+  app.add_option("--dofs", sizes, "N,N,...: free degrees of freedom of each prism")
+      ->delimiter(',')
+      ->check(CLI::Range(100, 10000000));
+  app.add_option("--steps", steps, "static steps past the elastic limit")->check(CLI::Range(1, 40));
+  app.add_option("--newmark-steps", newmark_steps, "Newmark steps (the top reaches the tensile strain at half)")
+      ->check(CLI::Range(2, 100000));
+  if (const auto code = mc::bench::read_options(app, argc, argv, "static_iteration_cost")) return *code;
   std::printf(
       "| free DOFs | cells | facets | nnz(K) | nnz(L) | factorisation GFlop | refill [ms] | factorise [ms] | "
       "solve pair [ms] | K x [ms] | strains + damage [ms] | steps | secant iterations | factorisations | "
