@@ -8,12 +8,13 @@
 
 namespace mc::bench {
 
-// A whole number in decimal digits alone: CLI11 would read "-1" into an unsigned option as its largest value.
+// A whole number in decimal digits, without leading zeros. CLI11 reads integers in C's notation: "-1" into an
+// unsigned option as its largest value, "010" as eight, "0x10" as sixteen.
 inline const CLI::Validator kWholeNumber(
     [](const std::string& v) {
-      return !v.empty() && v.find_first_not_of("0123456789") == std::string::npos
-                 ? std::string()
-                 : "'" + v + "': allowed a whole number";
+      const bool digits = !v.empty() && v.find_first_not_of("0123456789") == std::string::npos;
+      return digits && (v.size() == 1 || v[0] != '0') ? std::string()
+                                                      : "'" + v + "': allowed a whole number in decimal digits";
     },
     "WHOLE");
 
