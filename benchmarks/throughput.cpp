@@ -67,11 +67,9 @@ Options parse(int argc, char** argv) {
       app.add_option("--reps", o.reps, "timings of each figure, the best kept")->check(CLI::Range(1, 100));
   app.add_option("--max-bonded", o.max_bonded, "the largest bonded block of the scaling section, particles")
       ->check(CLI::Range(100000, 100000000));
+  // CLI11 checks a given value once: the check stores its parts.
   app.add_option("--one", one, "SPECIMEN:MODEL:THREADS: that run of the shared section alone, as one RESULT line")
-      ->check([](const std::string& v) {
-        Options parts;
-        return read_one(v, parts);
-      });
+      ->check([&o](const std::string& v) { return read_one(v, o); });
   if (const auto code = read_options(app, argc, argv, "throughput")) std::exit(*code);
   if (!only.empty()) {
     o.shared = only == "shared" || only == "bonded" || only == "cpm", o.effects = only == "effects";
@@ -79,7 +77,6 @@ Options parse(int argc, char** argv) {
     o.scaling = only == "scaling" || only == "bonded-scaling", o.unbonded_scaling = only == "scaling";
     o.unbonded = only == "shared", o.parallel = only != "cpm", o.cpm = only != "bonded";
   }
-  if (!one.empty()) read_one(one, o);
   o.reps_given = reps->count() > 0;
   if (o.quick && !o.reps_given) o.reps = 1;
   return o;
