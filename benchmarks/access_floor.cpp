@@ -17,7 +17,8 @@
 //   inertia, position, position at the last rebuild and radius read, and its force, velocity, spin and position
 //   written;
 // - every 10th step the timestep estimate: per pair its properties, A's and B's position, radius and stiffness
-//   factor, into two transient sums per particle or its slot; per particle its sums, far slots, mass and inertia.
+//   factor, into two sums per particle (zeroed by its block) or its slot; per particle its sums, far slots, mass and
+//   inertia.
 #include <omp.h>
 
 #include <algorithm>
@@ -68,6 +69,7 @@ class MemoryWalk {
     sf_.assign(far.size(), Vec<3>::Zero());
     smb_.assign(far.size(), Vec<3>::Zero());
     live_.assign(far.size(), 1);
+    estimate_sums_.resize(2 * static_cast<std::size_t>(n));
   }
 
   // One step, each part's wall time added to `seconds` (force pass, law of motion, timestep estimate).
@@ -145,8 +147,9 @@ class MemoryWalk {
 
   void timestep_pass() {
     const int n = p_.size();
-    std::vector<double> sums(2 * static_cast<std::size_t>(n), 0.0);
+    std::vector<double>& sums = estimate_sums_;
     for (int k = 0; k < blocks_.count(); ++k) {
+      for (int i = blocks_.group_first(k); i < blocks_.near_end[k]; ++i) sums[2 * i] = sums[2 * i + 1] = 0;
       std::size_t slot = blocks_.far[k];
       for (std::size_t c = blocks_.first[k]; c < blocks_.first[k + 1]; ++c) {
         const auto [i, j] = pairs_[c];
@@ -178,6 +181,9 @@ class MemoryWalk {
   PairBlocks blocks_;
   std::vector<int> gather_start_, gather_;
   std::vector<std::uint8_t> live_;
+  // The estimate's two sums per particle, kept between passes as the engine keeps its slots: a vector made in each
+  // pass would add the first touch of fresh pages to the walk.
+  std::vector<double> estimate_sums_;
 };
 
 // ns per particle-step of the walk's parts, and their sum last; the estimate runs every 10th step, as the engine's.
