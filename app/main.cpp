@@ -15,6 +15,7 @@
 #include <string>
 
 #include "engine/errors.hpp"
+#include "scene/key_reference.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
 #include "studies/calibration.hpp"
@@ -175,13 +176,13 @@ constexpr int kAnyCount = std::numeric_limits<int>::max();
 
 // ---------------------------------------------------------------- errors of the command line itself
 
-constexpr const char* kCommands = "run, generate, calibrate, summary, report";
+constexpr const char* kCommands = "run, generate, calibrate, summary, report, keys";
 
 // A first word that is no subcommand: CLI11 would only say that a subcommand is required.
 bool unknown_command(int argc, char** argv) {
   if (argc < 2 || argv[1][0] == '-') return false;
   const std::string first = argv[1];
-  for (const char* c : {"run", "generate", "calibrate", "summary", "report"})
+  for (const char* c : {"run", "generate", "calibrate", "summary", "report", "keys"})
     if (first == c) return false;
   std::fprintf(stderr, "error: unknown command '%s'; allowed: %s (see mesocrack --help)\n", argv[1], kCommands);
   return true;
@@ -275,6 +276,12 @@ int main(int argc, char** argv) {
   summary_cmd->add_option("output", target, "output file (HDF5)")->required();
   auto* report_cmd = app.add_subcommand("report", "write PNG plots of a run next to its output file");
   report_cmd->add_option("output", target, "output file (HDF5)")->required();
+  auto* keys_cmd = app.add_subcommand("keys", "list the tables of a scene file, or the keys of one (their units, ranges, "
+                                                "defaults and meaning)");
+  std::string keys_table;
+  bool markdown = false;
+  keys_cmd->add_option("table", keys_table, "a table's name, e.g. walls, cpm, run.stop (none: the list of tables)");
+  keys_cmd->add_flag("--markdown", markdown, "every table as Markdown (docs/keys.md)")->excludes("table");
   if (unknown_command(argc, argv)) return 2;
   try {
     app.parse(argc, argv);
@@ -291,6 +298,11 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*report_cmd) return report(target);
+    if (*keys_cmd) {
+      std::cout << (markdown ? mc::key_reference_markdown()
+                             : keys_table.empty() ? mc::key_table_list() : mc::key_table_text(keys_table));
+      return 0;
+    }
   } catch (const mc::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return failed(2);

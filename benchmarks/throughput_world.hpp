@@ -65,9 +65,9 @@ void add_contact_set(World<D>& w, const Material& mat) {
   } else if (mat.bonded) {
     ParallelBondParams bp;
     bp.contact = lp;
-    bp.modulus = mat.modulus;
-    bp.kn_ks_ratio = mat.kn_ks;
-    bp.tensile_mean = bp.shear_mean = 1e12;  // no bond breaks in the timed window (README)
+    bp.bond_modulus.mean = mat.modulus;
+    bp.bond_kn_ks_ratio = mat.kn_ks;
+    bp.bond_tensile_strength.mean = bp.bond_shear_strength.mean = 1e12;  // no bond breaks in the timed window (README)
     w.sets.push_back(std::make_unique<ContactSet<ParallelBond, D>>(bp));
   } else {
     w.sets.push_back(std::make_unique<ContactSet<Linear, D>>(lp));

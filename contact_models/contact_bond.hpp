@@ -12,17 +12,18 @@
 
 namespace mc {
 
+// Its keys, units, ranges and defaults: ContactBond::keys() (contact_bond.cpp).
 struct ContactBondParams {
-  LinearParams contact;  // springs, friction and dashpots, Tang (3.25)–(3.26), (3.38)
-  // Normal (tensile) and shear strength [N]: normal (mean, std) truncated to > 0, or with a Weibull shape
-  // k > 0 Weibull with scale λ = the "mean" field (Tang 8.4).
-  double normal_mean = kNaN, normal_std = 0.0, normal_weibull = 0.0;
-  double shear_mean = kNaN, shear_std = 0.0, shear_weibull = 0.0;
+  LinearParams contact;          // springs, friction and dashpots, Tang (3.25)–(3.26), (3.38)
+  Scatter bond_normal_strength;  // tensile strength F_c^n [N], drawn per bond (Tang 8.4)
+  Scatter bond_shear_strength;   // shear strength F_c^s [N], likewise
 };
 
 struct ContactBond {
   static constexpr const char* name = "contact_bond";
   using Params = ContactBondParams;
+  static const KeyTable& keys();
+  static double damping_ratio(const Params& p) { return p.contact.damping_ratio; }
   template <int D>
   struct State {
     Vec<D> fs = Vec<D>::Zero();    // shear force on B [N]
@@ -51,8 +52,8 @@ struct ContactBond {
   template <int D, class Normal>
   static void install(const Params& p, const ContactGeometry<D>& g, State<D>& s, Normal& normal) {
     s.gap0 = std::max(0.0, -g.overlap);
-    s.normal = normal(p.normal_mean, p.normal_std, p.normal_weibull);
-    s.shear = normal(p.shear_mean, p.shear_std, p.shear_weibull);
+    s.normal = normal(p.bond_normal_strength);
+    s.shear = normal(p.bond_shear_strength);
   }
 
   template <int D, bool Energy>

@@ -21,26 +21,30 @@
 
 namespace mc {
 
+// The shape of the yield surface in compression (Šmilauer (23) and "Confinement extension").
+enum class CpmYield { Logarithmic, Linear };
+
+// Its keys, units, ranges and defaults (the document's recommended values, viscosity off): Cpm::keys() (cpm.cpp).
 struct CpmParams {
-  double modulus = kNaN;             // k_N [Pa], normal modulus: the particle material's E (Yade CpmMat.young)
-  double kt_kn_ratio = 0.2;          // k_T/k_N [-] (Yade CpmMat.poisson)
-  double crack_onset_strain = kNaN;  // ε_0 [-], limit elastic strain (15)–(16)
-  double relative_ductility = kNaN;  // ε_f/ε_0 [-]
-  double cohesion = kNaN;            // c_T0 [Pa], undamaged shear cohesion (23)
-  double tan_friction = kNaN;        // tan φ [-]
-  bool hardening = true;             // compressive plasticity: off as in Yade's public CpmMat (epsSoft ≥ 0)
-  double hardening_strain = -3e-3;   // ε_s [-] (< 0), where the hardening branch begins
-  double hardening_ratio = 0.3;      // K̃_s [-], its tangent modulus over k_N
-  bool log_yield = true;             // logarithmic yield surface in compression; false: linear (23) everywhere
-  double yield_log_speed = 0.1;      // Y_0 [-]
-  double damage_time = 0;            // τ_d [s], visco-damage (18); 0: off
-  double damage_rate_exponent = 0;   // M_d [-]
-  double plastic_time = 0;           // τ_pl [s], visco-plasticity; 0: off
-  double plastic_rate_exponent = 0;  // M_pl [-]
-  double confinement = 0;            // σ_0 [Pa] (≤ 0), isotropic confinement at contact level
-  bool never_damage = false;         // ω = 0 on cohesive contacts, for elastic calibration
-  double interaction_radius = 1.5;   // R_I [-]: cohesive contacts where d ≤ R_I (r_a + r_b) at the start
-  double break_damage = 1.0;         // ω at which a cohesive contact in tension breaks; 1: never (Yade's default)
+  double modulus = kNaN;                    // k_N [Pa], normal modulus: the particle material's E (Yade CpmMat.young)
+  double kt_kn_ratio = 0.2;                 // k_T/k_N [-] (Yade CpmMat.poisson)
+  double crack_onset_strain = kNaN;         // ε_0 [-], limit elastic strain (15)–(16)
+  double relative_ductility = kNaN;         // ε_f/ε_0 [-]
+  double cohesion = kNaN;                   // c_T0 [Pa], undamaged shear cohesion (23)
+  double tan_friction = kNaN;               // tan φ [-]: the key is the angle φ, `friction_angle`
+  bool compression_hardening = true;        // compressive plasticity: off as in Yade's public CpmMat (epsSoft ≥ 0)
+  double hardening_strain = -3e-3;          // ε_s [-] (< 0), where the hardening branch begins
+  double hardening_modulus_ratio = 0.3;     // K̃_s [-], its tangent modulus over k_N
+  CpmYield compression_yield = CpmYield::Logarithmic;  // linear: (23) everywhere
+  double yield_log_speed = 0.1;             // Y_0 [-]
+  double damage_time = 0;                   // τ_d [s], visco-damage (18); 0: off
+  double damage_rate_exponent = 0.3;        // M_d [-]
+  double plastic_time = 0;                  // τ_pl [s], visco-plasticity; 0: off
+  double plastic_rate_exponent = 0.3;       // M_pl [-]
+  double confinement = 0;                   // σ_0 [Pa] (≤ 0), isotropic confinement at contact level
+  bool never_damage = false;                // ω = 0 on cohesive contacts, for elastic calibration
+  double interaction_radius = 1.5;          // R_I [-]: cohesive contacts where d ≤ R_I (r_a + r_b) at the start
+  double break_damage = 1.0;                // ω at which a cohesive contact in tension breaks; 1: never (Yade's default)
 };
 
 // Šmilauer (22) and its visco-plastic twin: the root of ln(e^β + c e^{Mβ}) = 0 for c, M > 0. The function is
@@ -61,6 +65,8 @@ inline double cpm_solve_beta(double c, double m) {
 struct Cpm {
   static constexpr const char* name = "cpm";
   using Params = CpmParams;
+  static const KeyTable& keys();
+  static double damping_ratio(const Params&) { return 0.0; }  // no dashpots: damage, plasticity and viscosity
   template <int D>
   struct State {
     Vec<D> eps_t = Vec<D>::Zero();  // ε_T, total shear strain on the contact plane (B relative to A)
@@ -84,8 +90,8 @@ struct Cpm {
   static double confinement_strain(const Params& p) {
     if (p.confinement == 0) return 0;
     const double kns = p.modulus * p.hardening_strain;
-    if (!p.hardening || p.confinement > kns) return p.confinement / p.modulus;
-    return p.hardening_strain + (p.confinement - kns) / (p.modulus * p.hardening_ratio);
+    if (!p.compression_hardening || p.confinement > kns) return p.confinement / p.modulus;
+    return p.hardening_strain + (p.confinement - kns) / (p.modulus * p.hardening_modulus_ratio);
   }
 
   // A = π min(r_a, r_b)² (Yade's crossSection); in 2D a strip 2 min(r) × 1 m, though scenes are refused in 2D.
@@ -141,7 +147,7 @@ struct Cpm {
   // ("Confinement extension", C¹ at σ_N = 0; Y_0 → ∞ gives back the linear one). Never below 0.
   static double yield_radius(const Coeffs& c, double sn, double omega) {
     const double coh = c.cohesion * (1.0 - omega);
-    if (sn >= 0 || !c.p->log_yield || c.cohesion == 0) return std::max(0.0, coh - sn * c.tan_phi);
+    if (sn >= 0 || c.p->compression_yield == CpmYield::Linear || c.cohesion == 0) return std::max(0.0, coh - sn * c.tan_phi);
     const double y0 = c.p->yield_log_speed;
     return coh + c.cohesion * y0 * c.tan_phi * std::log1p(-sn / (c.cohesion * y0));
   }
@@ -151,7 +157,7 @@ struct Cpm {
   // bound is lowered by 1e-9, far beyond the few roundings of either side, so that it never passes a stress that
   // yield_radius as computed would not.
   static bool may_yield(const Coeffs& c, double sn, double omega, double st2) {
-    if (sn >= 0 || !c.p->log_yield || c.cohesion == 0) return true;  // the linear surface: no logarithm to save
+    if (sn >= 0 || c.p->compression_yield == CpmYield::Linear || c.cohesion == 0) return true;  // no logarithm to save
     const double y0 = c.p->yield_log_speed, x = -sn / (c.cohesion * y0);
     const double low = (c.cohesion * (1.0 - omega) + c.cohesion * y0 * c.tan_phi * (x / (1.0 + x))) * (1.0 - 1e-9);
     return st2 > low * low;
@@ -199,8 +205,8 @@ struct Cpm {
       if (cohesive && el > 0) out.fractured += 0.5 * c.kn * el * el * (omega - omega_before) * volume;
     // Compressive hardening: beyond ε_s the stress follows σ_Ns = k_N (ε_s + K̃_s (ε_N − ε_s)), the excess
     // turning into plastic strain; unloading is elastic with k_N from there.
-    if (p.hardening && el < p.hardening_strain) {
-      const double sns = c.kn * (p.hardening_strain + p.hardening_ratio * (eps - p.hardening_strain));
+    if (p.compression_hardening && el < p.hardening_strain) {
+      const double sns = c.kn * (p.hardening_strain + p.hardening_modulus_ratio * (eps - p.hardening_strain));
       if (sns > sn) {
         const double dpl = (sn - sns) / c.kn;
         s.eps_pl += dpl;

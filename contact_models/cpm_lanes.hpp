@@ -74,9 +74,9 @@ struct LaneLaw<Cpm, 3> {
     Lane sn = pick(el > 0.0, 1.0 - omega, 1.0) * kn * el;
     // Compressive hardening.
     Lane new_eps_pl = eps_pl;
-    if (prm.hardening) {
+    if (prm.compression_hardening) {
       const double es = prm.hardening_strain;
-      const Lane sns = kn * (es + prm.hardening_ratio * (eps - es));
+      const Lane sns = kn * (es + prm.hardening_modulus_ratio * (eps - es));
       const LaneMask flows = el < es && sns > sn;
       new_eps_pl = pick(flows, eps_pl + (sn - sns) / kn, eps_pl);
       sn = pick(flows, sns, sn);
@@ -87,7 +87,7 @@ struct LaneLaw<Cpm, 3> {
     const Lane coh = coh0 * (1.0 - omega);
     const Lane linear = coh - sn * tan_phi;
     Lane r_pl = pick(0.0 < linear, linear, 0.0);
-    if (prm.log_yield && coh0 != 0) {
+    if (prm.compression_yield == CpmYield::Logarithmic && coh0 != 0) {
       const double y0 = prm.yield_log_speed;
       const LaneMask compressed = !(sn >= 0.0);
       const Lane x = -sn / (coh0 * y0);

@@ -8,6 +8,7 @@
 
 namespace mc {
 
+// Its keys, units, ranges and defaults: HertzMindlin::keys() (hertz_mindlin.cpp).
 struct HertzMindlinParams {
   double shear_modulus = kNaN;  // G [Pa]
   double poisson = kNaN;        // ν [-]
@@ -18,6 +19,8 @@ struct HertzMindlinParams {
 struct HertzMindlin {
   static constexpr const char* name = "hertz_mindlin";
   using Params = HertzMindlinParams;
+  static const KeyTable& keys();
+  static double damping_ratio(const Params& p) { return p.damping_ratio; }
   template <int D>
   struct State {
     Vec<D> fs = Vec<D>::Zero();

@@ -10,6 +10,7 @@
 
 namespace mc {
 
+// Its keys, units, ranges and defaults: Linear::keys() (linear.cpp).
 struct LinearParams {
   double modulus = kNaN;     // contact modulus E_c [Pa]: ball k_n = 2 t E_c (2D, t = 1 m) or 4 R E_c (3D), Tang (3.38)
   double kn_ks_ratio = 1.0;  // k_n / k_s [-]
@@ -20,6 +21,8 @@ struct LinearParams {
 struct Linear {
   static constexpr const char* name = "linear";
   using Params = LinearParams;
+  static const KeyTable& keys();
+  static double damping_ratio(const Params& p) { return p.damping_ratio; }
   template <int D>
   struct State {
     Vec<D> fs = Vec<D>::Zero();  // shear force on B [N]

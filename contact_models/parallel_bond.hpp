@@ -14,17 +14,14 @@
 
 namespace mc {
 
+// Its keys, units, ranges and defaults: ParallelBond::keys() (parallel_bond.cpp).
 struct ParallelBondParams {
-  LinearParams contact;            // the grain contact in parallel (Tang 3.38: k_n = 2tE_c / 4RE_c)
-  double radius_multiplier = 1.0;  // λ̄ [-], Tang (3.40)
-  double modulus = kNaN;           // Ē_c [Pa]: k̄_n = Ē_c / (R_A + R_B), Tang (3.38)
-  // Per-bond Ē_c: normal (modulus, modulus_std) truncated to > 0, or Weibull (scale modulus, shape k) (8.4).
-  double modulus_std = 0.0, modulus_weibull = 0.0;
-  double kn_ks_ratio = 1.0;  // k̄_n / k̄_s [-]
-  // σ̄_c, τ̄_c [Pa]: normal (mean, std) truncated to > 0, or with a Weibull shape k > 0 Weibull with scale
-  // λ = the "mean" field (Tang 8.4).
-  double tensile_mean = kNaN, tensile_std = 0.0, tensile_weibull = 0.0;
-  double shear_mean = kNaN, shear_std = 0.0, shear_weibull = 0.0;
+  LinearParams contact;                 // the grain contact in parallel (Tang 3.38: k_n = 2tE_c / 4RE_c)
+  double bond_radius_multiplier = 1.0;  // λ̄ [-], Tang (3.40)
+  Scatter bond_modulus;                 // Ē_c [Pa]: k̄_n = Ē_c / (R_A + R_B), Tang (3.38); per bond (§8.1.2)
+  double bond_kn_ks_ratio = 1.0;        // k̄_n / k̄_s [-]
+  Scatter bond_tensile_strength;        // σ̄_c [Pa], drawn per bond (Tang Table 5.1, 8.4)
+  Scatter bond_shear_strength;          // τ̄_c [Pa], likewise
 };
 
 // Beam section of a bond, Tang (3.39): area, second moment, polar moment (2D: t = 1 m, J unused).
@@ -43,6 +40,8 @@ struct BondSection {
 struct ParallelBond {
   static constexpr const char* name = "parallel_bond";
   using Params = ParallelBondParams;
+  static const KeyTable& keys();
+  static double damping_ratio(const Params& p) { return p.contact.damping_ratio; }
   // What the force pass rewrites every step.
   template <int D>
   struct History {
@@ -92,9 +91,9 @@ struct ParallelBond {
   template <int D>
   static Coeffs pair(const Params& p, double ra, double rb, double fa = 1, double fb = 1) {
     const double inv_sum = 1.0 / (ra + rb);
-    const double kn = p.modulus * inv_sum;         // Tang (3.38)
-    const double ks = kn * (1.0 / p.kn_ks_ratio);  // the reciprocal is loop-invariant: hoisted
-    const double r = p.radius_multiplier * std::min(ra, rb), inv_r = 1.0 / r;  // Tang (3.40)
+    const double kn = p.bond_modulus.mean * inv_sum;    // Tang (3.38)
+    const double ks = kn * (1.0 / p.bond_kn_ks_ratio);  // the reciprocal is loop-invariant: hoisted
+    const double r = p.bond_radius_multiplier * std::min(ra, rb), inv_r = 1.0 / r;  // Tang (3.40)
     // The grain contact (Linear::pair), sharing 1/(R_A + R_B) when the particles have no stiffness factors.
     const Linear::Coeffs lc = fa == 1 && fb == 1 ? Linear::pair_from<D>(p.contact, D == 2 ? 0.5 : ra * rb * inv_sum)
                                                  : Linear::pair<D>(p.contact, ra, rb, fa, fb);
@@ -128,25 +127,15 @@ struct ParallelBond {
   template <int D, class Normal>
   static void install(const Params& p, const ContactGeometry<D>&, State<D>& s, Normal& normal) {
     s = unbonded<D>(s);
-    s.stiffness = normal(p.modulus, p.modulus_std, p.modulus_weibull) / p.modulus;
+    s.stiffness = normal(p.bond_modulus) / p.bond_modulus.mean;
     using Strength = decltype(s.tensile);
-    s.tensile = static_cast<Strength>(normal(p.tensile_mean, p.tensile_std, p.tensile_weibull));
-    s.shear = static_cast<Strength>(normal(p.shear_mean, p.shear_std, p.shear_weibull));
+    s.tensile = static_cast<Strength>(normal(p.bond_tensile_strength));
+    s.shear = static_cast<Strength>(normal(p.bond_shear_strength));
   }
 
-  // Tang (3.41): the beam's largest tensile and shear stresses.
-  template <int D>
-  static double max_tensile_stress(const Coeffs& c, const State<D>& s) {
-    return -s.bond_fn * c.inv_a + s.bond_ms.norm() * c.r_i;
-  }
-  template <int D>
-  static double max_shear_stress(const Coeffs& c, const State<D>& s) {
-    double t = s.bond_fs.norm() * c.inv_a;
-    if constexpr (D == 3) t += std::abs(s.bond_mn) * c.r_j;
-    return t;
-  }
-  // The same comparisons with the strengths, without square roots: |M|R̄/I ≥ σ̄_c + F_n/A ⇔ the right side
-  // is ≤ 0 or its square is ≤ |M|²(R̄/I)²; likewise for shear.
+  // Tang (3.41): the beam's largest tensile stress −F_n/A + |M|R̄/I and shear stress |F_s|/A + |M_n|R̄/J against
+  // the strengths, without square roots: |M|R̄/I ≥ σ̄_c + F_n/A ⇔ the right side is ≤ 0 or its square is
+  // ≤ |M|²(R̄/I)²; likewise for shear.
   template <int D>
   [[gnu::always_inline]] static bool breaks_in_tension(const Coeffs& c, const State<D>& s) {
     const double need = s.tensile + s.bond_fn * c.inv_a;

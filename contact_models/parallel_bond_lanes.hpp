@@ -41,8 +41,8 @@ struct LaneLaw<ParallelBond, 3> {
 
     // Coefficients, as ParallelBond::pair with unit stiffness factors.
     const Lane inv_sum = 1.0 / g.reach;
-    const Lane kn = prm.modulus * inv_sum, ks = kn * (1.0 / prm.kn_ks_ratio);  // Tang (3.38)
-    const Lane r = prm.radius_multiplier * ra.min(rb), inv_r = 1.0 / r;        // Tang (3.40)
+    const Lane kn = prm.bond_modulus.mean * inv_sum, ks = kn * (1.0 / prm.bond_kn_ks_ratio);  // Tang (3.38)
+    const Lane r = prm.bond_radius_multiplier * ra.min(rb), inv_r = 1.0 / r;                   // Tang (3.40)
     const Lane kn_c = 4.0 * prm.contact.modulus * (ra * rb * inv_sum), ks_c = kn_c * (1.0 / prm.contact.kn_ks_ratio);
     const Lane r4 = r * r * r * r, inv_r3 = inv_r * inv_r * inv_r;
     const Lane kn_a = kn * M_PI * r * r, ks_a = ks * M_PI * r * r;  // Tang (3.37), (3.39)

@@ -15,11 +15,12 @@
 
 namespace mc {
 
-// The contact bond's springs and strengths (F_c^n, F_c^s [N]), and how far the bond softens.
+// The contact bond's springs and strengths (F_c^n, F_c^s [N]), and how far the bond softens. Its keys, units,
+// ranges and defaults: SofteningBond::keys() (softening_bond.cpp).
 struct SofteningBondParams : ContactBondParams {
   // U_p,max comes from exactly one of these (the other is 0).
-  double plastic_limit = 0.0;    // U_p,max [m]
-  double fracture_energy = 0.0;  // G_f [J/m²] over the bond's section
+  double bond_plastic_limit = 0.0;    // U_p,max [m]
+  double bond_fracture_energy = 0.0;  // G_f [J/m²] over the bond's section
 };
 
 // What it shares with the contact bond (glued springs measured from the gap at bonding, their energy, the
@@ -27,6 +28,7 @@ struct SofteningBondParams : ContactBondParams {
 struct SofteningBond : ContactBond {
   static constexpr const char* name = "softening_bond";
   using Params = SofteningBondParams;
+  static const KeyTable& keys();  // its own, not the contact bond's it would inherit
   // The contact bond's state (shear force, strengths, gap0) and U_p. Here gap0 also widens with the bond's
   // plastic opening.
   template <int D>
@@ -43,7 +45,7 @@ struct SofteningBond : ContactBond {
   static Coeffs pair(const Params& p, double ra, double rb, double fa = 1, double fb = 1) {
     const double r = std::min(ra, rb);
     const double area = D == 2 ? 2.0 * r : M_PI * r * r;  // Tang (3.39) with λ̄ = 1, t = 1 m
-    return {Linear::pair<D>(p.contact, ra, rb, fa, fb), p.plastic_limit, p.fracture_energy * area};
+    return {Linear::pair<D>(p.contact, ra, rb, fa, fb), p.bond_plastic_limit, p.bond_fracture_energy * area};
   }
   template <int D>
   static Coeffs wall(const Params& p, const WallMaterial& w, double rb, double fb = 1) {

@@ -1,6 +1,7 @@
 // What the engine requires of a contact model, checked when a ContactSet is made of it: a force law as a pure
-// struct with its Params (from the scene), per-contact State (plain numbers: checkpoints copy it as bytes), the
-// per-pair Coeffs it derives from both, and static functions of one contact (contact_models/ holds them).
+// struct with its Params and their key table (engine/keys.hpp: what a scene may set, read by scene/), per-contact
+// State (plain numbers: checkpoints copy it as bytes), the per-pair Coeffs it derives from both, and static functions
+// of one contact (contact_models/ holds them).
 //
 // Optional traits, each asked for with `requires`:
 //   BondModel: `bondable`, bonded(State), install(Params, geometry, State, PairRandom&): the model glues pairs;
@@ -12,6 +13,7 @@
 #include <concepts>
 
 #include "engine/contact_geometry.hpp"
+#include "engine/keys.hpp"
 #include "engine/random.hpp"
 
 namespace mc {
@@ -21,6 +23,9 @@ concept ContactModel = requires(const typename M::Params& p, const WallMaterial&
                                 typename M::template State<D>& s, const typename M::template State<D>& cs,
                                 const typename M::Coeffs& c, double r) {
   { M::name } -> std::convertible_to<const char*>;
+  { M::keys() } -> std::same_as<const KeyTable&>;
+  // The damping ratio ζ of its dashpots (0: none), which lowers the critical timestep (World::critical_timestep).
+  { M::damping_ratio(p) } -> std::convertible_to<double>;
   // Coefficients of a pair of balls (radii, stiffness factors) and of a ball against a wall.
   { M::template pair<D>(p, r, r, r, r) } -> std::same_as<typename M::Coeffs>;
   { M::template wall<D>(p, wall, r, r) } -> std::same_as<typename M::Coeffs>;

@@ -181,12 +181,7 @@ class ContactSet final : public ContactSetBase<D> {
       return 0.0;
   }
 
-  double damping_ratio() const override {
-    if constexpr (requires { params_.damping_ratio; })
-      return params_.damping_ratio;
-    else
-      return 0.0;
-  }
+  double damping_ratio() const override { return Model::damping_ratio(params_); }
 
   ExactSum strain_energy(const Particles<D>& p, const std::vector<Wall<D>>& walls) const override {
     std::vector<ExactSum> part(block_count(pairs_.size()));

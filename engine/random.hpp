@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "engine/keys.hpp"  // Scatter
+
 namespace mc {
 
 // One step of splitmix64: advances `state` and returns the next 64 random bits.
@@ -41,6 +43,7 @@ struct PairRandom {
     if (weibull_shape > 0) return a * std::pow(-std::log(uniform()), 1.0 / weibull_shape);
     return (*this)(a, b);
   }
+  double operator()(const Scatter& s) { return (*this)(s.mean, s.std, s.weibull_shape); }
 };
 
 }  // namespace mc

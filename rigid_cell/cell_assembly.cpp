@@ -34,7 +34,7 @@ CellAssembly<D>::CellAssembly(const Tessellation<D>& t, std::vector<FacetParams>
   contacts_.reserve(t.contacts);
   for (std::size_t k = 0; k < t.contacts; ++k) {
     const Facet<D>& f = t.facets[k];
-    if (params_[k].ft > 0) {  // a facet whose softening would snap back is refused now, not when it cracks
+    if (params_[k].tensile_strength > 0) {  // a facet whose softening would snap back is refused now, not when it cracks
       try {
         crack_band_slopes(params_[k], f.length);
       } catch (const InputError& e) {

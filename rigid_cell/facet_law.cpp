@@ -52,28 +52,28 @@ double omega_0(double alpha) {
 
 double elastic_limit(double omega, const FacetParams& p) {
   const double s = std::sin(omega), c = std::cos(omega);
-  if (omega < omega_0(p.alpha)) return kCompression * p.ft / std::sqrt(s * s + p.alpha * c * c);
+  if (omega < omega_0(p.alpha)) return kCompression * p.tensile_strength / std::sqrt(s * s + p.alpha * c * c);
   // The smaller positive root of (kA s² − kShear α c²) f² − kB s f + kC = 0.
   const double a = kA * s * s - kShear * p.alpha * c * c, b = -kB * s;
   const double disc = std::sqrt(b * b - 4 * a * kC);
-  return p.ft * (2 * kC) / (-b + disc);  // the same root, written without the cancellation near ω = π/2
+  return p.tensile_strength * (2 * kC) / (-b + disc);  // the same root, written without the cancellation near ω = π/2
 }
 
 Slopes crack_band_slopes(const FacetParams& p, double L) {
-  const double ft2L = p.ft * p.ft * L;
-  if (!(2 * p.E0 * p.Gt > ft2L) || !(32 * p.alpha * p.E0 * p.Gt > 9 * ft2L)) {
+  const double ft2L = p.tensile_strength * p.tensile_strength * L;
+  if (!(2 * p.E0 * p.fracture_energy > ft2L) || !(32 * p.alpha * p.E0 * p.fracture_energy > 9 * ft2L)) {
     std::ostringstream m;
-    m << "a facet " << L << " m long with f_t " << p.ft << " Pa, G_t " << p.Gt << " N/m and E0 " << p.E0
+    m << "a facet " << L << " m long with f_t " << p.tensile_strength << " Pa, G_t " << p.fracture_energy << " N/m and E0 " << p.E0
       << " Pa snaps back: the crack band needs 2 E0 G_t > f_t^2 L and 32 alpha E0 G_t > 9 f_t^2 L (Kveton (3.20)); "
       << "use smaller cells or a larger G_t";
     throw InputError(m.str());
   }
-  return {2 * p.E0 * ft2L / (2 * p.E0 * p.Gt - ft2L),
-          18 * p.alpha * p.E0 * ft2L / (32 * p.alpha * p.E0 * p.Gt - 9 * ft2L)};
+  return {2 * p.E0 * ft2L / (2 * p.E0 * p.fracture_energy - ft2L),
+          18 * p.alpha * p.E0 * ft2L / (32 * p.alpha * p.E0 * p.fracture_energy - 9 * ft2L)};
 }
 
 double rate_increase(const FacetParams& p, double strain_rate) {
-  return p.c1 > 0 ? 1 + p.c1 * std::asinh(strain_rate / p.c0) : 1.0;
+  return p.rate_c1 > 0 ? 1 + p.rate_c1 * std::asinh(strain_rate / p.rate_c0) : 1.0;
 }
 
 double strain_rate(const Eigen::Vector3d& e_rate, const FacetParams& p) {
@@ -82,7 +82,7 @@ double strain_rate(const Eigen::Vector3d& e_rate, const FacetParams& p) {
 }
 
 double damage(const Eigen::Vector3d& e, const FacetParams& p, double L, const FacetState& s, double strain_rate) {
-  if (!(p.ft > 0)) return 0;
+  if (!(p.tensile_strength > 0)) return 0;
   const double eT = std::hypot(e[1], e[2]);
   const double e_eq = std::sqrt(e[0] * e[0] + p.alpha * eT * eT);  // (3.12)
   if (e_eq == 0) return s.D_max;

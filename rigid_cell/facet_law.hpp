@@ -6,17 +6,87 @@
 #pragma once
 #include <Eigen/Core>
 
+#include "engine/keys.hpp"
+
 namespace mc::rigid_cell {
 
+// Its keys, units, ranges and defaults: facet_law_keys() below (inline: every build reads rigid-cell scenes, also one
+// without the family, which then refuses to run them).
 struct FacetParams {
-  double E0 = 0;     // normal modulus E₀ [Pa]
-  double alpha = 0;  // tangential-to-normal stiffness ratio α [-]
-  double ft = 0;     // tensile strength f_t [Pa]; 0: elastic
-  double Gt = 0;     // fracture energy in tension G_t [N/m]
+  double E0 = 0;                // normal modulus E₀ [Pa]
+  double alpha = 0;             // tangential-to-normal stiffness ratio α [-]
+  double tensile_strength = 0;  // f_t [Pa]; 0: elastic
+  double fracture_energy = 0;   // in tension, G_t [N/m]
   // The rate dependence of (8.16)-(8.17): F = 1 + c₁ asinh(ė/c₀) scales the elastic limit; c₁ = 0: none.
-  double c0 = 0;  // [1/s] (Tab. 8.1)
-  double c1 = 0;  // [-]
+  double rate_c0 = 0;  // c₀ [1/s] (Tab. 8.1)
+  double rate_c1 = 0;  // c₁ [-]
 };
+
+// The keys of a [[contacts]] entry with model = "facet_damage" (beside the contacts table's model and phases): E₀ and
+// α, or the macroscopic E and ν they follow from by (3.8); f_t and G_t; the rate dependence (8.16)-(8.17).
+inline const KeyTable& facet_law_keys() {
+  using P = FacetParams;
+  static const KeyTable t = key_table<P>(
+      "facet_damage", "[[contacts]] model = \"facet_damage\" (rigid-cell scenes)",
+      "The rigid-cell model's facet law (Květoň §3.2, after Cusatis & Cedolin 2007): elastic s = E₀ diag(1, α, α) e "
+      "(3.6) with isotropic damage (3.11) found in the equivalent space (3.12)-(3.14) from the straining direction "
+      "(3.15), the elastic limit f_eq(ω) (3.16), exponential softening (3.17)-(3.19) scaled by the crack band (3.20) "
+      "so that a facet dissipates G_t per unit area in pure tension whatever its length.",
+      {
+          bound(&P::E0, {.name = "E0",
+                        .unit = Unit::Pressure,
+                        .range = Range::positive(),
+                        .need = Need::Required,
+                        .when = "with alpha",
+                        .doc = "the facets' normal modulus E₀ (3.6)",
+                        .example = "60 GPa"}),
+          bound(&P::alpha, {.name = "alpha",
+                           .range = Range::positive(),
+                           .need = Need::Required,
+                           .when = "with E0",
+                           .doc = "the tangential-to-normal stiffness ratio α (3.6)",
+                           .example = "0.29"}),
+          {.name = "modulus",
+           .unit = Unit::Pressure,
+           .range = Range::positive(),
+           .need = Need::Required,
+           .when = "instead of E0, with poisson_ratio",
+           .doc = "the macroscopic E, from which E₀ and α follow by (3.8) (2D: plane stress, the same average)"},
+          {.name = "poisson_ratio",
+           .range = Range{-1.0, 0.5, true, true},
+           .need = Need::Required,
+           .when = "with modulus",
+           .doc = "the macroscopic ν: below 1/4 in 3D, 1/3 in 2D"},
+          bound(&P::tensile_strength, {.name = "tensile_strength",
+                                      .unit = Unit::Pressure,
+                                      .range = Range::non_negative(),
+                                      .doc = "f_t of the elastic limit (3.16); 0: elastic facets",
+                                      .example = "3 MPa"}),
+          bound(&P::fracture_energy, {.name = "fracture_energy",
+                                     .unit = Unit::EnergyPerArea,
+                                     .range = Range::positive(),
+                                     .need = Need::Required,
+                                     .when = "with tensile_strength > 0",
+                                     .doc = "G_t, in tension, per unit facet area (3.20)",
+                                     .example = "80 N/m"}),
+          bound(&P::rate_c1, {.name = "rate_c1",
+                             .range = Range::positive(),
+                             .need = Need::Required,
+                             .when = "with rate_c0, on damaging facets",
+                             .doc = "c₁ of the rate dependence F = 1 + c₁ asinh(ė/c₀) of the elastic limit (8.17)"}),
+          bound(&P::rate_c0, {.name = "rate_c0",
+                             .unit = Unit::Rate,
+                             .range = Range::positive(),
+                             .need = Need::Required,
+                             .when = "with rate_c1",
+                             .doc = "c₀, a strain rate (Tab. 8.1)"}),
+      },
+      {{.keys = {"E0", "modulus"},
+        .one_required = true,
+        .why = "the facets' normal modulus E0 with alpha, or the macroscopic modulus with poisson_ratio (Květoň "
+               "(3.8)), one pair"}});
+  return t;
+}
 
 // Květoň (8.17) after Cusatis (2011): the increase F of the elastic limit at the facet's equivalent strain rate
 // [1/s]. The thesis writes it of the crack-opening rate ẇ but gives c₀ in s⁻¹ (Tab. 8.1): the rate of the facet's

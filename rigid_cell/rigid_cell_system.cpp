@@ -39,7 +39,7 @@ RigidCellSystem<D>::RigidCellSystem(RigidCellSetup<D> setup) : setup_(std::move(
   build_sections();
   damage_.assign(model_->contacts(), 0.0);
   states_.assign(model_->contacts(), FacetState{});
-  for (std::size_t c = 0; c < model_->contacts(); ++c) rate_dependent_ = rate_dependent_ || model_->params(c).c1 > 0;
+  for (std::size_t c = 0; c < model_->contacts(); ++c) rate_dependent_ = rate_dependent_ || model_->params(c).rate_c1 > 0;
   if (rate_dependent_ && !setup_.dynamics)
     throw InputError(
         "a facet law's rate dependence (rate_c0, rate_c1; Kveton (8.16)-(8.17)) acts on the cells' "
@@ -104,8 +104,8 @@ void RigidCellSystem<D>::apply_strength_field(std::vector<FacetParams>& params) 
   double least = std::numeric_limits<double>::infinity(), most = 0, sum = 0;
   for (std::size_t c = 0; c < params.size(); ++c) {
     const double h = setup_.strength_field->h(tessellation_.facets[c].centroid);
-    params[c].ft *= h;
-    params[c].Gt *= h * h;
+    params[c].tensile_strength *= h;
+    params[c].fracture_energy *= h * h;
     least = std::min(least, h), most = std::max(most, h), sum += h;
   }
   setup_.facts.push_back({"random_field_modes", static_cast<double>(setup_.strength_field->modes())});

@@ -1,7 +1,8 @@
-// Analyses: the kinds of test a scene may declare, each in its own table ([uniaxial], [bending]; next [pullout]).
-// An analysis reads its keys, records the histories it defines, checks that the histories it reads exist, and
-// writes its block of `summary`. Each is a plug-in: scene/analyses/<name>.{hpp,cpp} and one line in the registry
-// (scene/analysis.cpp). It observes bodies and groups only, not a solver's internals, so it serves every solver.
+// Analyses: the kinds of test a scene may declare, each in its own table ([uniaxial], [bending], [pullout]). An
+// analysis declares its keys (a key table), reads them, records the histories it defines, checks that the histories
+// it reads exist, and writes its block of `summary`. Each is a plug-in: scene/analyses/<name>.{hpp,cpp} and one line
+// in the registry (scene/analysis.cpp). It observes bodies and groups only, not a solver's internals, so it serves
+// every solver.
 #pragma once
 #include <array>
 #include <map>
@@ -14,7 +15,7 @@
 #include "engine/particles.hpp"
 #include "engine/system.hpp"  // Series
 #include "engine/wall.hpp"
-#include "scene/toml_reader.hpp"
+#include "scene/key_reader.hpp"
 
 namespace mc {
 
@@ -58,15 +59,17 @@ class Analysis {
   // when the specimen does not allow it (a support group at the wrong end).
   virtual void add_histories(std::vector<Series>& out, const Observed<2>& o) const = 0;
   virtual void add_histories(std::vector<Series>& out, const Observed<3>& o) const = 0;
-  // Once the whole scene is read: what it reads is recorded and what it needs is declared. Fails through `t`,
+  // Once the whole scene is read: what it reads is recorded and what it needs is declared. Fails through `k`,
   // its own table, naming the key.
-  virtual void check(const Table& t, const Scene& s, const std::vector<std::string>& histories) const = 0;
+  virtual void check(const KeyReader& k, const Scene& s, const std::vector<std::string>& histories) const = 0;
   // Its block of `summary`: a JSON value computed from what the run recorded.
   virtual std::string summary_json(const RunRecord& run) const = 0;
 };
 
 // Reads every analysis table the scene has (the rest of the scene read already: groups, bonds …).
 void read_analyses(const Table& root, Scene& s);
+// The key tables of the analyses, in registry order.
+std::vector<const KeyTable*> analysis_keys();
 // Checks each of them against the scene's histories.
 void check_analyses(const Table& root, const Scene& s, const std::vector<std::string>& histories);
 

@@ -174,9 +174,9 @@ template <int D>
 void draw_stiffness_factors(const Scene& s, Particles<D>& p) {
   for (int i = 0; i < p.size(); ++i) {
     const PhaseSpec& ph = s.phases[p.phase[i]];
-    if (ph.stiffness_std == 0 && ph.stiffness_weibull == 0) continue;
+    if (ph.stiffness_std == 0 && ph.stiffness_weibull_shape == 0) continue;
     PairRandom rng(s.seed ^ 0x73746966ULL, Pair{i, i});
-    p.stiffness[i] = rng(1.0, ph.stiffness_std, ph.stiffness_weibull);
+    p.stiffness[i] = rng(1.0, ph.stiffness_std, ph.stiffness_weibull_shape);
   }
 }
 

@@ -3,8 +3,6 @@
 #include <functional>
 #include <memory>
 
-#include "scene/model_keys.hpp"
-
 namespace mc {
 
 namespace {
@@ -12,24 +10,21 @@ namespace {
 struct Entry {
   std::string name;
   bool only_3d;
+  const KeyTable* keys;
   std::function<ModelSpec(const Table&)> read;
 };
 
 template <class Model>
 Entry entry() {
-  return {Model::name, requires {Model::only_3d;
-}
-,
-    [](const Table& t) {
-      const typename Model::Params p = read_params<Model>(t);
-      return ModelSpec{Model::name, BondModel<Model, 3>, requires {Model::yields;
-    },
-    [p] { return std::unique_ptr<ContactSetBase<2>>(new ContactSet<Model, 2>(p)); },
-    [p] { return std::unique_ptr<ContactSetBase<3>>(new ContactSet<Model, 3>(p)); }
-};
-}
-}
-;
+  constexpr bool only_3d = requires { Model::only_3d; };
+  constexpr bool yields = requires { Model::yields; };
+  auto read = [](const Table& t) {
+    const auto p = read_keys<typename Model::Params>(t, Model::keys());
+    return ModelSpec{Model::name, BondModel<Model, 3>, yields,
+                     [p] { return std::unique_ptr<ContactSetBase<2>>(new ContactSet<Model, 2>(p)); },
+                     [p] { return std::unique_ptr<ContactSetBase<3>>(new ContactSet<Model, 3>(p)); }};
+  };
+  return {Model::name, only_3d, &Model::keys(), read};
 }
 
 template <class... Models>
@@ -53,20 +48,42 @@ std::vector<std::string> contact_model_names(int dimension) {
   return names;
 }
 
-ModelSpec read_contact_model(const Table& t, const std::string& name, int dimension) {
+std::vector<const KeyTable*> contact_model_keys() {
+  std::vector<const KeyTable*> keys;
+  for (const Entry& e : registry()) keys.push_back(e.keys);
+  return keys;
+}
+
+ModelSpec read_contact_model(const KeyReader& k, const std::string& name, int dimension) {
   for (const Entry& e : registry()) {
     if (e.name != name) continue;
     if (e.only_3d && dimension == 2) {
       std::string allowed;
       for (const auto& n : contact_model_names(2)) allowed += (allowed.empty() ? "" : ", ") + n;
-      t.fail("model", "the " + name +
+      k.fail("model", "the " + name +
                           " model is a law for spheres (its cross-sections, calibration and interaction "
                           "radius are 3D): use it with dimension = 3, or a 2D model (" +
                           allowed + ")");
     }
-    return e.read(t);
+    return e.read(k.table());
   }
-  t.fail("model", "unknown contact model");  // unreachable: the caller validated the name with choice()
+  k.fail("model", "unknown contact model");  // unreachable: the caller validated the name with choice()
+}
+
+int contacts_entry(const TomlDoc& doc, const std::string& model) {
+  const std::vector<Table> contacts = tables_of(doc.root(), contacts_keys());
+  int found = -1;
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const KeyReader k(contacts[i], contacts_keys());
+    if (k.string("model", "") != model) continue;
+    if (found >= 0)
+      k.fail("model", "calibrate works on one " + model +
+                                    " phase pair; this scene has several [[contacts]] "
+                                    "with model = \"" +
+                                    model + "\" (calibrate each material in its own scene)");
+    found = static_cast<int>(i);
+  }
+  return found;
 }
 
 }  // namespace mc

@@ -29,10 +29,10 @@ struct ModelSpec {
 
 struct PhaseSpec {
   std::string name;
-  double density;  // kg/m³
+  double density = kNaN;  // kg/m³
   // Heterogeneity (Tang §8.1.2): each particle's springs scaled by a factor drawn from a normal (mean 1,
-  // stiffness_std, truncated to > 0) or a Weibull (scale 1, shape stiffness_weibull, 8.4); 0: all 1.
-  double stiffness_std = 0, stiffness_weibull = 0;
+  // stiffness_std, truncated to > 0) or a Weibull (scale 1, shape stiffness_weibull_shape, 8.4); 0: all 1.
+  double stiffness_std = 0, stiffness_weibull_shape = 0;
 };
 
 struct ContactSpec {
@@ -170,7 +170,7 @@ struct CellSpecimenSpec {
 // by (3.8) (E0 = 0 then). tensile_strength 0: elastic.
 struct FacetLawSpec {
   int phase_a = 0, phase_b = 0;
-  double E0 = 0, alpha = 0, E = 0, nu = 0;
+  double E0 = 0, alpha = 0, modulus = 0, poisson_ratio = 0;
   double tensile_strength = 0, fracture_energy = 0;
   double rate_c0 = 0, rate_c1 = 0;  // (8.17); rate_c1 = 0: rate-independent
   std::string where;                // the table, for messages: "file: contacts[0]"

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "engine/errors.hpp"
+#include "rigid_cell/facet_law.hpp"  // the facet law's name, a word of [[contacts]] model
 #include "scene/analysis.hpp"
 #include "scene/histories.hpp"
 #include "scene/model_registry.hpp"
@@ -15,41 +16,39 @@ namespace mc {
 
 namespace scene_read {
 
-std::vector<double> vec(const Table& t, const std::string& key, Unit u, int dim) {
-  return t.numbers(key, u, Range::any(), dim);
-}
-std::vector<double> opt_vec(const Table& t, const std::string& key, Unit u, int dim) {
-  return t.has(key) ? vec(t, key, u, dim) : std::vector<double>{};
+std::vector<double> vec(const KeyReader& k, std::string_view key, int dim) { return k.numbers(key, dim); }
+std::vector<double> opt_vec(const KeyReader& k, std::string_view key, int dim) {
+  return k.has(key) ? vec(k, key, dim) : std::vector<double>{};
 }
 
-std::vector<std::int64_t> ids(const Table& t, const std::string& key, std::size_t n) {
+std::vector<std::int64_t> ids(const KeyReader& k, std::string_view key, std::size_t n) {
   std::vector<std::int64_t> out;
-  for (double x : t.numbers(key, Unit::None, Range::closed(0, 9007199254740992.0), n)) {
+  for (double x : k.numbers(key, n)) {
     if (x != std::floor(x)) {
       std::ostringstream m;
       m << "holds " << x << ": ids and tags are whole numbers";
-      t.fail(key, m.str());
+      k.fail(key, m.str());
     }
     out.push_back(static_cast<std::int64_t>(x));
   }
   return out;
 }
 
-void check_box(const Table& t, const std::string& lo_key, const std::vector<double>& lo, const std::string& hi_key,
+void check_box(const KeyReader& k, std::string_view lo_key, const std::vector<double>& lo, std::string_view hi_key,
                const std::vector<double>& hi) {
   const char* axis[] = {"x", "y", "z"};
-  for (std::size_t k = 0; k < lo.size(); ++k)
-    if (!(lo[k] < hi[k])) {
+  for (std::size_t i = 0; i < lo.size(); ++i)
+    if (!(lo[i] < hi[i])) {
       std::ostringstream m;
-      m << "its " << axis[k] << " (" << hi[k] << " m) must be above " << lo_key << "'s (" << lo[k] << " m)";
-      t.fail(hi_key, m.str());
+      m << "its " << axis[i] << " (" << hi[i] << " m) must be above " << lo_key << "'s (" << lo[i] << " m)";
+      k.fail(hi_key, m.str());
     }
 }
 
-int phase_index(const Table& t, const std::string& key, const std::vector<PhaseSpec>& phases) {
+int phase_index(const KeyReader& k, std::string_view key, const std::vector<PhaseSpec>& phases) {
   std::vector<std::string> names;
   for (const auto& p : phases) names.push_back(p.name);
-  const std::string n = t.choice(key, names);
+  const std::string n = k.choice(key, names);
   return static_cast<int>(std::find(names.begin(), names.end(), n) - names.begin());
 }
 
@@ -62,24 +61,197 @@ std::string relative_to(const std::string& scene_file, const std::string& path) 
 
 }  // namespace scene_read
 
+const KeyTable& scene_keys() {
+  static const KeyTable t{
+      .name = "scene",
+      .title = "Top level",
+      .about = "A scene file is TOML, in SI units; a number may also be a string with a unit (\"30 GPa\", "
+               "\"5 mm/s\", \"45 deg\") of the key's kind. Unknown keys are errors.",
+      .keys = {
+          {.name = "dimension", .type = KeyType::Integer,
+           .range = Range::closed(2, 3),
+           .need = Need::Required,
+           .doc = "2 (discs of unit thickness) or 3 (spheres); vectors have this many components"},
+          {.name = "seed", .type = KeyType::Integer,
+           .range = Range::closed(0, 9.0e18),
+           .doc = "random seed: generated specimens, bond strengths, heterogeneity, random fields",
+           .fallback = 1},
+          {.name = "title", .type = KeyType::Text, .doc = "free text, shown by summary"},
+      }};
+  return t;
+}
+
+const KeyTable& phases_keys() {
+  using P = PhaseSpec;
+  static const KeyTable t = key_table<P>(
+      "phases", "[[phases]] (at least one)",
+      "The materials of the particles: each particle belongs to one phase, and [[contacts]] gives each pair of "
+      "phases its contact model.",
+      {
+          bound(&P::name, {.name = "name", .need = Need::Required, .doc = "unique name"}),
+          bound(&P::density, {.name = "density",
+                             .unit = Unit::Density,
+                             .range = Range::positive(),
+                             .need = Need::Required,
+                             .doc = "ρ; in 2D per unit thickness, mass = ρπR² · 1 m"}),
+          bound(&P::stiffness_std,
+               {.name = "stiffness_std",
+                .range = Range::non_negative(),
+                .doc = "heterogeneity (Tang §8.1.2): each particle's springs (the ball stiffness of the linear "
+                       "family, G of Hertz-Mindlin, k_N of the CPM) scaled by a factor drawn per particle from a "
+                       "normal distribution of mean 1 and this spread, truncated to > 0; 0: factor 1"}),
+          bound(&P::stiffness_weibull_shape,
+               {.name = "stiffness_weibull_shape",
+                .range = Range::positive(),
+                .doc = "or from a Weibull distribution of scale 1 and this shape, Tang (8.4); not with "
+                       "stiffness_std"}),
+      },
+      {}, [](const P& p) -> std::optional<KeyProblem> {
+        if (p.stiffness_std > 0 && p.stiffness_weibull_shape > 0)
+          return KeyProblem{"stiffness_weibull_shape",
+                            "given together with stiffness_std: the particles' stiffness factor is drawn "
+                            "either from a normal distribution (mean 1, stiffness_std) or from a Weibull "
+                            "distribution (scale 1, stiffness_weibull_shape), not both"};
+        return std::nullopt;
+      });
+  return t;
+}
+
+const KeyTable& contacts_keys() {
+  static const KeyTable t = [] {
+    KeyTable t{
+      .name = "contacts",
+      .title = "[[contacts]]: the contact-model table",
+      .about = "One entry per pair of phases that meet: its model and the model's keys (the tables below). A ball "
+               "touching a wall uses the model of its own phase, with the wall's springs in series.",
+      .keys = {
+          {.name = "model", .type = KeyType::Word,
+           .need = Need::Required,
+           .doc = "the contact model (its keys: the tables below); cpm is for 3D scenes only, facet_damage for "
+                  "rigid-cell scenes only"},
+          {.name = "phase_a", .type = KeyType::Text, .need = Need::Required, .doc = "a phase name"},
+          {.name = "phase_b", .type = KeyType::Text, .doc = "the other phase (either order)", .shown_default = "phase_a"},
+      }};
+    // The words of `model`: the registered models' names (their tables' names, static like the models'), and the
+    // rigid-cell facet law's.
+    for (const KeyTable* m : contact_model_keys()) t.keys[0].words.push_back(m->name);
+    t.keys[0].words.push_back(rigid_cell::facet_law_keys().name);
+    return t;
+  }();
+  return t;
+}
+
+const KeyTable& bonds_keys() {
+  static const KeyTable t{
+      .name = "bonds",
+      .title = "[bonds]",
+      .about = "Bonds are installed once, at the start, on the specimen as built, each with the model of its phase "
+               "pair (models without bonds ignore it). The bonded coordination number 2 N_bonds / N is written "
+               "as the /specimen attribute bonded_coordination.",
+      .keys = {
+          {.name = "gap_tolerance",
+           .range = Range::non_negative(),
+           .doc = "every pair whose gap is at most gap_tolerance · min(R_A, R_B) is bonded; 0 bonds touching pairs "
+                  "only (Potyondy & Cundall). A cpm model bonds by its own interaction_radius instead",
+           .fallback = 0},
+          {.name = "crack_log", .type = KeyType::Flag,
+           .doc = "every bond break, and every first yield of a softening bond (first damage of a cpm contact), "
+                  "written to /cracks",
+           .fallback = 1},
+      }};
+  return t;
+}
+
+const KeyTable& run_keys() {
+  static const KeyTable t{
+      .name = "run",
+      .title = "[run]",
+      .about = "When the run ends: after `steps`, at `duration`, or at the first [[run.stop]] condition met; at "
+               "least one of them.",
+      .keys = {
+          {.name = "steps", .type = KeyType::Integer, .range = Range::closed(0, 1e15), .doc = "stop after this many steps; 0: no limit",
+           .fallback = 0},
+          {.name = "duration",
+           .unit = Unit::Time,
+           .range = Range::non_negative(),
+           .doc = "stop at this simulated time; 0: no limit",
+           .fallback = 0},
+      }};
+  return t;
+}
+
+const KeyTable& stop_keys() {
+  static const KeyTable t{
+      .name = "run.stop",
+      .title = "[[run.stop]]",
+      .about = "A condition that ends the run: a history crossing a value, or falling after its peak.",
+      .keys = {
+          {.name = "quantity", .type = KeyType::Text, .need = Need::Required, .doc = "a history name"},
+          {.name = "below", .doc = "stop when the history falls below this (SI)"},
+          {.name = "above", .doc = "stop when it rises above this (SI)"},
+          {.name = "post_peak_fraction",
+           .range = Range{0.0, 1.0, true, true},
+           .doc = "stop when its magnitude falls to this fraction of the largest reached (a load may be a "
+                  "negative reaction)"},
+          {.name = "after_time",
+           .unit = Unit::Time,
+           .range = Range::non_negative(),
+           .doc = "not before this time",
+           .fallback = 0},
+      },
+      .alternatives = {{.keys = {"below", "above", "post_peak_fraction"}, .one_required = true}}};
+  return t;
+}
+
+const KeyTable& summary_keys() {
+  using P = SummarySpec;
+  static const KeyTable t = key_table<P>(
+      "summary", "[[summary]]", "A number of `summary`: a reduction of one history.",
+      {
+          bound(&P::name, {.name = "name", .need = Need::Required, .doc = "its name in summary's JSON"}),
+          bound(&P::of, {.name = "of", .need = Need::Required, .doc = "a history name"}),
+          bound(&P::reduce, {.name = "reduce",
+                            .need = Need::Required,
+                            .doc = "max, min, final, initial, time_of_max, duration_positive (time the series is "
+                                   "> 0, crossings interpolated), final_over_initial (|final|/|initial|), "
+                                   "mean_final_10 (mean over the last 10 % of rows)",
+                            .words = {"max", "min", "final", "initial", "time_of_max", "duration_positive",
+                                      "final_over_initial", "mean_final_10"}}),
+      });
+  return t;
+}
+
+const KeyTable& output_keys() {
+  using P = Scene;
+  static const KeyTable t = key_table<P>(
+      "output", "[output]", "What the output file holds, and how often.",
+      {
+          bound(&P::history_every, {.name = "history_every",
+                                   .range = Range::closed(1, 1e12),
+                                   .doc = "steps between history rows"}),
+          bound(&P::frame_every, {.name = "frame_every",
+                                 .range = Range::closed(0, 1e12),
+                                 .doc = "steps between frames; 0: only the first and last"}),
+          bound(&P::checkpoint_every, {.name = "checkpoint_every",
+                                      .range = Range::closed(0, 1e12),
+                                      .doc = "steps between checkpoints; 0: every 60 s of wall time"}),
+          bound(&P::guard_every,
+               {.name = "guard_every", .range = Range::closed(1, 1e9), .doc = "steps between stability checks"}),
+          bound(&P::xy_plots, {.name = "xy_plots", .doc = "\"x:y;x2:y2\": history pairs drawn by report"}),
+      });
+  return t;
+}
+
 namespace {
 
 using namespace scene_read;
 
 void read_phases(const Table& root, Scene& s) {
-  for (const Table& t : root.tables("phases")) {
-    PhaseSpec p;
-    p.name = t.string("name");
-    p.density = t.number("density", Unit::Density, Range::positive());
-    p.stiffness_std = t.number("stiffness_std", Unit::None, Range::non_negative(), 0.0);
-    p.stiffness_weibull = t.number("stiffness_weibull_shape", Unit::None, Range::positive(), 0.0);
-    if (p.stiffness_std > 0 && p.stiffness_weibull > 0)
-      t.fail("stiffness_weibull_shape",
-             "given together with stiffness_std: the particles' stiffness factor is drawn "
-             "either from a normal distribution (mean 1, stiffness_std) or from a Weibull "
-             "distribution (scale 1, stiffness_weibull_shape), not both");
+  for (const Table& t : tables_of(root, phases_keys())) {
+    const PhaseSpec p = read_keys<PhaseSpec>(t, phases_keys());
+    const KeyReader k(t, phases_keys());
     for (const auto& q : s.phases)
-      if (q.name == p.name) t.fail("name", "phase names must be unique");
+      if (q.name == p.name) k.fail("name", "phase names must be unique");
     s.phases.push_back(p);
     t.finish();
   }
@@ -88,18 +260,18 @@ void read_phases(const Table& root, Scene& s) {
 }
 
 void read_contacts(const Table& root, Scene& s) {
-  for (const Table& t : root.tables("contacts")) {
+  for (const Table& t : tables_of(root, contacts_keys())) {
+    const KeyReader k(t, contacts_keys());
     std::vector<std::string> names;
     for (const auto& p : s.phases) names.push_back(p.name);
     ContactSpec c;
-    // phases = ["a", "b"]: two phase names; the model acts between them (in either order).
-    const std::string pa = t.choice("phase_a", names), pb = t.choice("phase_b", names, pa);
+    const std::string pa = k.choice("phase_a", names), pb = k.choice("phase_b", names, pa);
     c.phase_a = static_cast<int>(std::find(names.begin(), names.end(), pa) - names.begin());
     c.phase_b = static_cast<int>(std::find(names.begin(), names.end(), pb) - names.begin());
-    c.model = read_contact_model(t, t.choice("model", contact_model_names()), s.dimension);
+    c.model = read_contact_model(k, k.choice("model", contact_model_names()), s.dimension);
     for (const auto& o : s.contacts)
       if ((o.phase_a == c.phase_a && o.phase_b == c.phase_b) || (o.phase_a == c.phase_b && o.phase_b == c.phase_a))
-        t.fail("phase_b", "a contact model for this pair of phases is already given");
+        k.fail("phase_b", "a contact model for this pair of phases is already given");
     s.contacts.push_back(std::move(c));
     t.finish();
   }
@@ -109,55 +281,45 @@ void read_contacts(const Table& root, Scene& s) {
 }
 
 void read_bonds(const Table& root, Scene& s) {
-  if (auto t = root.optional_table("bonds")) {
-    // Bonds are installed once, on the specimen as built (a packing loaded from an earlier run is settled).
-    s.bond_tolerance = t->number("gap_tolerance", Unit::None, Range::non_negative(), 0.0);
-    s.crack_log = t->boolean("crack_log", true);
+  if (auto t = optional_table_of(root, bonds_keys())) {
+    const KeyReader k(*t, bonds_keys());
+    s.bond_tolerance = k.number("gap_tolerance");
+    s.crack_log = k.boolean("crack_log");
     t->finish();
   }
 }
 
 void read_run(const Table& root, Scene& s) {
-  const Table t = root.table("run");
-  s.steps = t.integer("steps", Range::closed(0, 1e15), 0);
-  s.duration = t.number("duration", Unit::Time, Range::non_negative(), 0.0);
-  for (const Table& st : t.tables("stop")) {
+  const Table t = table_of(root, run_keys());
+  const KeyReader k(t, run_keys());
+  s.steps = k.integer("steps");
+  s.duration = k.number("duration");
+  for (const Table& st : tables_of(t, stop_keys())) {
+    const KeyReader ks(st, stop_keys());
     StopSpec x;
-    x.quantity = st.string("quantity");
-    const int given = st.has("below") + st.has("above") + st.has("post_peak_fraction");
-    if (given != 1) st.fail("quantity", "give exactly one of 'below', 'above', 'post_peak_fraction'");
-    if (st.has("below")) x.kind = StopSpec::Kind::Below, x.value = st.number("below", Unit::None, Range::any());
-    if (st.has("above")) x.kind = StopSpec::Kind::Above, x.value = st.number("above", Unit::None, Range::any());
-    if (st.has("post_peak_fraction"))
-      x.kind = StopSpec::Kind::PostPeak,
-      x.value = st.number("post_peak_fraction", Unit::None, Range{0.0, 1.0, true, true});
-    x.after_time = st.number("after_time", Unit::Time, Range::non_negative(), 0.0);
+    x.quantity = ks.string("quantity");
+    const int given = ks.has("below") + ks.has("above") + ks.has("post_peak_fraction");
+    if (given != 1) ks.fail("quantity", "give exactly one of 'below', 'above', 'post_peak_fraction'");
+    if (ks.has("below")) x.kind = StopSpec::Kind::Below, x.value = ks.number("below");
+    if (ks.has("above")) x.kind = StopSpec::Kind::Above, x.value = ks.number("above");
+    if (ks.has("post_peak_fraction"))
+      x.kind = StopSpec::Kind::PostPeak, x.value = ks.number("post_peak_fraction");
+    x.after_time = ks.number("after_time");
     s.stops.push_back(x);
     st.finish();
   }
   if (s.steps == 0 && s.duration == 0 && s.stops.empty())
-    t.fail("steps", "the run needs an end: 'steps', 'duration' or a [[run.stop]] condition");
+    k.fail("steps", "the run needs an end: 'steps', 'duration' or a [[run.stop]] condition");
   t.finish();
-  for (const Table& st : root.tables("summary")) {
-    SummarySpec x;
-    x.name = st.string("name");
-    x.of = st.string("of");
-    const std::vector<std::string> kinds = {
-        "max", "min", "final", "initial", "time_of_max", "duration_positive", "final_over_initial", "mean_final_10"};
-    const std::string k = st.choice("reduce", kinds);
-    x.reduce = static_cast<SummarySpec::Reduce>(std::find(kinds.begin(), kinds.end(), k) - kinds.begin());
-    s.summaries.push_back(x);
+  for (const Table& st : tables_of(root, summary_keys())) {
+    s.summaries.push_back(read_keys<SummarySpec>(st, summary_keys()));
     st.finish();
   }
 }
 
 void read_output(const Table& root, Scene& s) {
-  if (auto t = root.optional_table("output")) {
-    s.history_every = t->integer("history_every", Range::closed(1, 1e12), 100);
-    s.frame_every = t->integer("frame_every", Range::closed(0, 1e12), 0);
-    s.checkpoint_every = t->integer("checkpoint_every", Range::closed(0, 1e12), 0);
-    s.guard_every = t->integer("guard_every", Range::closed(1, 1e9), 100);
-    s.xy_plots = t->string("xy_plots", "");
+  if (auto t = optional_table_of(root, output_keys())) {
+    read_bound_keys(*t, output_keys(), &s);
     t->finish();
   }
 }
@@ -169,12 +331,14 @@ void check_names(const Table& root, const Scene& s, const std::vector<std::strin
   };
   std::string list;
   for (const auto& h : histories) list += (list.empty() ? "" : ", ") + h;
-  auto tabs = root.table("run").tables("stop");
+  auto tabs = tables_of(table_of(root, run_keys()), stop_keys());
   for (std::size_t i = 0; i < s.stops.size(); ++i)
-    if (!known(s.stops[i].quantity)) tabs[i].fail("quantity", "not a history of this scene; recorded: " + list);
-  auto sums = root.tables("summary");
+    if (!known(s.stops[i].quantity))
+      KeyReader(tabs[i], stop_keys()).fail("quantity", "not a history of this scene; recorded: " + list);
+  auto sums = tables_of(root, summary_keys());
   for (std::size_t i = 0; i < s.summaries.size(); ++i)
-    if (!known(s.summaries[i].of)) sums[i].fail("of", "not a history of this scene; recorded: " + list);
+    if (!known(s.summaries[i].of))
+      KeyReader(sums[i], summary_keys()).fail("of", "not a history of this scene; recorded: " + list);
 }
 
 }  // namespace
@@ -184,11 +348,12 @@ Scene read_scene(const TomlDoc& doc, const std::string& file) {
   s.file = file;
   s.text = doc.text();
   const Table root = doc.root();
-  s.dimension = static_cast<int>(root.integer("dimension", Range::closed(2, 3)));
-  s.seed = static_cast<std::uint64_t>(root.integer("seed", Range::closed(0, 9.0e18), 1));
-  s.title = root.string("title", "");
+  const KeyReader k(root, scene_keys());
+  s.dimension = static_cast<int>(k.integer("dimension"));
+  s.seed = static_cast<std::uint64_t>(k.integer("seed"));
+  s.title = k.string("title");
   read_phases(root, s);
-  if (root.has("rigid_cell")) {
+  if (root.has(std::string(rigid_cell_keys().key()))) {
     read_rigid_cell(root, s);
   } else {
     read_contacts(root, s);

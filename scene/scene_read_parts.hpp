@@ -5,21 +5,25 @@
 #include <string>
 #include <vector>
 
+#include "scene/key_reader.hpp"
 #include "scene/scene.hpp"
+#include "scene/scene_keys.hpp"
 #include "scene/toml_reader.hpp"
 
 namespace mc::scene_read {
 
-// A vector of `dim` numbers, required / optional (empty when absent).
-std::vector<double> vec(const Table& t, const std::string& key, Unit u, int dim);
-std::vector<double> opt_vec(const Table& t, const std::string& key, Unit u, int dim);
-// A list of `n` particle ids or tags (n = 0: any length): whole numbers from 0 to 2^53 (exact in a double).
-std::vector<std::int64_t> ids(const Table& t, const std::string& key, std::size_t n);
+// A vector of `dim` numbers of the key's unit, required / optional (empty when absent).
+std::vector<double> vec(const KeyReader& k, std::string_view key, int dim);
+std::vector<double> opt_vec(const KeyReader& k, std::string_view key, int dim);
+// The range of particle ids and tags: whole numbers from 0 to 2^53 (exact in a double).
+inline constexpr Range kIds = Range::closed(0, 9007199254740992.0);
+// A list of `n` particle ids or tags (n = 0: any length), whole numbers.
+std::vector<std::int64_t> ids(const KeyReader& k, std::string_view key, std::size_t n);
 // A box's low corner lies below its high corner in every direction, else fail naming hi_key.
-void check_box(const Table& t, const std::string& lo_key, const std::vector<double>& lo, const std::string& hi_key,
+void check_box(const KeyReader& k, std::string_view lo_key, const std::vector<double>& lo, std::string_view hi_key,
                const std::vector<double>& hi);
 // The index of the phase named by `key`.
-int phase_index(const Table& t, const std::string& key, const std::vector<PhaseSpec>& phases);
+int phase_index(const KeyReader& k, std::string_view key, const std::vector<PhaseSpec>& phases);
 // A file named in a scene is relative to the scene file's folder.
 std::string relative_to(const std::string& scene_file, const std::string& path);
 
@@ -28,11 +32,11 @@ void read_mesostructure(const Table& root, Scene& s);  // scene/specimen_read.cp
 void read_walls(const Table& root, Scene& s);          // scene/boundary_read.cpp
 void read_groups(const Table& root, Scene& s);         // scene/boundary_read.cpp
 // A group driven at a velocity holds each axis it moves along (scene/boundary_read.cpp).
-void check_driven_axes(const Table& t, const GroupSpec& g, int d);
+void check_driven_axes(const KeyReader& k, const GroupSpec& g, int d);
 void read_physics(const Table& root, Scene& s);    // scene/boundary_read.cpp
 void read_observers(const Table& root, Scene& s);  // scene/observers_read.cpp
 // An opening probe's sides (particles or groups) and direction (scene/observers_read.cpp).
-void read_opening(const Table& t, const Scene& s, ProbeSpec& p);
+void read_opening(const KeyReader& k, const Scene& s, ProbeSpec& p);
 // A scene with a [rigid_cell] table: its facet laws, cell specimen, mesostructure, plates and load step.
 void read_rigid_cell(const Table& root, Scene& s);  // scene/rigid_cell_read.cpp
 // Each wall under opening control names an opening probe (after read_observers).

@@ -303,7 +303,7 @@ void Field::out_of_range(const Range& r, Unit u, double si) const {
   const std::string converted =
       value->is_string() ? " (" + format_number(si) + (unit.empty() ? "" : " " + unit) + ")" : "";
   throw InputError(st.file + ": " + label() + " = " + show(*value) + converted + " is out of range: allowed " +
-                   r.describe(unit));
+                   describe(r, unit));
 }
 
 }  // namespace detail

@@ -193,9 +193,8 @@ std::string expected_finite_number(Unit u) { return "expected a finite number" +
 
 }  // namespace detail
 
-bool Range::contains(double v) const { return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi); }
-
-std::string Range::describe(const std::string& unit) const {
+std::string describe(const Range& r, const std::string& unit) {
+  const auto [lo, hi, lo_open, hi_open] = r;
   const auto bound = [&](double x) { return detail::format_number(x) + (unit.empty() ? "" : " " + unit); };
   const bool has_lo = lo > -kInf;
   const bool has_hi = hi < kInf;

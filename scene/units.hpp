@@ -1,50 +1,18 @@
-// The physical units of scene-file numbers: the kind a key has (Unit), the interval it allows (Range), the
-// conversion of a number written with a unit ("30 GPa") to SI, and the words that describe a kind in messages.
+// The physical units of scene-file numbers: the conversion of a number written with a unit ("30 GPa") to SI, and the
+// words that describe a unit kind (Unit) and an interval (Range) in messages.
 #pragma once
 #include <cstddef>
 #include <limits>
 #include <string>
 
+#include "engine/keys.hpp"
+
 namespace mc {
 
-// The physical kind of a number. A plain TOML number is taken as SI; a string such as "30 GPa" or "5 mm/s" is
-// converted to SI, and its unit must belong to the key's kind.
-enum class Unit {
-  None,  // dimensionless: plain numbers, or a percentage "50 %"
-  Length,
-  Time,
-  Mass,
-  Force,
-  Moment,  // N m
-  Pressure,
-  Density,
-  Velocity,
-  Acceleration,
-  Stiffness,  // N/m
-  Energy,
-  Angle,          // rad
-  Rate,           // 1/s
-  Frequency,      // Hz
-  EnergyPerArea,  // J/m2 = N/m: fracture energies
-};
+// Unit and Range are declared with the keys (engine/keys.hpp): the models' key tables state them.
 
-// The allowed interval of a number, in SI. Bounds are inclusive unless marked open.
-struct Range {
-  double lo = -std::numeric_limits<double>::infinity();
-  double hi = std::numeric_limits<double>::infinity();
-  bool lo_open = false;
-  bool hi_open = false;
-
-  static Range any() { return {}; }
-  static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }  // 0 < v
-  static Range non_negative() { return at_least(0.0); }                                            // 0 <= v
-  static Range at_least(double lo) { return {lo, std::numeric_limits<double>::infinity(), false, false}; }
-  static Range closed(double lo, double hi) { return {lo, hi, false, false}; }  // lo <= v <= hi
-  static Range open_fraction() { return {0.0, 1.0, false, true}; }              // 0 <= v < 1
-
-  bool contains(double v) const;
-  std::string describe(const std::string& unit = "") const;  // e.g. "0 <= value < 1", "value > 0 Pa"
-};
+// A range in words, e.g. "0 <= value < 1", "value > 0 Pa".
+std::string describe(const Range& r, const std::string& unit = "");
 
 namespace detail {
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "engine/errors.hpp"
+#include "scene/model_registry.hpp"
 #include "scene/toml_reader.hpp"
 #include "studies/calibration_run.hpp"
 #include "studies/ranks.hpp"
@@ -59,8 +60,8 @@ CalibrationResult calibrate(const std::string& scene_file, const std::vector<std
                             const CalibrationTarget& target, const CalibrationOptions& options, std::FILE* log) {
   if (options.output.empty()) throw InputError("calibrate: give the calibrated scene's file with -o CALIBRATED.toml");
   const TomlDoc doc = TomlDoc::load(scene_file, overrides);
-  const int parallel = contacts_entry(doc, "parallel_bond"), softening = contacts_entry(doc, "softening_bond"),
-            cpm = contacts_entry(doc, "cpm");
+  const int parallel = contacts_entry(doc, ParallelBond::name), softening = contacts_entry(doc, SofteningBond::name),
+            cpm = contacts_entry(doc, Cpm::name);
   const int found = (parallel >= 0) + (softening >= 0) + (cpm >= 0);
   if (found != 1)
     throw InputError(scene_file +
@@ -84,27 +85,6 @@ CalibrationResult calibrate(const std::string& scene_file, const std::vector<std
 }
 
 namespace calibration {
-
-int contacts_entry(const TomlDoc& doc, const std::string& model) {
-  const std::vector<Table> contacts = doc.root().tables("contacts");
-  int found = -1;
-  for (std::size_t i = 0; i < contacts.size(); ++i) {
-    if (contacts[i].string("model", "") != model) continue;
-    if (found >= 0)
-      contacts[i].fail("model", "calibrate works on one " + model +
-                                    " phase pair; this scene has several [[contacts]] "
-                                    "with model = \"" +
-                                    model + "\" (calibrate each material in its own scene)");
-    found = static_cast<int>(i);
-  }
-  return found;
-}
-
-std::string set_key(int index, const std::string& key, double value) {
-  char b[64];
-  std::snprintf(b, sizeof b, "%.8g", value);
-  return "contacts[" + std::to_string(index) + "]." + key + "=" + b;
-}
 
 std::string run_file(const std::string& output, int iteration, const std::string& suffix) {
   const std::filesystem::path out(output);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "engine/errors.hpp"
+#include "scene/model_registry.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
 #include "studies/calibration_run.hpp"
@@ -29,72 +30,56 @@ struct Knobs {
   double ductility = 1;  // softening bonds: U_p,max k_n / F_c^n times this (see softening_factor)
 };
 
-// What the scene's bonded entry holds: the values the knobs scale, under their keys.
+// The scene's bonded entry, as the scene gives it: the values the knobs scale.
 struct Entry {
   int index = -1;
   bool softening = false;  // softening_bond (Tang 3.42–3.48); else parallel_bond (3.37–3.41)
-  double ratio = 1, bond_ratio = 1;
-  std::vector<std::pair<std::string, double>> moduli;     // key → value [Pa]
-  std::vector<std::pair<std::string, double>> strengths;  // key → value [Pa], softening bonds [N]
-  // Softening bonds: how far they soften, bond_fracture_energy G_f [J/m²] (power 2) or bond_plastic_limit
-  // U_p,max [m] (power 1), the power being how it scales with the strength at fixed ductility.
-  std::string softening_key;
-  double softening_value = 0;
-  int softening_power = 0;
+  ParallelBondParams parallel;
+  SofteningBondParams soft;
+  // The grains' springs: a softening bond's are the ball springs (k_n = 2tE_c, 3.38), its only modulus.
+  const LinearParams& contact() const { return softening ? soft.contact : parallel.contact; }
 };
 
-// The keys of `keys` that the entry gives, with their values.
-std::vector<std::pair<std::string, double>> given(const Table& t, std::initializer_list<const char*> keys, Unit u) {
-  std::vector<std::pair<std::string, double>> out;
-  for (const char* k : keys)
-    if (t.has(k)) out.push_back({k, t.number(k, u, Range::non_negative())});
-  return out;
-}
-
 Entry find_entry(const TomlDoc& doc, int index) {
-  const Table t = doc.root().tables("contacts")[static_cast<std::size_t>(index)];
   Entry e;
   e.index = index;
-  e.softening = t.string("model") == "softening_bond";
-  e.ratio = t.number("kn_ks_ratio", Unit::None, Range::positive(), 1.0);
-  // The contact bond's springs are the ball springs, k_n = 2tE_c (3.38): E_c is its only modulus.
-  e.moduli = {{"modulus", t.number("modulus", Unit::Pressure, Range::positive())}};
-  if (e.softening) {
-    e.strengths =
-        given(t, {"bond_normal_strength", "bond_normal_strength_std", "bond_shear_strength", "bond_shear_strength_std"},
-              Unit::Force);
-    const bool energy = t.has("bond_fracture_energy");
-    e.softening_key = energy ? "bond_fracture_energy" : "bond_plastic_limit";
-    e.softening_value = t.number(e.softening_key, energy ? Unit::EnergyPerArea : Unit::Length, Range::positive());
-    e.softening_power = energy ? 2 : 1;
-  } else {
-    e.bond_ratio = t.number("bond_kn_ks_ratio", Unit::None, Range::positive(), 1.0);
-    for (const auto& m : given(t, {"bond_modulus", "bond_modulus_std"}, Unit::Pressure)) e.moduli.push_back(m);
-    e.strengths = given(
-        t, {"bond_tensile_strength", "bond_tensile_strength_std", "bond_shear_strength", "bond_shear_strength_std"},
-        Unit::Pressure);
-  }
+  e.softening = contacts_entry(doc, SofteningBond::name) == index;
+  if (e.softening)
+    e.soft = contact_params<SofteningBond>(doc, index);
+  else
+    e.parallel = contact_params<ParallelBond>(doc, index);
   return e;
 }
 
-// The softening key's factor that keeps the bond's shape at ductility ρ when the strengths are times s and the
-// moduli times m. A softening bond's strengths fall linearly to zero at U_p,max (3.48), with U_p,max = 2 G_f A /
+void scale(Scatter& s, double factor) { s.mean *= factor, s.std *= factor; }
+
+// The softening parameter's factor that keeps the bond's shape at ductility ρ when the strengths are times s and
+// the moduli times m. A softening bond's strengths fall linearly to zero at U_p,max (3.48), with U_p,max = 2 G_f A /
 // F_c^n for a G_f; its shape is U_p,max over the elastic displacement at the strength, F_c^n/k_n. With G_f times
 // ρ s²/m (U_p,max times ρ s/m) that ratio is times ρ alone, and every force and displacement of a quasi-static
 // test scales as s and s/m: f_t ∝ s, G_f ∝ s²/m, and Hillerborg's l_ch = E G_f / f_t² depends on ρ only.
-double softening_factor(const Entry& e, const Knobs& k) {
-  return k.ductility * std::pow(k.strength, e.softening_power) / k.modulus;
+double softening_factor(const Knobs& k, bool energy) {
+  return k.ductility * std::pow(k.strength, energy ? 2 : 1) / k.modulus;
 }
 
 // The knobs as --set strings; the strengths are times `strength` (an elastic run's are made strong).
 std::vector<std::string> knob_overrides(const Entry& e, const Knobs& k, double strength) {
-  std::vector<std::string> o;
-  for (const auto& [key, v] : e.moduli) o.push_back(set_key(e.index, key, v * k.modulus));
-  o.push_back(set_key(e.index, "kn_ks_ratio", k.ratio));
-  if (!e.softening) o.push_back(set_key(e.index, "bond_kn_ks_ratio", e.bond_ratio / e.ratio * k.ratio));
-  for (const auto& [key, v] : e.strengths) o.push_back(set_key(e.index, key, v * strength));
-  if (e.softening) o.push_back(set_key(e.index, e.softening_key, e.softening_value * softening_factor(e, k)));
-  return o;
+  if (e.softening) {
+    SofteningBondParams p = e.soft;
+    p.contact.modulus *= k.modulus;
+    p.contact.kn_ks_ratio = k.ratio;
+    scale(p.bond_normal_strength, strength), scale(p.bond_shear_strength, strength);
+    p.bond_fracture_energy *= softening_factor(k, true);  // the one of the two that is given (the other is 0)
+    p.bond_plastic_limit *= softening_factor(k, false);
+    return contact_overrides<SofteningBond>(e.index, e.soft, p);
+  }
+  ParallelBondParams p = e.parallel;
+  p.contact.modulus *= k.modulus;
+  scale(p.bond_modulus, k.modulus);
+  p.contact.kn_ks_ratio = k.ratio;
+  p.bond_kn_ks_ratio = e.parallel.bond_kn_ks_ratio / e.parallel.contact.kn_ks_ratio * k.ratio;
+  scale(p.bond_tensile_strength, strength), scale(p.bond_shear_strength, strength);
+  return contact_overrides<ParallelBond>(e.index, e.parallel, p);
 }
 
 // E/E_c as a function of k_n/k_s, Tang (6.2) for 2D and (6.3) for 3D: used only to predict how a change of the
@@ -152,7 +137,7 @@ class Calibration {
     for (int it = 1; it <= options_.max_iterations; ++it)
       for (const auto& f : run_files(run_file(it))) outputs.push_back(f);
     refuse_inputs_as_outputs(base_, outputs);
-    knobs_.ratio = entry_.ratio;
+    knobs_.ratio = entry_.contact().kn_ks_ratio;
     elastic_ = e_target();
     // The elastic runs stop at half the target's elastic strain at the peak in compression: far enough for the
     // secant between 25 % and 50 % of their last stress, and a fraction of a full test's steps. In tension at
@@ -295,7 +280,7 @@ class Calibration {
     if (!elastic_) std::snprintf(peak, sizeof peak, "%.4g", u.ucs * 1e-6);
     if (!elastic_) std::snprintf(gf, sizeof gf, "%.4g", u.fracture_energy);
     std::fprintf(log_, "%3d %-8s %10.4g %7.4g %9.4g", it, elastic_ ? "elastic" : "full",
-                 entry_.moduli.front().second * knobs_.modulus * 1e-9, knobs_.ratio, knobs_.strength);
+                 entry_.contact().modulus * knobs_.modulus * 1e-9, knobs_.ratio, knobs_.strength);
     if (entry_.softening) std::fprintf(log_, " %9.4g", knobs_.ductility);
     std::fprintf(log_, " | %9.4g %7.4g %9s", u.modulus * 1e-9, u.poisson, peak);
     if (tension_) std::fprintf(log_, " %9s", gf);

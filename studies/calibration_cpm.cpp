@@ -13,6 +13,7 @@
 
 #include "contact_models/cpm_calibration.hpp"
 #include "engine/errors.hpp"
+#include "scene/model_registry.hpp"
 #include "scene/scene.hpp"
 #include "studies/calibration_run.hpp"
 #include "studies/ranks.hpp"
@@ -30,14 +31,7 @@ struct CpmKnobs {
   double kn = 0, ratio = 0, eps0 = 0, tan_phi = 0;  // k_N [Pa], k_T/k_N, ε_0, tan φ
 };
 
-CpmKnobs read_knobs(const Table& t) {
-  CpmKnobs k;
-  k.kn = t.number("modulus", Unit::Pressure, Range::positive());
-  k.ratio = t.number("kt_kn_ratio", Unit::None, Range::closed(0.0, 1.0), 0.2);
-  k.eps0 = t.number("crack_onset_strain", Unit::None, Range::positive());
-  k.tan_phi = std::tan(t.number("friction_angle", Unit::Angle, Range{0.0, M_PI / 2, false, true}));
-  return k;
-}
+CpmKnobs knobs_of(const CpmParams& p) { return {p.modulus, p.kt_kn_ratio, p.crack_onset_strain, p.tan_friction}; }
 
 // One run of an iteration: what its uniaxial test measured, and its wall time.
 struct Ran {
@@ -57,13 +51,13 @@ class CpmCalibration {
                  const CalibrationTarget& target, const CalibrationOptions& options, std::FILE* log)
       : scene_file_(scene_file), overrides_(overrides), entry_(entry), target_(target), options_(options), log_(log) {
     const TomlDoc doc = TomlDoc::load(scene_file, overrides);
-    const Table t = doc.root().tables("contacts")[static_cast<std::size_t>(entry)];
-    knobs_ = read_knobs(t);
-    if (knobs_.ratio == 0)
-      t.fail("kt_kn_ratio", "is 0: calibrate holds c_T0/(k_T ε_0) (Šmilauer, calibration step 1), which needs k_T > 0");
-    cohesion_ratio_ =
-        t.number("cohesion", Unit::Pressure, Range::positive()) / (knobs_.ratio * knobs_.kn * knobs_.eps0);
     const Scene base = read_scene(doc, scene_file);
+    params_ = contact_params<Cpm>(doc, entry);
+    knobs_ = knobs_of(params_);
+    if (knobs_.ratio == 0)
+      fail_contact_key<Cpm>(doc, entry, &CpmParams::kt_kn_ratio,
+                            "is 0: calibrate holds c_T0/(k_T ε_0) (Šmilauer, calibration step 1), which needs k_T > 0");
+    cohesion_ratio_ = params_.cohesion / (knobs_.ratio * knobs_.kn * knobs_.eps0);
     const auto* u = base.analysis<UniaxialAnalysis>();
     if (!u || !u->tension)
       throw InputError(scene_file +
@@ -111,10 +105,11 @@ class CpmCalibration {
       }
       adjust(m);
     }
-    res_.overrides = knob_overrides(entry_, ran);
+    res_.overrides = knob_overrides(entry_, params_, ran);
     write_scene(scene_file_, with_user_overrides(res_.overrides), options_.output);
     if (fc_target())
-      write_scene(options_.compression_scene, with_user_overrides(knob_overrides(compression_entry_, ran)),
+      write_scene(options_.compression_scene,
+                  with_user_overrides(knob_overrides(compression_entry_, compression_params_, ran)),
                   compression_output());
     return res_;
   }
@@ -140,16 +135,17 @@ class CpmCalibration {
   }
 
   // The compression scene's cpm entry; it must be a compression test.
-  int check_compression_scene() const {
+  int check_compression_scene() {
     const std::string& file = options_.compression_scene;
     const TomlDoc doc = TomlDoc::load(file, overrides_);
-    const int entry = contacts_entry(doc, "cpm");
+    const int entry = contacts_entry(doc, Cpm::name);
     if (entry < 0)
       throw InputError(file + ": --compression needs a scene with one [[contacts]] entry with model = \"cpm\"");
     const Scene s = read_scene(doc, file);
     const auto* u = s.analysis<UniaxialAnalysis>();
     if (!u || u->tension)
       throw InputError(file + ": --compression needs a scene with [uniaxial] loading = \"compression\"");
+    compression_params_ = contact_params<Cpm>(doc, entry);
     return entry;
   }
 
@@ -158,10 +154,14 @@ class CpmCalibration {
     return (out.parent_path() / (out.stem().string() + "_compression" + out.extension().string())).string();
   }
 
-  std::vector<std::string> knob_overrides(int entry, const CpmKnobs& k) const {
-    return {set_key(entry, "modulus", k.kn), set_key(entry, "kt_kn_ratio", k.ratio),
-            set_key(entry, "crack_onset_strain", k.eps0), set_key(entry, "cohesion", cohesion(k)),
-            set_key(entry, "friction_angle", std::atan(k.tan_phi))};
+  // The --set lines that give the scene's entry (whose parameters are `base`) the knobs `k`; elastic: damage off.
+  std::vector<std::string> knob_overrides(int entry, const CpmParams& base, const CpmKnobs& k,
+                                          bool elastic = false) const {
+    CpmParams p = base;
+    p.modulus = k.kn, p.kt_kn_ratio = k.ratio, p.crack_onset_strain = k.eps0, p.tan_friction = k.tan_phi;
+    p.cohesion = cohesion(k);
+    p.never_damage = p.never_damage || elastic;
+    return contact_overrides<Cpm>(entry, base, p);
   }
 
   // Šmilauer, calibration steps 1–2: c_T0/(k_T ε_0) is held at the scene's value.
@@ -179,11 +179,10 @@ class CpmCalibration {
     knobs_.ratio = ratio;
   }
 
-  RunResult run(const std::string& file, std::vector<std::string> o, int entry, bool elastic,
+  RunResult run(const std::string& file, std::vector<std::string> o, int entry, const CpmParams& base, bool elastic,
                 const std::string& output) const {
-    const std::vector<std::string> knobs = knob_overrides(entry, knobs_);
+    const std::vector<std::string> knobs = knob_overrides(entry, base, knobs_, elastic);
     o.insert(o.end(), knobs.begin(), knobs.end());
-    if (elastic) o.push_back("contacts[" + std::to_string(entry) + "].never_damage=true");
     Scene scene = read_scene(TomlDoc::load(file, o), file);
     if (elastic) scene.stops = {StopSpec{strain_, StopSpec::Kind::MagnitudeAbove, elastic_stop_, 0.0}};
     RunOptions ro;
@@ -195,7 +194,7 @@ class CpmCalibration {
   Measured elastic_trial(int it) const {
     const std::string out = run_file(options_.output, it);
     const auto ran = share_values<Ran>(Ranks::world(), 1, [&](int) {
-      const double wall = run(scene_file_, overrides_, entry_, true, out).wall_seconds;
+      const double wall = run(scene_file_, overrides_, entry_, params_, true, out).wall_seconds;
       return Ran{result_of(out, false), wall};
     });
     return Measured{ran[0].result, kNaN, ran[0].wall};
@@ -207,10 +206,11 @@ class CpmCalibration {
     const std::string out = run_file(options_.output, it), c = run_file(options_.output, it, "_compression");
     const auto ran = share_values<Ran>(Ranks::world(), fc_target() ? 2 : 1, [&](int k) {
       if (k == 0) {
-        const double wall = run(scene_file_, overrides_, entry_, false, out).wall_seconds;
+        const double wall = run(scene_file_, overrides_, entry_, params_, false, out).wall_seconds;
         return Ran{result_of(out, true), wall};
       }
-      const double wall = run(options_.compression_scene, overrides_, compression_entry_, false, c).wall_seconds;
+      const double wall =
+          run(options_.compression_scene, overrides_, compression_entry_, compression_params_, false, c).wall_seconds;
       return Ran{result_of(c, true), wall};
     });
     Measured m{ran[0].result, kNaN, ran[0].wall};
@@ -303,6 +303,7 @@ class CpmCalibration {
   const CalibrationTarget target_;
   const CalibrationOptions options_;
   std::FILE* log_;
+  CpmParams params_, compression_params_;  // the entries as the scenes give them
   CpmKnobs knobs_;
   double cohesion_ratio_ = 0;  // c_T0/(k_T ε_0) of the scene
   std::string strain_;         // the tension test's axial strain history

@@ -1,6 +1,6 @@
 // What the calibration procedures (Tang's for parallel and softening bonds, Šmilauer's for the CPM) share: the
-// scene's one calibrated [[contacts]] entry, its values as --set strings, the iteration runs' files beside the
-// calibrated scene, and writing that scene. Internal to studies/calibration*.cpp.
+// iteration runs' files beside the calibrated scene, and writing that scene. The calibrated entry's parameters are
+// read, and written back as --set strings, through the model's key table (scene/model_registry.hpp). Internal to studies/calibration*.cpp.
 #pragma once
 #include <cmath>
 #include <cstdio>
@@ -11,13 +11,6 @@
 #include "studies/calibration.hpp"
 
 namespace mc::calibration {
-
-// Index of the one [[contacts]] entry with `model` in the scene; InputError when there are several.
-// −1 when there is none.
-int contacts_entry(const TomlDoc& doc, const std::string& model);
-
-// "contacts[index].key=value" with value to 8 significant digits.
-std::string set_key(int index, const std::string& key, double value);
 
 inline double rel(double value, double target) { return std::abs(value / target - 1.0); }
 

@@ -25,15 +25,15 @@ std::vector<double> drawn_tensile_strengths(const ParallelBondParams& p, std::ui
   const auto& set = static_cast<const ContactSet<ParallelBond, 2>&>(*w.sets[0]);
   for (std::size_t c = 0; c < set.pairs().size(); ++c)
     if (const auto st = set.state(c); ParallelBond::bonded<2>(st))
-      s.push_back(moduli ? st.stiffness * p.modulus : st.tensile);
+      s.push_back(moduli ? st.stiffness * p.bond_modulus.mean : st.tensile);
   return s;
 }
 
 ParallelBondParams params() {
   ParallelBondParams p;
   p.contact.modulus = 20e9;
-  p.modulus = 20e9;
-  p.shear_mean = 1e9;
+  p.bond_modulus.mean = 20e9;
+  p.bond_shear_strength.mean = 1e9;
   return p;
 }
 
@@ -42,7 +42,7 @@ ParallelBondParams params() {
 TEST_CASE("weibull_bond_strengths_have_the_mean_and_variance_of_tang_8_4") {
   auto p = params();
   const double lambda = 10e6, k = 5;  // scale and shape
-  p.tensile_mean = lambda, p.tensile_weibull = k;
+  p.bond_tensile_strength.mean = lambda, p.bond_tensile_strength.weibull_shape = k;
   const auto s = drawn_tensile_strengths(p, 17);
   REQUIRE(s.size() > 4000);
   const double g1 = std::tgamma(1 + 1 / k), g2 = std::tgamma(1 + 2 / k);
@@ -53,7 +53,7 @@ TEST_CASE("weibull_bond_strengths_have_the_mean_and_variance_of_tang_8_4") {
 
 TEST_CASE("normal_bond_strengths_have_the_mean_and_variance_of_table_5_1") {
   auto p = params();
-  p.tensile_mean = 18e6, p.tensile_std = 2e6;  // Tang Table 5.1 (2D): 9 std from zero, truncation negligible
+  p.bond_tensile_strength.mean = 18e6, p.bond_tensile_strength.std = 2e6;  // Tang Table 5.1 (2D): 9 std from zero, truncation negligible
   const auto s = drawn_tensile_strengths(p, 3);
   test::check_sample_moments(s, 18e6, 4e12, "bonds");
 }
@@ -63,9 +63,9 @@ TEST_CASE("normal_bond_strengths_have_the_mean_and_variance_of_table_5_1") {
 // / (R_A + R_B).
 TEST_CASE("weibull_bond_moduli_have_the_moments_of_tang_8_4_and_set_each_bonds_stiffness") {
   auto p = params();
-  p.tensile_mean = 1e9;
+  p.bond_tensile_strength.mean = 1e9;
   const double lambda = 20e9, k = 8;
-  p.modulus = lambda, p.modulus_weibull = k;
+  p.bond_modulus.mean = lambda, p.bond_modulus.weibull_shape = k;
   const auto e = drawn_tensile_strengths(p, 23, true);
   const double g1 = std::tgamma(1 + 1 / k), g2 = std::tgamma(1 + 2 / k);
   test::check_sample_moments(e, lambda * g1, lambda * lambda * (g2 - g1 * g1), "bonds");

@@ -82,11 +82,11 @@ ParallelBondParams parallel_bond() {
   p.contact.kn_ks_ratio = 2.5;
   p.contact.friction = 0.5;
   p.contact.damping_ratio = 0.05;
-  p.modulus = 10e9;
-  p.kn_ks_ratio = 2.5;
-  p.radius_multiplier = 1.0;
-  p.tensile_mean = 10e6, p.tensile_std = 2e6;
-  p.shear_mean = 20e6, p.shear_std = 4e6;
+  p.bond_modulus.mean = 10e9;
+  p.bond_kn_ks_ratio = 2.5;
+  p.bond_radius_multiplier = 1.0;
+  p.bond_tensile_strength.mean = 10e6, p.bond_tensile_strength.std = 2e6;
+  p.bond_shear_strength.mean = 20e6, p.bond_shear_strength.std = 4e6;
   return p;
 }
 
@@ -116,7 +116,7 @@ TEST_CASE("bonded_specimen_pulled_to_failure_closes_the_energy_balance_3d") {
 TEST_CASE("contact_bonded_specimen_pulled_to_failure_closes_the_energy_balance_2d") {
   ContactBondParams p;
   p.contact = parallel_bond().contact;
-  p.normal_mean = 5e3, p.normal_std = 1e3;  // N (per metre of thickness)
-  p.shear_mean = 10e3, p.shear_std = 2e3;
+  p.bond_normal_strength.mean = 5e3, p.bond_normal_strength.std = 1e3;  // N (per metre of thickness)
+  p.bond_shear_strength.mean = 10e3, p.bond_shear_strength.std = 2e3;
   check_failed_and_balanced(pull_to_failure<2, ContactBond>(p, 0.5e-3, 0.2, 5000));
 }

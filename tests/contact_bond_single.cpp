@@ -25,7 +25,7 @@ void tension_break() {
   // Bonded across a small gap (within the 1 % tolerance): the bond starts unstrained there.
   auto w = test::held_bonded_pair<D, ContactBond>(p, kR, kR, -0.002 * kR);
   const auto c = ContactBond::pair<D>(p, kR, kR);
-  const double rate = p.normal_mean / c.kn / (4000 * w.dt);  // breaks after ~4000 steps
+  const double rate = p.bond_normal_strength.mean / c.kn / (4000 * w.dt);  // breaks after ~4000 steps
   w.particles.v[1][0] = rate;
   test::start_energy(w);
   auto& set = static_cast<ContactSet<ContactBond, D>&>(*w.sets[0]);
@@ -42,8 +42,8 @@ void tension_break() {
   // F = k_n δ from the bonded position; δ ~ 1e-9 m is a difference of coordinates ~ 1e-3 m: round-off ~ 1e-7.
   CHECK(stiffness_ratio == doctest::Approx(1.0).epsilon(1e-6));
   // Each step adds 1/4000 of the strength: the last intact force sits within 0.025 % below it.
-  CHECK(last / p.normal_mean == doctest::Approx(1.0).epsilon(5e-4));
-  CHECK(last <= p.normal_mean);
+  CHECK(last / p.bond_normal_strength.mean == doctest::Approx(1.0).epsilon(5e-4));
+  CHECK(last <= p.bond_normal_strength.mean);
   w.step();
   CHECK(w.contact_force(0, 0).norm() == 0.0);  // apart and unbonded: no force
   CHECK(!ContactBond::bonded<D>(set.state(0)));
@@ -60,9 +60,9 @@ void shear_break_then_slide() {
   const auto c = ContactBond::pair<D>(p, kR, kR);
   // Pressed so that μF_n is 1.5 % of the shear strength: the bond must hold far beyond the slip limit. The
   // overlap (≥ 2.5e-11 m) stays much larger than the widening of the gap as the pair shears, (F_s/k_s)²/4R.
-  const double overlap = 0.05 * p.shear_mean / c.kn;
+  const double overlap = 0.05 * p.bond_shear_strength.mean / c.kn;
   auto w = test::held_bonded_pair<D, ContactBond>(p, kR, kR, overlap);
-  const double rate = p.shear_mean / c.ks / (4000 * w.dt);
+  const double rate = p.bond_shear_strength.mean / c.ks / (4000 * w.dt);
   // Both particles move sideways in opposite senses: the line of centres turns, but only by ~1e-3 rad.
   w.particles.v[1][1] = 0.5 * rate;
   w.particles.v[0][1] = -0.5 * rate;
@@ -76,7 +76,7 @@ void shear_break_then_slide() {
   }
   REQUIRE(w.cracks.size() == 1);
   CHECK(w.cracks[0].mode == CrackMode::Shear);
-  CHECK(last / p.shear_mean == doctest::Approx(1.0).epsilon(5e-4));  // held to its strength without slipping
+  CHECK(last / p.bond_shear_strength.mean == doctest::Approx(1.0).epsilon(5e-4));  // held to its strength without slipping
   // Sliding after the break: |F_s| = μ F_n exactly (the normal force is that of the overlap).
   const Vec<D> f = w.contact_force(0, 0);
   const Vec<D> n = (w.particles.x[1] - w.particles.x[0]).normalized();

@@ -1,6 +1,7 @@
 // What every registered contact model must do, checked the same way for each (as LAMMPS and HOOMD check every
-// style): typed over RegisteredModels (scene/model_registry.hpp), so a model added to the registry without its
-// sample parameters here does not compile.
+// style): typed over RegisteredModels (scene/model_registry.hpp), on the parameters its key table gives as examples,
+// so a model added to the registry is checked with nothing added here.
+//  0. Its key table is its own (named after it), documents every key and gives an example for each required one.
 //  1. The stiffness it reports (what the timestep is estimated from, Tang 3.22–3.24) is the force it answers a
 //     small increment with: normal, shear and, for models that carry moments, rotation.
 //  2. The energy it reports stored, plus what it reports dissipated, is the work done on it along a load–unload
@@ -14,59 +15,18 @@
 #include <vector>
 
 #include "scene/model_registry.hpp"
-#include "tests/common/cpm_pair.hpp"  // cpm_params
 #include "tests/common/test_worlds.hpp"
 
 using namespace mc;
 
 namespace {
 
-// Sample parameters for each model: bonds strong enough never to break or yield here, friction high enough never
-// to slip, no dashpots (a dashpot's force answers a velocity, not a displacement).
+// Sample parameters for each model: its key table's examples, read as a scene's [[contacts]] entry would be. They
+// are a concrete's, and the loads below stay far inside them: no bond breaks or yields, no contact slips.
 template <class M>
-typename M::Params sample_params();
-
-LinearParams linear_params() {
-  LinearParams p;
-  p.modulus = 30e9;
-  p.kn_ks_ratio = 2.5;
-  p.friction = 0.8;
-  return p;
-}
-template <>
-LinearParams sample_params<Linear>() {
-  return linear_params();
-}
-template <>
-HertzMindlinParams sample_params<HertzMindlin>() {
-  HertzMindlinParams p;
-  p.shear_modulus = 12e9;
-  p.poisson = 0.2;
-  p.friction = 0.8;
-  return p;
-}
-template <>
-ParallelBondParams sample_params<ParallelBond>() {
-  ParallelBondParams p;
-  p.contact = linear_params();
-  p.modulus = 25e9;
-  p.kn_ks_ratio = 2.0;
-  p.tensile_mean = p.shear_mean = 1e15;
-  return p;
-}
-template <>
-ContactBondParams sample_params<ContactBond>() {
-  return test::glued_bond_params<ContactBondParams>(1e12, 1e12);
-}
-template <>
-SofteningBondParams sample_params<SofteningBond>() {
-  auto p = test::glued_bond_params<SofteningBondParams>(1e12, 1e12);
-  p.plastic_limit = 1e-3;
-  return p;
-}
-template <>
-CpmParams sample_params<Cpm>() {
-  return test::cpm_params();
+typename M::Params sample_params() {
+  const TomlDoc doc = TomlDoc::parse_text(example_entry(M::keys()), std::string(M::name) + " examples");
+  return read_keys<typename M::Params>(doc.root(), M::keys());
 }
 
 constexpr double kR = 1e-3;   // both radii [m]
@@ -216,8 +176,19 @@ void checkpoint_round_trip_is_exact() {
   CHECK(a.step_count == 80);
 }
 
+template <class M>
+void key_table_is_its_own() {
+  const KeyTable& keys = M::keys();
+  CHECK(keys.name == std::string_view(M::name));  // a model deriving from another declares its own table
+  for (const Key& k : keys.keys) {
+    CHECK_MESSAGE(!k.doc.empty(), std::string(k.name));
+    if (k.need == Need::Required) CHECK_MESSAGE(!k.example.empty(), std::string(k.name));
+  }
+}
+
 template <class M, int D>
 void conformance() {
+  SUBCASE("key table is its own") { key_table_is_its_own<M>(); }
   SUBCASE("stiffness matches force") { stiffness_matches_force<M, D>(); }
   SUBCASE("stored energy is work done") { stored_energy_is_work_done<M, D>(); }
   SUBCASE("checkpoint round trip is exact") { checkpoint_round_trip_is_exact<M, D>(); }

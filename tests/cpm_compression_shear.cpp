@@ -19,7 +19,7 @@ using namespace mc;
 
 TEST_CASE("cpm: compression never damages and hardens from eps_s with modulus K_s k_N") {
   const CpmParams p = test::cpm_params();
-  const double es = p.hardening_strain, kn = p.modulus, ks = p.hardening_ratio;
+  const double es = p.hardening_strain, kn = p.modulus, ks = p.hardening_modulus_ratio;
   auto c = test::cpm_pair(p);
   c.strain_to(3 * es, 2e-6);  // loading: elastic to ε_s, then the hardening line
   const std::size_t unload = c.eps.size();
@@ -121,7 +121,7 @@ TEST_CASE("cpm: the shear return lands on the logarithmic yield surface in compr
   CHECK(st < p.cohesion - sn * p.tan_friction);
   // With compression_yield = "linear" (Yade's public CpmMat) it is the linear surface again.
   CpmParams lin = p;
-  lin.log_yield = false;
+  lin.compression_yield = CpmYield::Linear;
   const auto [sn3, st3, e3, w3] = shear_at(lin, -20 * p.crack_onset_strain);
   (void)e3, (void)w3;
   CHECK(st3 == doctest::Approx(p.cohesion - sn3 * p.tan_friction).epsilon(1e-9));

@@ -100,6 +100,6 @@ TEST_CASE("cpm: confinement shifts the response by sigma_0 and its strain") {
   MESSAGE("confined on the hardening branch (-120 MPa): first stress ", d.sigma_n[0],
           " Pa, tangent / k_N = ", tangent / kn, ", unloading / k_N = ", unload / kn);
   CHECK(std::abs(d.sigma_n[0]) < 1e-9 * std::abs(h.confinement));
-  CHECK(tangent == doctest::Approx(h.hardening_ratio * kn).epsilon(1e-8));
+  CHECK(tangent == doctest::Approx(h.hardening_modulus_ratio * kn).epsilon(1e-8));
   CHECK(unload == doctest::Approx(kn).epsilon(1e-8));
 }

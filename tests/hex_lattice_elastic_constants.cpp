@@ -60,7 +60,7 @@ Tension virtual_tension(const LatticeStiffness& k, int per_row, int rows, double
   p.contact.modulus = k.normal;
   p.contact.kn_ks_ratio = k.normal / k.shear;
   p.contact.friction = 0;
-  p.normal_mean = p.shear_mean = 1e30;
+  p.bond_normal_strength.mean = p.bond_shear_strength.mean = 1e30;
   auto w = test::single_model_world<2, ContactBond>(p);
   ContactBondParams end_row = p;  // phase 1: the bottom and top rows; their bonds with each other at half stiffness
   end_row.contact.modulus *= 0.5;

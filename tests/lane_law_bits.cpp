@@ -25,9 +25,9 @@ namespace {
 World<3> pulled_block(bool traced) {
   ParallelBondParams p;
   p.contact.modulus = 5e9, p.contact.kn_ks_ratio = 2.5, p.contact.friction = 0.5;
-  p.modulus = 10e9, p.kn_ks_ratio = 2.5;
-  p.tensile_mean = 10e6, p.tensile_std = 2e6;
-  p.shear_mean = 4e6, p.shear_std = 1e6;
+  p.bond_modulus.mean = 10e9, p.bond_kn_ks_ratio = 2.5;
+  p.bond_tensile_strength.mean = 10e6, p.bond_tensile_strength.std = 2e6;
+  p.bond_shear_strength.mean = 4e6, p.bond_shear_strength.std = 1e6;
   auto w = test::single_model_world<3, ParallelBond>(p);
   RandomStream rng(7);
   const double r = 1e-3, dx = 2 * r, dy = std::sqrt(3.0) * r;

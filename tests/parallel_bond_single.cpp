@@ -17,11 +17,11 @@ constexpr double kR = 1e-3;  // particle radius [m]
 ParallelBondParams params(double sigma_c, double tau_c) {
   ParallelBondParams p;
   p.contact.modulus = 1e9;
-  p.modulus = 30e9;
-  p.radius_multiplier = 1.0;
-  p.kn_ks_ratio = 2.5;
-  p.tensile_mean = sigma_c;
-  p.shear_mean = tau_c;
+  p.bond_modulus.mean = 30e9;
+  p.bond_radius_multiplier = 1.0;
+  p.bond_kn_ks_ratio = 2.5;
+  p.bond_tensile_strength.mean = sigma_c;
+  p.bond_shear_strength.mean = tau_c;
   return p;
 }
 
@@ -50,12 +50,12 @@ Outcome drive(const ParallelBondParams& p, Load load) {
   REQUIRE(w.install_bonds(1e-6, 7) == 1);
   // Beam theory from the section of (3.39)–(3.40) and the stiffnesses of (3.38), independently of the model's
   // own coefficients.
-  const auto sec = BondSection<D>::of(p.radius_multiplier, kR, kR);
-  const double kn = p.modulus / (2 * kR), ks = kn / p.kn_ks_ratio;
+  const auto sec = BondSection<D>::of(p.bond_radius_multiplier, kR, kR);
+  const double kn = p.bond_modulus.mean / (2 * kR), ks = kn / p.bond_kn_ks_ratio;
   double stiffness = 0, capacity = 0;
-  if (load == Load::Tension) stiffness = kn * sec.area, capacity = p.tensile_mean * sec.area;
-  if (load == Load::Shear) stiffness = ks * sec.area, capacity = p.shear_mean * sec.area;
-  if (load == Load::Bending) stiffness = kn * sec.inertia, capacity = p.tensile_mean * sec.inertia / sec.radius;
+  if (load == Load::Tension) stiffness = kn * sec.area, capacity = p.bond_tensile_strength.mean * sec.area;
+  if (load == Load::Shear) stiffness = ks * sec.area, capacity = p.bond_shear_strength.mean * sec.area;
+  if (load == Load::Bending) stiffness = kn * sec.inertia, capacity = p.bond_tensile_strength.mean * sec.inertia / sec.radius;
   const double rate = capacity / stiffness / (4000 * w.dt);  // [m/s] or, for bending, [rad/s] of relative turn
   if (load == Load::Tension) w.particles.v[1][0] = rate;
   if (load == Load::Shear) w.particles.v[1][1] = rate;

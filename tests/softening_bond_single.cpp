@@ -70,7 +70,7 @@ Pull<D> pull_apart(const SofteningBondParams& p, double rb) {
 template <int D>
 SofteningBondParams tension_params() {
   auto p = params(5.0, 1e9);
-  p.plastic_limit = 5 * p.normal_mean / SofteningBond::pair<D>(p, kR, kR).kn;
+  p.bond_plastic_limit = 5 * p.bond_normal_strength.mean / SofteningBond::pair<D>(p, kR, kR).kn;
   return p;
 }
 
@@ -129,24 +129,24 @@ void fracture_energy_sets_the_plastic_limit() {
   // bond's own F_c^n so that the work stays G_f A.
   const double rb = 0.8 * kR;
   auto p = params(5.0, 1e9);
-  p.normal_std = 1.0;
+  p.bond_normal_strength.std = 1.0;
   const double area = D == 2 ? 2 * rb : M_PI * rb * rb;  // Tang (3.39), λ̄ = 1, t = 1 m
   // Such that U_p,max ≈ 5 F_c^n/k_n at the mean strength.
-  p.fracture_energy = 0.5 * p.normal_mean * (5 * p.normal_mean / SofteningBond::pair<D>(p, kR, rb).kn) / area;
+  p.bond_fracture_energy = 0.5 * p.bond_normal_strength.mean * (5 * p.bond_normal_strength.mean / SofteningBond::pair<D>(p, kR, rb).kn) / area;
   const auto r = pull_apart<D>(p, rb);
   MESSAGE("F_c^n = ", r.strength, " N, U_p,max k_n / F_c^n = ", r.limit * r.kn / r.strength,
-          ", dissipated / (G_f A) - 1 = ", r.w.energy.dissipated_bonds / (p.fracture_energy * area) - 1);
-  CHECK(r.strength != p.normal_mean);  // drawn
+          ", dissipated / (G_f A) - 1 = ", r.w.energy.dissipated_bonds / (p.bond_fracture_energy * area) - 1);
+  CHECK(r.strength != p.bond_normal_strength.mean);  // drawn
   // As in the pull above: exact but for the step onto the softening line at the peak, ~1e-7.
-  CHECK(r.w.energy.dissipated_bonds / (p.fracture_energy * area) == doctest::Approx(1.0).epsilon(1e-5));
+  CHECK(r.w.energy.dissipated_bonds / (p.bond_fracture_energy * area) == doctest::Approx(1.0).epsilon(1e-5));
 }
 
 template <int D>
 void in_compression_slips_at_mu_fn_plus_softened_cohesion() {
   auto p = params(5.0, 0.5);
   const auto c = SofteningBond::pair<D>(p, kR, kR);
-  const double mu = p.contact.friction, fcs = p.shear_mean;
-  p.plastic_limit = 5 * fcs / c.ks;
+  const double mu = p.contact.friction, fcs = p.bond_shear_strength.mean;
+  p.bond_plastic_limit = 5 * fcs / c.ks;
   // Pressed to F_n = F_c^s: friction is μF_n = 0.3 F_c^s, the cohesion F_c^s on top of it.
   auto w = test::held_bonded_pair<D, SofteningBond>(p, kR, kR, fcs / c.kn);
   // The peak μF_n + F_c^s after ~1000 steps; the bond breaks ~3000 steps later.
@@ -187,9 +187,9 @@ void in_compression_slips_at_mu_fn_plus_softened_cohesion() {
   for (const double q : {0.2, 0.4, 0.6, 0.8}) {
     for (const Sample& s : bonded) {
       const double up = s.slide - s.fs / c.ks;
-      if (up < q * p.plastic_limit) continue;
-      const double expected = mu * s.fn + fcs * (1.0 - up / p.plastic_limit);  // Tang (3.47)–(3.48)
-      MESSAGE("U_p / U_p,max = ", up / p.plastic_limit, ": F_s / (μF_n + F_c^s(U_p)) - 1 = ", s.fs / expected - 1);
+      if (up < q * p.bond_plastic_limit) continue;
+      const double expected = mu * s.fn + fcs * (1.0 - up / p.bond_plastic_limit);  // Tang (3.47)–(3.48)
+      MESSAGE("U_p / U_p,max = ", up / p.bond_plastic_limit, ": F_s / (μF_n + F_c^s(U_p)) - 1 = ", s.fs / expected - 1);
       CHECK(s.fs / expected == doctest::Approx(1.0).epsilon(1e-4));
       ++checked;
       break;
@@ -220,9 +220,9 @@ void slid_without_normal_load_dissipates_its_mode_ii_fracture_energy() {
   const double area = D == 2 ? 2 * kR : M_PI * kR * kR;  // Tang (3.39), λ̄ = 1, t = 1 m
   const auto c = SofteningBond::pair<D>(p, kR, kR);
   // Such that U_p,max = 5 F_c^s/k_s: the elastic rise over ~1000 steps, the softening over ~5000.
-  p.fracture_energy = 0.5 * p.shear_mean * (5 * p.shear_mean / c.ks) / area;
+  p.bond_fracture_energy = 0.5 * p.bond_shear_strength.mean * (5 * p.bond_shear_strength.mean / c.ks) / area;
   auto w = test::held_bonded_pair<D, SofteningBond>(p, kR, kR, 0.0);
-  const double rate = p.shear_mean / c.ks / (1000 * w.dt);
+  const double rate = p.bond_shear_strength.mean / c.ks / (1000 * w.dt);
   w.particles.v[1][1] = 0.5 * rate;
   w.particles.v[0][1] = -0.5 * rate;
   test::start_energy(w);
@@ -230,10 +230,10 @@ void slid_without_normal_load_dissipates_its_mode_ii_fracture_energy() {
   REQUIRE(!SofteningBond::bonded<D>(bond_of(w)));
   w.update_energy();
   const double g = w.energy.dissipated_bonds / area;
-  MESSAGE("dissipated / A = ", g, " N/m against G_II = ", p.fracture_energy, " N/m (", g / p.fracture_energy - 1,
+  MESSAGE("dissipated / A = ", g, " N/m against G_II = ", p.bond_fracture_energy, " N/m (", g / p.bond_fracture_energy - 1,
           "); breaks in shear: ", w.crack_count(CrackKind::Break, CrackMode::Shear));
   CHECK(w.crack_count(CrackKind::Break, CrackMode::Shear) == 1);
-  CHECK(g == doctest::Approx(p.fracture_energy).epsilon(0.01));
+  CHECK(g == doctest::Approx(p.bond_fracture_energy).epsilon(0.01));
 }
 
 }  // namespace

@@ -133,7 +133,7 @@ Row measure(const Prism& p, int max_steps) {
   // The solver in situ: a jump to 90 % of the strain at the tensile strength, then steps of 2 % of it.
   Eigen::VectorXd q = Eigen::VectorXd::Zero(model.dofs());
   const Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(model.dofs());
-  const double strain_at_ft = kConcrete.ft / kConcrete.E0;
+  const double strain_at_ft = kConcrete.tensile_strength / kConcrete.E0;
   StaticOptions options;
   options.damage_tolerance = 1e-4;
   for (int step = 0; step < 40 && r.steps < max_steps; ++step) {
@@ -180,7 +180,7 @@ DynamicRow measure_newmark(const Prism& p, const Row& parts, int steps) {
   StaticSolver<3> solver(model, held);
   solver.set_inertia(M, s.a0(), 0);
   // The top reaches the strain at the tensile strength at half the steps.
-  const double speed = 2 * kSize.z() * kConcrete.ft / kConcrete.E0 / (steps * r.dt);
+  const double speed = 2 * kSize.z() * kConcrete.tensile_strength / kConcrete.E0 / (steps * r.dt);
   Eigen::VectorXd u = Eigen::VectorXd::Zero(model.dofs()), v = u, a = u;
   std::vector<double> damage(model.contacts(), 0.0);
   std::vector<FacetState> states(model.contacts());

@@ -47,46 +47,79 @@ V3 wall_normal(const WallSpec& w) {
 
 }  // namespace
 
-std::shared_ptr<const Analysis> read_bending(const Table& t, const Scene& s) {
+const KeyTable& bending_keys() {
+  static const KeyTable t{
+      .name = "bending",
+      .title = "[bending]: three-point bending (Tang §7.1; RILEM 50-FMC)",
+      .about = "A notched beam on two support walls, loaded by a third. Histories bending.load [N, along the load "
+               "wall's normal], bending.cmod [m], bending.deflection [m], with gravity bending.self_weight [N]. "
+               "summary adds the peak load (scaled to `thickness`), CMOD and deflection at the peak, G_F = (W_0 + "
+               "m g δ_0)/(ligament × thickness) with W_0 the area under load-deflection to the end of the record "
+               "(stop the run well past the peak), the stiffness (secant 10-40 % of the peak), with a crack log the "
+               "crack path and the cracks per phase pair at the peak and the end, with energy tracing the balance.",
+      .keys = {
+          {.name = "load_wall", .type = KeyType::Text, .need = Need::Required, .doc = "the moving wall on the beam"},
+          {.name = "supports", .type = KeyType::Text, .need = Need::Required, .doc = "\"left right\": two other walls"},
+          {.name = "cmod", .type = KeyType::Text, .need = Need::Required, .doc = "an opening probe: the crack-mouth opening"},
+          {.name = "span", .unit = Unit::Length, .range = Range::positive(), .need = Need::Required,
+           .doc = "between the supports"},
+          {.name = "depth", .unit = Unit::Length, .range = Range::positive(), .need = Need::Required,
+           .doc = "the beam's"},
+          {.name = "ligament", .unit = Unit::Length, .range = Range::positive(),
+           .doc = "the depth minus the notch", .shown_default = "depth"},
+          {.name = "thickness", .unit = Unit::Length, .range = Range::positive(),
+           .doc = "the beam's; 2D: the report's beam, loads scaled from the discs' unit thickness to it; 3D: "
+                  "required",
+           .shown_default = "0.1 m in 2D"},
+          {.name = "deflection_groups", .type = KeyType::Text,
+           .doc = "\"mid left right\": three [[groups]] (on the neutral axis at mid-span and above the supports) "
+                  "whose mean displacements give the deflection free of the indentations; absent: the load wall's "
+                  "displacement minus the supports'"},
+      }};
+  return t;
+}
+
+std::string BendingAnalysis::name() const { return std::string(bending_keys().name); }
+
+std::shared_ptr<const Analysis> read_bending(const KeyReader& k, const Scene& s) {
   auto b = std::make_shared<BendingAnalysis>();
   b->scene_file = s.file;
   b->dimension = s.dimension;
   b->gravity = s.gravity;
   const auto wall_name = [](const WallSpec& w) { return w.name; };
-  b->load_wall = named(t, "load_wall", 1, s.walls, wall_name, "[[walls]]")[0];
-  const std::vector<int> sup = named(t, "supports", 2, s.walls, wall_name, "[[walls]]");
+  b->load_wall = named(k, "load_wall", 1, s.walls, wall_name, "[[walls]]")[0];
+  const std::vector<int> sup = named(k, "supports", 2, s.walls, wall_name, "[[walls]]");
   b->supports = {sup[0], sup[1]};
   if (b->supports[0] == b->load_wall || b->supports[1] == b->load_wall)
-    t.fail("supports", "names the loading wall '" + s.walls[b->load_wall].name + "': give the two support walls");
-  if (t.has("deflection_groups")) {
+    k.fail("supports", "names the loading wall '" + s.walls[b->load_wall].name + "': give the two support walls");
+  if (k.has("deflection_groups")) {
     const std::vector<int> g = named(
-        t, "deflection_groups", 3, s.groups, [](const GroupSpec& x) { return x.name; }, "[[groups]]");
+        k, "deflection_groups", 3, s.groups, [](const GroupSpec& x) { return x.name; }, "[[groups]]");
     b->deflection_groups = {g[0], g[1], g[2]};
   }
   for (const PhaseSpec& p : s.phases) b->phase_names.push_back(p.name);
   b->top = wall_centre(s.walls[b->load_wall]);
   b->down = wall_normal(s.walls[b->load_wall]);
   b->along = unit(minus(wall_centre(s.walls[b->supports[1]]), wall_centre(s.walls[b->supports[0]])));
-  b->cmod_probe = t.string("cmod");
+  b->cmod_probe = k.string("cmod");
   b->cmod_gauge = s.opening_gauge(b->cmod_probe);
   if (b->cmod_gauge < 0)
-    t.fail("cmod", "'" + b->cmod_probe + "' is not the name of an opening probe ([[probes]] with kind = \"opening\")");
-  b->span = t.number("span", Unit::Length, Range::positive());
-  b->depth = t.number("depth", Unit::Length, Range::positive());
-  b->ligament = t.number("ligament", Unit::Length, Range::positive(), b->depth);
+    k.fail("cmod", "'" + b->cmod_probe + "' is not the name of an opening probe ([[probes]] with kind = \"opening\")");
+  b->span = k.number("span");
+  b->depth = k.number("depth");
+  b->ligament = k.number("ligament", b->depth);
   if (b->ligament > b->depth)
-    t.fail("ligament", "the ligament (depth minus notch) cannot exceed the depth, " + json_number(b->depth) + " m");
+    k.fail("ligament", "the ligament (depth minus notch) cannot exceed the depth, " + json_number(b->depth) + " m");
   // 2D: the discs have unit thickness; the report scales loads to the real beam's (Tang §7.1: 100 mm).
-  b->thickness = s.dimension == 2 ? t.number("thickness", Unit::Length, Range::positive(), 0.1)
-                                  : t.number("thickness", Unit::Length, Range::positive());
+  b->thickness = s.dimension == 2 ? k.number("thickness", 0.1) : k.required_number("thickness");
   return b;
 }
 
-void BendingAnalysis::check(const Table& t, const Scene& s, const std::vector<std::string>& histories) const {
+void BendingAnalysis::check(const KeyReader& k, const Scene& s, const std::vector<std::string>& histories) const {
   (void)histories;  // it reads only the histories it records itself
   const WallSpec& w = s.walls[load_wall];
   if (w.control == WallControl::Fixed)
-    t.fail("load_wall", "wall '" + w.name + "' is fixed: the loading wall must move (velocity, servo or opening)");
+    k.fail("load_wall", "wall '" + w.name + "' is fixed: the loading wall must move (velocity, servo or opening)");
 }
 
 void BendingAnalysis::add_histories(std::vector<Series>& out, const Observed<2>& o) const { add<2>(out, o); }

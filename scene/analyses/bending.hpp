@@ -58,10 +58,10 @@ class BendingAnalysis final : public Analysis {
   std::array<double, 3> top{}, along{}, down{};
   std::string scene_file;
 
-  std::string name() const override { return "bending"; }
+  std::string name() const override;  // its key table's
   void add_histories(std::vector<Series>& out, const Observed<2>& o) const override;
   void add_histories(std::vector<Series>& out, const Observed<3>& o) const override;
-  void check(const Table& t, const Scene& s, const std::vector<std::string>& histories) const override;
+  void check(const KeyReader& k, const Scene& s, const std::vector<std::string>& histories) const override;
   std::string summary_json(const RunRecord& run) const override;
 
   BendingResult result(const Histories& h) const;
@@ -77,6 +77,7 @@ class BendingAnalysis final : public Analysis {
   void add(std::vector<Series>& out, const Observed<D>& o) const;
 };
 
-std::shared_ptr<const Analysis> read_bending(const Table& t, const Scene& s);
+const KeyTable& bending_keys();
+std::shared_ptr<const Analysis> read_bending(const KeyReader& k, const Scene& s);
 
 }  // namespace mc

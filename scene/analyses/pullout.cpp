@@ -42,41 +42,82 @@ double quantile(std::vector<double> v, double q) {
 
 }  // namespace
 
-std::shared_ptr<const Analysis> read_pullout(const Table& t, const Scene& s) {
-  if (s.dimension != 2) t.fail("pullout", "the pull test is 2D (Tang §8.1: y up, the sheet on top, pulled along x)");
+const KeyTable& pullout_keys() {
+  static const KeyTable t{
+      .name = "pullout",
+      .title = "[pullout]: the FRP-to-concrete single-shear pull test (Tang §8.1)",
+      .about = "2D, y up, the sheet on top, pulled along x. Histories pullout.load [N per metre of the discs' "
+               "thickness], pullout.slip [m], pullout.strain_<k>. summary adds the capacity (for the sheet's width, "
+               "and times β_w of (8.1)), the slip at it, the strain profiles at the load levels, with a crack log "
+               "the cracks per phase pair at 31, 60, 90 and 100 % of the capacity and the failure mode, with "
+               "energy tracing the balance; report draws the load-slip curve, the profiles and the cracks.",
+      .keys = {
+          {.name = "pulled", .type = KeyType::Text, .need = Need::Required,
+           .doc = "a driven [[groups]] entry: the sheet's loaded end (velocity, fix, ramp_time)"},
+          {.name = "slip", .type = KeyType::Text, .need = Need::Required,
+           .doc = "an opening probe with a direction, e.g. from the concrete to the sheet at the bonded length's "
+                  "loaded end, along the pull"},
+          {.name = "frp_phase", .type = KeyType::Text, .need = Need::Required, .doc = "the sheet's phase"},
+          {.name = "bonded_from", .unit = Unit::Length, .need = Need::Required,
+           .doc = "x of the bonded length's loaded end"},
+          {.name = "bonded_to", .unit = Unit::Length, .need = Need::Required, .doc = "x of its far end"},
+          {.name = "gauges", .type = KeyType::Integer, .range = Range::closed(1, 1000),
+           .doc = "equal stretches of the bonded length, each a strain gauge between the sheet's particles at its "
+                  "ends",
+           .fallback = 10},
+          {.name = "width", .unit = Unit::Length, .range = Range::positive(), .need = Need::Required,
+           .doc = "b_f, the report's sheet: loads are scaled from the discs' unit thickness to it"},
+          {.name = "prism_width", .unit = Unit::Length, .range = Range::positive(), .need = Need::Required,
+           .doc = "b_c, the report's prism, for β_w (8.1)"},
+          {.name = "frp_modulus", .unit = Unit::Pressure, .range = Range::positive(), .need = Need::Required,
+           .doc = "E_p, for ε₀ of (8.5)"},
+          {.name = "frp_thickness", .unit = Unit::Length, .range = Range::positive(), .need = Need::Required,
+           .doc = "t_p, for ε₀ of (8.5)"},
+          {.name = "load_levels", .type = KeyType::Reals, .unit = Unit::Force, .range = Range::positive(),
+           .doc = "loads of the reported width where the strain profiles are taken, e.g. [\"4 kN\", \"8 kN\"] "
+                  "(Tang Fig. 8.8)"},
+      }};
+  return t;
+}
+
+std::string PulloutAnalysis::name() const { return std::string(pullout_keys().name); }
+
+std::shared_ptr<const Analysis> read_pullout(const KeyReader& k, const Scene& s) {
+  if (s.dimension != 2)
+    throw InputError(s.file + ": [pullout]: the pull test is 2D (Tang §8.1: y up, the sheet on top, pulled along x)");
   auto a = std::make_shared<PulloutAnalysis>();
   a->scene_file = s.file;
   a->pulled_group = named(
-      t, "pulled", 1, s.groups, [](const GroupSpec& g) { return g.name; }, "[[groups]]")[0];
+      k, "pulled", 1, s.groups, [](const GroupSpec& g) { return g.name; }, "[[groups]]")[0];
   const GroupSpec& g = s.groups[a->pulled_group];
   if (!g.ramp_time)
-    t.fail("pulled", "group '" + g.name + "' is not driven: give it 'velocity', 'fix' and 'ramp_time' ([[groups]])");
+    k.fail("pulled", "group '" + g.name + "' is not driven: give it 'velocity', 'fix' and 'ramp_time' ([[groups]])");
   const double speed = std::hypot(g.velocity[0], g.velocity[1]);
-  if (!(speed > 0)) t.fail("pulled", "group '" + g.name + "' has velocity zero: the pulled end must move");
+  if (!(speed > 0)) k.fail("pulled", "group '" + g.name + "' has velocity zero: the pulled end must move");
   a->pull = {g.velocity[0] / speed, g.velocity[1] / speed};
-  a->slip_probe = t.string("slip");
+  a->slip_probe = k.string("slip");
   a->slip_gauge = s.opening_gauge(a->slip_probe);
   if (a->slip_gauge < 0)
-    t.fail("slip", "'" + a->slip_probe + "' is not the name of an opening probe ([[probes]] with kind = \"opening\")");
+    k.fail("slip", "'" + a->slip_probe + "' is not the name of an opening probe ([[probes]] with kind = \"opening\")");
   for (const PhaseSpec& p : s.phases) a->phase_names.push_back(p.name);
-  a->frp_phase = scene_read::phase_index(t, "frp_phase", s.phases);
-  a->bonded_from = t.number("bonded_from", Unit::Length, Range::any());
-  a->bonded_to = t.number("bonded_to", Unit::Length, Range::any());
-  if (a->bonded_length() <= 0) t.fail("bonded_to", "equals bonded_from: the bonded length must be positive");
-  a->gauges = static_cast<int>(t.integer("gauges", Range::closed(1, 1000), 10));
-  a->width = t.number("width", Unit::Length, Range::positive());
-  a->prism_width = t.number("prism_width", Unit::Length, Range::positive());
+  a->frp_phase = scene_read::phase_index(k, "frp_phase", s.phases);
+  a->bonded_from = k.number("bonded_from");
+  a->bonded_to = k.number("bonded_to");
+  if (a->bonded_length() <= 0) k.fail("bonded_to", "equals bonded_from: the bonded length must be positive");
+  a->gauges = static_cast<int>(k.integer("gauges"));
+  a->width = k.number("width");
+  a->prism_width = k.number("prism_width");
   if (a->width > a->prism_width)
-    t.fail("width", "the sheet (" + json_number(a->width) + " m) is wider than the prism (" +
+    k.fail("width", "the sheet (" + json_number(a->width) + " m) is wider than the prism (" +
                         json_number(a->prism_width) + " m): (8.1) holds for b_f ≤ b_c");
-  a->frp_modulus = t.number("frp_modulus", Unit::Pressure, Range::positive());
-  a->frp_thickness = t.number("frp_thickness", Unit::Length, Range::positive());
-  if (t.has("load_levels")) a->load_levels = t.numbers("load_levels", Unit::Force, Range::positive(), 0);
+  a->frp_modulus = k.number("frp_modulus");
+  a->frp_thickness = k.number("frp_thickness");
+  if (k.has("load_levels")) a->load_levels = k.numbers("load_levels", 0);
   return a;
 }
 
-void PulloutAnalysis::check(const Table& t, const Scene& s, const std::vector<std::string>& histories) const {
-  (void)t, (void)s, (void)histories;  // it reads only the histories it records itself
+void PulloutAnalysis::check(const KeyReader& k, const Scene& s, const std::vector<std::string>& histories) const {
+  (void)k, (void)s, (void)histories;  // it reads only the histories it records itself
 }
 
 double PulloutAnalysis::beta_w() const {

@@ -36,10 +36,10 @@ class PulloutAnalysis final : public Analysis {
   std::vector<double> load_levels;            // [N] of the reported width: where the strain profiles are taken
   std::string scene_file;
 
-  std::string name() const override { return "pullout"; }
+  std::string name() const override;  // its key table's
   void add_histories(std::vector<Series>& out, const Observed<2>& o) const override;
   void add_histories(std::vector<Series>& out, const Observed<3>& o) const override;
-  void check(const Table& t, const Scene& s, const std::vector<std::string>& histories) const override;
+  void check(const KeyReader& k, const Scene& s, const std::vector<std::string>& histories) const override;
   std::string summary_json(const RunRecord& run) const override;
 
   double bonded_length() const { return std::abs(bonded_to - bonded_from); }
@@ -50,6 +50,7 @@ class PulloutAnalysis final : public Analysis {
   PulloutFailure failure(const std::vector<LoggedCrack>& cracks, double interface_y, double bottom_y) const;
 };
 
-std::shared_ptr<const Analysis> read_pullout(const Table& t, const Scene& s);
+const KeyTable& pullout_keys();
+std::shared_ptr<const Analysis> read_pullout(const KeyReader& k, const Scene& s);
 
 }  // namespace mc

@@ -12,19 +12,19 @@ namespace mc {
 
 // Names separated by spaces, exactly `n` of them, each found in `known` (by `name_of`); their indices.
 template <class T, class Name>
-std::vector<int> named(const Table& t, const std::string& key, std::size_t n, const std::vector<T>& known, Name name_of,
-                       const std::string& what) {
-  std::stringstream ss(t.string(key));
+std::vector<int> named(const KeyReader& k, std::string_view key, std::size_t n, const std::vector<T>& known,
+                       Name name_of, const std::string& what) {
+  std::stringstream ss(k.string(key));
   std::vector<std::string> names;
   for (std::string x; ss >> x;) names.push_back(x);
-  if (names.size() != n) t.fail(key, "give the names of " + std::to_string(n) + " " + what + ", separated by spaces");
+  if (names.size() != n) k.fail(key, "give the names of " + std::to_string(n) + " " + what + ", separated by spaces");
   std::vector<int> out;
   for (const auto& x : names) {
     int found = -1;
     for (std::size_t k = 0; k < known.size(); ++k)
       if (name_of(known[k]) == x) found = static_cast<int>(k);
-    if (found < 0) t.fail(key, "'" + x + "' is not the name of one of the " + what);
-    if (std::find(out.begin(), out.end(), found) != out.end()) t.fail(key, "names '" + x + "' twice");
+    if (found < 0) k.fail(key, "'" + x + "' is not the name of one of the " + what);
+    if (std::find(out.begin(), out.end(), found) != out.end()) k.fail(key, "names '" + x + "' twice");
     out.push_back(found);
   }
   return out;

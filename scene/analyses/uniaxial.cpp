@@ -10,61 +10,105 @@
 
 namespace mc {
 
-std::shared_ptr<const Analysis> read_uniaxial(const Table& t, const Scene& s) {
+const KeyTable& uniaxial_keys() {
+  static const KeyTable t{
+      .name = "uniaxial",
+      .title = "[uniaxial]: the uniaxial test (Tang ch. 5, Šmilauer's calibration test)",
+      .about = "Compression or tension of a specimen between platens (walls, whose histories it names) or its own "
+               "bonded end layers (two [[groups]], `supports`). It records uniaxial.inside_strain (the regression "
+               "of the axial displacements on the axial positions of the middle half of the specimen, free of the "
+               "platens' give) and, with supports, uniaxial.stress, .strain, .length and .lateral_strain; summary "
+               "adds E (secant 25-50 % of the peak), ν, the strength, the strain at the peak, in tension G_f, the "
+               "crack-initiation stress and the crack counts. Needs [bonds].",
+      .keys = {
+          {.name = "loading", .type = KeyType::Word, .doc = "compression or tension", .words = {"compression", "tension"},
+           .shown_default = "compression"},
+          {.name = "axis", .type = KeyType::Word, .doc = "the strained axis", .words = {"x", "y", "z"}, .shown_default = "y in 2D, z in 3D"},
+          {.name = "axial_strain_from", .type = KeyType::Word,
+           .doc = "platens (the named axial_strain, or the supports') or inside: the strain E and ν are read from; "
+                  "summary gives both as E_platens, nu_platens, E_inside, nu_inside",
+           .words = {"platens", "inside"},
+           .shown_default = "platens with supports, else inside"},
+          {.name = "plane", .type = KeyType::Word,
+           .when = "2D",
+           .doc = "strain (Tang ch. 5: ν = ν₂/(1 + ν₂), E = E₂(1 − ν²) from the disc assembly's own E₂, ν₂) or "
+                  "stress (the ratios as they are)",
+           .words = {"strain", "stress"},
+           .shown_default = "strain"},
+          {.name = "supports", .type = KeyType::Text,
+           .doc = "\"bottom top\": two [[groups]] at the negative and positive end of the axis that strain the "
+                  "specimen"},
+          {.name = "area", .unit = Unit::Length, .range = Range::positive(), .when = "2D",
+           .doc = "with supports: the cross-section the reactions are divided by [m, per unit thickness]",
+           .shown_default = "the specimen's bounding box's"},
+          {.name = "area", .range = Range::positive(), .when = "3D",
+           .doc = "with supports: the cross-section the reactions are divided by [m²]",
+           .shown_default = "the specimen's bounding box's"},
+          {.name = "stress", .type = KeyType::Text, .need = Need::Required, .when = "without supports",
+           .doc = "the history of the axial stress (signs free: the loading sense is taken positive)"},
+          {.name = "axial_strain", .type = KeyType::Text, .need = Need::Required, .when = "without supports", .doc = "the history of the axial strain"},
+          {.name = "lateral_strain", .type = KeyType::Text, .need = Need::Required, .when = "without supports",
+           .doc = "the lateral strain histories, separated by spaces, whose mean is taken (3D: both lateral axes)"},
+      }};
+  return t;
+}
+
+std::string UniaxialAnalysis::name() const { return std::string(uniaxial_keys().name); }
+
+std::shared_ptr<const Analysis> read_uniaxial(const KeyReader& k, const Scene& s) {
   auto u = std::make_shared<UniaxialAnalysis>();
   u->scene_file = s.file;
-  u->tension = t.choice("loading", {"compression", "tension"}, "compression") == "tension";
+  u->tension = k.choice("loading") == "tension";
   u->dimension = s.dimension;
   const std::string axis =
-      t.choice("axis", s.dimension == 2 ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"},
+      k.choice("axis", s.dimension == 2 ? std::vector<std::string>{"x", "y"} : std::vector<std::string>{"x", "y", "z"},
                s.dimension == 2 ? "y" : "z");
   u->axis = axis[0] - 'x';
   // Platens touch the specimen through unbonded contacts whose give enters their gap: E read from it rises with
   // L/R (3D: +23 % from L/R 15 to 25, against +15 % inside; 2D from 40 to 120: +10 % against +1 %), so inside is
   // the default. Supports are the specimen's own bonded end layers, and their strain is Šmilauer's definition.
-  const bool supported = t.has("supports");
-  u->strain_inside =
-      t.choice("axial_strain_from", {"platens", "inside"}, supported ? "platens" : "inside") == "inside";
+  const bool supported = k.has("supports");
+  u->strain_inside = k.choice("axial_strain_from", supported ? "platens" : "inside") == "inside";
   if (s.dimension == 2)
-    u->plane_strain = t.choice("plane", {"strain", "stress"}, "strain") == "strain";
-  else if (t.has("plane"))
-    t.fail("plane", "a 3D specimen gives E and ν directly; the plane reading is for 2D specimens");
-  if (t.has("supports")) {
+    u->plane_strain = k.choice("plane") == "strain";
+  else if (k.has("plane"))
+    k.fail("plane", "a 3D specimen gives E and ν directly; the plane reading is for 2D specimens");
+  if (k.has("supports")) {
     // supports = "bottom top": the groups at the negative and the positive end of the strained axis.
-    for (const char* k : {"stress", "axial_strain", "lateral_strain"})
-      if (t.has(k)) t.fail(k, "given together with 'supports', which defines the uniaxial.* histories itself");
-    std::stringstream ss(t.string("supports"));
+    for (const char* key : {"stress", "axial_strain", "lateral_strain"})
+      if (k.has(key)) k.fail(key, "given together with 'supports', which defines the uniaxial.* histories itself");
+    std::stringstream ss(k.string("supports"));
     std::vector<std::string> two;
     for (std::string n; ss >> n;) two.push_back(n);
     if (two.size() != 2)
-      t.fail("supports", "give the names of two groups, the negative end first, separated by a space");
-    for (int k = 0; k < 2; ++k) {
+      k.fail("supports", "give the names of two groups, the negative end first, separated by a space");
+    for (int i = 0; i < 2; ++i) {
       for (std::size_t g = 0; g < s.groups.size(); ++g)
-        if (s.groups[g].name == two[k]) u->supports[k] = static_cast<int>(g);
-      if (u->supports[k] < 0) t.fail("supports", "'" + two[k] + "' is not the name of a [[groups]] entry");
-      u->support_names[k] = two[k];
+        if (s.groups[g].name == two[i]) u->supports[i] = static_cast<int>(g);
+      if (u->supports[i] < 0) k.fail("supports", "'" + two[i] + "' is not the name of a [[groups]] entry");
+      u->support_names[i] = two[i];
     }
-    u->area = t.number("area", s.dimension == 2 ? Unit::Length : Unit::None, Range::positive(), 0.0);
+    u->area = k.number(k.key("area", s.dimension == 2 ? "2D" : "3D"), 0.0);
     u->stress = "uniaxial.stress", u->axial_strain = "uniaxial.strain", u->lateral_strain = {"uniaxial.lateral_strain"};
   } else {
-    u->stress = t.string("stress");
-    u->axial_strain = t.string("axial_strain");
-    std::istringstream names(t.string("lateral_strain"));
+    u->stress = k.string("stress");
+    u->axial_strain = k.string("axial_strain");
+    std::istringstream names(k.string("lateral_strain"));
     for (std::string n; names >> n;) u->lateral_strain.push_back(n);
-    if (u->lateral_strain.empty()) t.fail("lateral_strain", "give one or more history names, separated by spaces");
+    if (u->lateral_strain.empty()) k.fail("lateral_strain", "give one or more history names, separated by spaces");
   }
   return u;
 }
 
-void UniaxialAnalysis::check(const Table& t, const Scene& s, const std::vector<std::string>& histories) const {
+void UniaxialAnalysis::check(const KeyReader& k, const Scene& s, const std::vector<std::string>& histories) const {
   std::string list;
   for (const auto& h : histories) list += (list.empty() ? "" : ", ") + h;
   std::vector<std::pair<std::string, std::string>> named{{"stress", stress}, {"axial_strain", axial_strain}};
   for (const auto& n : lateral_strain) named.push_back({"lateral_strain", n});
   for (const auto& [key, name] : named)
     if (std::find(histories.begin(), histories.end(), name) == histories.end())
-      t.fail(key, "'" + name + "' is not a history of this scene; recorded: " + list);
-  if (s.bond_tolerance < 0) t.fail("stress", "the crack-initiation stress needs bonds: declare [bonds]");
+      k.fail(key, "'" + name + "' is not a history of this scene; recorded: " + list);
+  if (s.bond_tolerance < 0) k.fail("stress", "the crack-initiation stress needs bonds: declare [bonds]");
 }
 
 void UniaxialAnalysis::add_histories(std::vector<Series>& out, const Observed<2>& o) const {

@@ -59,10 +59,10 @@ class UniaxialAnalysis final : public Analysis {
   double area = 0;         // [m²] (3D) or [m] (2D); 0: the specimen's bounding box
   std::string scene_file;  // for messages
 
-  std::string name() const override { return "uniaxial"; }
+  std::string name() const override;  // its key table's
   void add_histories(std::vector<Series>& out, const Observed<2>& o) const override;
   void add_histories(std::vector<Series>& out, const Observed<3>& o) const override;
-  void check(const Table& t, const Scene& s, const std::vector<std::string>& histories) const override;
+  void check(const KeyReader& k, const Scene& s, const std::vector<std::string>& histories) const override;
   std::string summary_json(const RunRecord& run) const override;
 
   UniaxialResult result(const Histories& h) const;
@@ -75,6 +75,7 @@ class UniaxialAnalysis final : public Analysis {
   void add_support_histories(std::vector<Series>& out, const Observed<D>& o) const;
 };
 
-std::shared_ptr<const Analysis> read_uniaxial(const Table& t, const Scene& s);
+const KeyTable& uniaxial_keys();
+std::shared_ptr<const Analysis> read_uniaxial(const KeyReader& k, const Scene& s);
 
 }  // namespace mc

@@ -34,7 +34,7 @@ std::vector<std::vector<std::optional<FacetParams>>> facet_table(const Scene& s)
     FacetParams p{f.E0, f.alpha, f.tensile_strength, f.fracture_energy, f.rate_c0, f.rate_c1};
     if (f.E0 == 0) {
       try {
-        const FacetParams m = mesoscopic(D, f.E, f.nu);
+        const FacetParams m = mesoscopic(D, f.modulus, f.poisson_ratio);
         p.E0 = m.E0, p.alpha = m.alpha;
       } catch (const InputError& e) {
         throw InputError(f.where + ": modulus and poisson_ratio: " + e.what());

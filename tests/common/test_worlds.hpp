@@ -63,8 +63,8 @@ Params glued_bond_params(double normal, double shear) {
   p.contact.modulus = 1e9;
   p.contact.kn_ks_ratio = 2.0;
   p.contact.friction = 0.3;
-  p.normal_mean = normal;
-  p.shear_mean = shear;
+  p.bond_normal_strength.mean = normal;
+  p.bond_shear_strength.mean = shear;
   return p;
 }
 

@@ -432,7 +432,7 @@ std::string rigid_cell_fault(const RigidCellSpec& r, PhaseOk phase_ok) {
   if (r.facets.empty()) return "no facet laws";
   for (const auto& f : r.facets) {
     if (!phase_ok(f.phase_a) || !phase_ok(f.phase_b)) return "facet law phase index out of range";
-    const bool given = f.E0 > 0 && f.alpha > 0, macroscopic = f.E > 0 && f.nu > -1 && f.nu < 0.5;
+    const bool given = f.E0 > 0 && f.alpha > 0, macroscopic = f.modulus > 0 && f.poisson_ratio > -1 && f.poisson_ratio < 0.5;
     if (!(given || macroscopic)) return "facet law without positive moduli";
     if (!(f.tensile_strength >= 0) || (f.tensile_strength > 0 && !(f.fracture_energy > 0)))
       return "facet law with a strength but no fracture energy";

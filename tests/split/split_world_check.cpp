@@ -34,9 +34,9 @@ constexpr double kR = 1e-3;
 ParallelBondParams parallel_bond() {
   ParallelBondParams prm;
   prm.contact.modulus = 5e9, prm.contact.kn_ks_ratio = 2.5, prm.contact.friction = 0.5;
-  prm.modulus = 10e9, prm.kn_ks_ratio = 2.5;
-  prm.tensile_mean = 10e6, prm.tensile_std = 2e6;
-  prm.shear_mean = 4e6, prm.shear_std = 1e6;
+  prm.bond_modulus.mean = 10e9, prm.bond_kn_ks_ratio = 2.5;
+  prm.bond_tensile_strength.mean = 10e6, prm.bond_tensile_strength.std = 2e6;
+  prm.bond_shear_strength.mean = 4e6, prm.bond_shear_strength.std = 1e6;
   return prm;
 }
 
