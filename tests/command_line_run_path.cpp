@@ -181,6 +181,24 @@ static int loop_steps(const fs::path& scene, int steps) {
   return contains(text, "\ndimension = 3") ? steps / 50 : steps / 10;
 }
 
+// The shipped Hertz–Mindlin collision (scenes/collision_hertz_3d.toml) against Hertz's closed forms (Johnson 1985,
+// §11.4) for its G = 50 MPa, ν = 0.2, R = 1 mm, ρ = 2600 kg/m³, v = 0.1 m/s: E* = G/(1 − ν), R* = R/2, m* = m/2.
+// Its step varies with the stiffness (safety 0.05), about 100 steps per contact: within 1 % (the constant-step
+// check of the law, tests/two_particle_impact.cpp, is the tighter one).
+TEST_CASE("shipped_hertz_collision_lasts_as_long_and_overlaps_as_deep_as_hertz_says") {
+  const TempDir d;
+  const Result r = mesocrack({"run", (kScenes / "collision_hertz_3d.toml").string(), "-o", "h.h5"}, d.dir);
+  REQUIRE_MESSAGE(r.code == 0, r.describe());
+  const Json summary = summary_of("h.h5", d.dir);
+  const Json& res = summary["results"];
+  const double m = 2600 * 4.0 / 3.0 * M_PI * 1e-9, m_eff = 0.5 * m, e_eff = 50e6 / 0.8, r_eff = 0.5e-3, v = 0.1;
+  const double duration = 2.868 * std::pow(m_eff * m_eff / (r_eff * e_eff * e_eff * v), 0.2);
+  const double overlap = std::pow(15 * m_eff * v * v / (16 * e_eff * std::sqrt(r_eff)), 0.4);
+  CHECK(res["contact_duration_s"].number == doctest::Approx(duration).epsilon(0.01));
+  CHECK(res["max_overlap_m"].number == doctest::Approx(overlap).epsilon(0.01));
+  CHECK(res["restitution"].number == doctest::Approx(1.0).epsilon(1e-3));
+}
+
 TEST_CASE("every_scene_in_scenes_folder_runs") {
   const std::vector<fs::path> scenes = runnable_scenes();
   REQUIRE(!scenes.empty());
