@@ -106,7 +106,6 @@ class World {
   // force pass otherwise sums into its particles without keeping it: ask for it once (a scene does when it measures
   // them), and from the next force pass on it is kept, 24 bytes per pair (16 in 2D) and 4 for a list per contact.
   void keep_contact_forces();
-  bool keeps_contact_forces() const { return keep_forces_; }
   // The force on B of pair c of set s in the last force pass; all sets' pairs one after another (kept forces only).
   Vec<D> contact_force(int set, std::size_t c) const { return kept().pair_force[pair_offset_[set] + c]; }
   // Every contact's force in the last force pass, set by set: the ball pairs' on B, then the wall contacts' on the

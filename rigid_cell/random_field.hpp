@@ -67,7 +67,6 @@ class RandomField {
   double kept_fraction_ = 0;
   GraftedWeibullGauss marginal_;
 
-  void decompose(const Vec<D>& lo, const Vec<D>& hi, double spacing);
   void keep_modes(double fraction);
   void draw(std::uint64_t seed);
 };
