@@ -181,7 +181,7 @@ static int loop_steps(const fs::path& scene, int steps) {
   return contains(text, "\ndimension = 3") ? steps / 50 : steps / 10;
 }
 
-TEST_CASE("every_scene_in_scenes_folder_runs") {
+TEST_CASE("every_scene_in_scenes_folder_runs" * doctest::test_suite("build_options")) {
   const std::vector<fs::path> scenes = runnable_scenes();
   REQUIRE(!scenes.empty());
   const auto t0 = Clock::now();
