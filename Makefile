@@ -1,8 +1,9 @@
 # The two commands of the quick start: `make demo` and `make test`. Both install what is missing first.
 BUILD ?= build
+MINIMAL_BUILD ?= build-minimal
 JOBS  ?= $(shell nproc)
 
-.PHONY: setup build demo test bench peers-bench clean
+.PHONY: setup build demo test test-minimal bench peers-bench clean
 setup:
 	@bash tools/setup.sh
 
@@ -19,6 +20,13 @@ demo: build
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
+# No rigid-cell family, no MPI: builds the tests in $(MINIMAL_BUILD), runs the build_options label (MINIMAL_CTEST= all).
+MINIMAL_CTEST ?= -L build_options
+test-minimal: setup
+	@cmake -S . -B $(MINIMAL_BUILD) -DCMAKE_BUILD_TYPE=Release -DMESOCRACK_RIGID_CELL=OFF -DMESOCRACK_MPI=OFF >/dev/null
+	@cmake --build $(MINIMAL_BUILD) -j $(JOBS) --target mesocrack_tests
+	cd $(MINIMAL_BUILD) && ctest --output-on-failure --no-tests=error -j $(JOBS) $(MINIMAL_CTEST)
+
 bench: build
 	$(BUILD)/benchmarks/throughput
 
@@ -28,4 +36,4 @@ peers-bench: build
 	/usr/bin/python3 benchmarks/peers/peers_bench.py --build $(BUILD) $(PEERS_ARGS)
 
 clean:
-	rm -rf $(BUILD) out
+	rm -rf $(BUILD) $(MINIMAL_BUILD) out

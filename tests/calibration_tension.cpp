@@ -109,7 +109,7 @@ Json calibrated_run(const TempDir& d, const std::string& targets, const std::str
 
 // From the scene's softening bonds (E ≈ 27 GPa, f_t ≈ 1.6 MPa, G_f ≈ 25 N/m on this packing) to targets that
 // move E_c, the bond strengths and the bonds' ductility (G_f) all three; ν is no target, k_n/k_s stays.
-TEST_CASE("calibrate_tension_softening_bond_converges_on_E_ft_and_Gf") {
+TEST_CASE("calibrate_tension_softening_bond_converges_on_E_ft_and_Gf" * doctest::test_suite("build_options")) {
   const TempDir d;
   write_file(d / "tension.toml", scene(kSoftening));
   const Json u = calibrated_run(d, "E=30GPa,ft=2MPa,Gf=40N/m", "bond_fracture_energy");

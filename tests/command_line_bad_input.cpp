@@ -235,3 +235,18 @@ TEST_CASE_FIXTURE(BadInput, "help_of_every_subcommand_exits_0") {
     CHECK(r.err.empty());
   }
 }
+
+// A build without the rigid-cell family (-DMESOCRACK_RIGID_CELL=OFF) still reads a rigid-cell scene ([rigid_cell]),
+// and refuses to run or generate it like any bad input, naming the scene and the option that builds the family.
+#if !MESOCRACK_RIGID_CELL_BUILT
+TEST_CASE_FIXTURE(BadInput, "rigid_cell_scene_in_a_build_without_the_family_gives_message_and_exit_2" *
+                                doctest::test_suite("build_options")) {
+  const std::string rigid = (kScenes / "rigid_cell_tension_2d.toml").string();
+  for (const std::string command : {"run", "generate"}) {
+    CAPTURE(command);
+    check_refused(d.dir, {command, rigid}, 2,
+                  {"rigid_cell_tension_2d.toml: [rigid_cell]: ", "built without the rigid-cell family",
+                   "-DMESOCRACK_RIGID_CELL=ON"});
+  }
+}
+#endif

@@ -199,7 +199,7 @@ TEST_CASE("shipped_hertz_collision_lasts_as_long_and_overlaps_as_deep_as_hertz_s
   CHECK(res["restitution"].number == doctest::Approx(1.0).epsilon(1e-3));
 }
 
-TEST_CASE("every_scene_in_scenes_folder_runs") {
+TEST_CASE("every_scene_in_scenes_folder_runs" * doctest::test_suite("build_options")) {
   const std::vector<fs::path> scenes = runnable_scenes();
   REQUIRE(!scenes.empty());
   const auto t0 = Clock::now();

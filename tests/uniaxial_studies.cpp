@@ -12,7 +12,7 @@ const std::string kSmall = (fs::path(MESOCRACK_SOURCE_DIR) / "tests" / "scenes" 
 // Realization k is the scene with seed + k, so a set is a function of the seed alone: run twice, the statistics
 // agree to the last bit. The packings do differ from one another (E varies by several % at L/R ≈ 24, Tang
 // Fig. 5.10), so the set measures something.
-TEST_CASE("realization_statistics_with_a_fixed_seed_are_identical_twice") {
+TEST_CASE("realization_statistics_with_a_fixed_seed_are_identical_twice" * doctest::test_suite("build_options")) {
   const TempDir d;
   fs::create_directories(d / "a");
   fs::create_directories(d / "b");
