@@ -13,6 +13,7 @@
 #include "contact_models/hertz_mindlin.hpp"
 #include "contact_models/linear.hpp"
 #include "contact_models/parallel_bond.hpp"
+#include "contact_models/rolling_resistance.hpp"
 #include "contact_models/softening_bond.hpp"
 #include "scene/key_reader.hpp"
 #include "scene/scene.hpp"
@@ -21,7 +22,8 @@
 
 namespace mc {
 
-using RegisteredModels = std::tuple<Linear, HertzMindlin, ParallelBond, ContactBond, SofteningBond, Cpm>;
+using RegisteredModels =
+    std::tuple<Linear, HertzMindlin, RollingResistance, ParallelBond, ContactBond, SofteningBond, Cpm>;
 
 // The names of every registered model, and of those available in a scene of this dimension, in registry order.
 std::vector<std::string> contact_model_names();

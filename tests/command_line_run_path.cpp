@@ -199,6 +199,25 @@ TEST_CASE("shipped_hertz_collision_lasts_as_long_and_overlaps_as_deep_as_hertz_s
   CHECK(res["restitution"].number == doctest::Approx(1.0).epsilon(1e-3));
 }
 
+// The shipped rolling-resistance slope (scenes/rolling_slope_3d.toml): a sphere rolling against its rolling moment
+// μ_r R F_n reaches a t after t = 0.1 s, a = g (sin θ − μ_r cos θ)/(1 + 2/5) (tests/rolling_resistance_slope.cpp);
+// its start from touching, not from rest at the equilibrium overlap, costs a transient of a few steps in 77 000:
+// within 1e-4. With μ_r above tan θ it stays: its speed is round-off, far below 1e-9 m/s.
+TEST_CASE("shipped_rolling_slope_rolls_at_g_sin_minus_mu_r_cos_and_stays_where_mu_r_is_above_tan") {
+  const TempDir d;
+  const double theta = 20 * M_PI / 180;
+  const double a = 9.81 * (std::sin(theta) - 0.1 * std::cos(theta)) / 1.4;
+  const std::string scene = (kScenes / "rolling_slope_3d.toml").string();
+  const Result r = mesocrack({"run", scene, "-o", "r.h5"}, d.dir);
+  REQUIRE_MESSAGE(r.code == 0, r.describe());
+  const Json rolled = summary_of("r.h5", d.dir);
+  CHECK(rolled["results"]["speed_final_m_per_s"].number == doctest::Approx(a * 0.1).epsilon(1e-4));
+  const Result held = mesocrack({"run", scene, "-o", "h.h5", "--set", "contacts[0].rolling_friction=0.4"}, d.dir);
+  REQUIRE_MESSAGE(held.code == 0, held.describe());
+  const Json stayed = summary_of("h.h5", d.dir);
+  CHECK(stayed["results"]["speed_final_m_per_s"].number < 1e-9);
+}
+
 TEST_CASE("every_scene_in_scenes_folder_runs" * doctest::test_suite("build_options")) {
   const std::vector<fs::path> scenes = runnable_scenes();
   REQUIRE(!scenes.empty());
