@@ -94,15 +94,61 @@ struct Cpm {
     return p.hardening_strain + (p.confinement - kns) / (p.modulus * p.hardening_modulus_ratio);
   }
 
+  // The law's arithmetic, written once over the number type N: double for one contact (force), Lane for kLanes
+  // contacts at once (cpm_lanes.hpp); the same operations in the same order give the same bits. The two differ in
+  // control only: one contact branches, the lanes choose lane by lane and hand rare events back.
+  //
   // A = π min(r_a, r_b)² (Yade's crossSection); in 2D a strip 2 min(r) × 1 m, though scenes are refused in 2D.
   // Particles with stiffness factors f scale k_N and k_T by their harmonic mean 2 f_a f_b/(f_a + f_b).
+  template <class N>
+  struct Section {
+    N area, kn, kt;
+  };
+  template <int D, class N>
+  [[gnu::always_inline]] static Section<N> section(const Params& p, const N& ra, const N& rb, const N& fa,
+                                                   const N& fb) {
+    const N r = min_of(ra, rb);
+    const N kn = p.modulus * pick(fa == fb, fa, 2.0 * fa * fb / (fa + fb));
+    if constexpr (D == 2)
+      return {2.0 * r, kn, kn * p.kt_kn_ratio};
+    else
+      return {M_PI * r * r, kn, kn * p.kt_kn_ratio};
+  }
+  // Step 1: the normal strain from the distance, over L from L (cohesive) or from touching (r_a + r_b).
+  template <class N, class M>
+  [[gnu::always_inline]] static N normal_strain(const M& cohesive, const N& ra, const N& rb, const N& overlap,
+                                                const N& len, const N& inv_len) {
+    return pick(cohesive, (ra + rb - overlap - len) * inv_len, -overlap * inv_len);
+  }
+  // Šmilauer (15): σ_N = (1 − ω) k_N ε in tension, k_N ε in compression (damage only in tension).
+  template <class N>
+  [[gnu::always_inline]] static N normal_stress(const N& el, const N& omega, const N& kn) {
+    return pick(el > 0.0, 1.0 - omega, N(1.0)) * kn * el;
+  }
+  // The hardening branch at the total strain ε: σ_Ns = k_N (ε_s + K̃_s (ε_N − ε_s)).
+  template <class N>
+  [[gnu::always_inline]] static N hardening_stress(const Params& p, const N& kn, const N& eps) {
+    return kn * (p.hardening_strain + p.hardening_modulus_ratio * (eps - p.hardening_strain));
+  }
+  // The linear yield surface (23), never below 0: max(0, c_T0 (1 − ω) − σ_N tan φ).
+  template <class N>
+  [[gnu::always_inline]] static N linear_radius(double cohesion, double tan_phi, const N& sn, const N& omega) {
+    const N r = cohesion * (1.0 - omega) - sn * tan_phi;
+    return pick(0.0 < r, r, N(0.0));
+  }
+  // A lower bound of the logarithmic radius in compression, ln(1 + x) ≥ x/(1 + x) with x = −σ_N/(c_T0 Y_0),
+  // lowered by 1e-9, far beyond the few roundings of either side (may_yield).
+  template <class N>
+  [[gnu::always_inline]] static N log_radius_floor(double cohesion, double tan_phi, double y0, const N& sn,
+                                                   const N& omega) {
+    const N x = -sn / (cohesion * y0);
+    return (cohesion * (1.0 - omega) + cohesion * y0 * tan_phi * (x / (1.0 + x))) * (1.0 - 1e-9);
+  }
+
   template <int D>
   static Coeffs pair(const Params& p, double ra, double rb, double fa = 1, double fb = 1) {
-    const double r = std::min(ra, rb);
-    const double f = fa == fb ? fa : 2.0 * fa * fb / (fa + fb);
-    const double kn = p.modulus * f;
-    return {D == 2 ? 2.0 * r : M_PI * r * r, ra + rb, kn, kn * p.kt_kn_ratio, p.tan_friction, p.cohesion,
-            confinement_strain(p),           &p};
+    const Section<double> s = section<D>(p, ra, rb, fa, fb);
+    return {s.area, ra + rb, s.kn, s.kt, p.tan_friction, p.cohesion, confinement_strain(p), &p};
   }
   // A wall is a non-cohesive partner (Yade: L = A's radius, A = π r²): the ball's springs k_N A/r in series
   // with the wall's, Coulomb friction with the wall's coefficient, no confinement.
@@ -146,10 +192,10 @@ struct Cpm {
   // Radius r_pl of the yield surface at σ_N (step 3): linear (23) in tension, logarithmic in compression
   // ("Confinement extension", C¹ at σ_N = 0; Y_0 → ∞ gives back the linear one). Never below 0.
   static double yield_radius(const Coeffs& c, double sn, double omega) {
-    const double coh = c.cohesion * (1.0 - omega);
-    if (sn >= 0 || c.p->compression_yield == CpmYield::Linear || c.cohesion == 0) return std::max(0.0, coh - sn * c.tan_phi);
+    if (sn >= 0 || c.p->compression_yield == CpmYield::Linear || c.cohesion == 0)
+      return linear_radius(c.cohesion, c.tan_phi, sn, omega);
     const double y0 = c.p->yield_log_speed;
-    return coh + c.cohesion * y0 * c.tan_phi * std::log1p(-sn / (c.cohesion * y0));
+    return c.cohesion * (1.0 - omega) + c.cohesion * y0 * c.tan_phi * std::log1p(-sn / (c.cohesion * y0));
   }
 
   // False when the trial shear stress √st2 lies inside a lower bound of r_pl, so that yield_radius (a logarithm,
@@ -158,8 +204,7 @@ struct Cpm {
   // yield_radius as computed would not.
   static bool may_yield(const Coeffs& c, double sn, double omega, double st2) {
     if (sn >= 0 || c.p->compression_yield == CpmYield::Linear || c.cohesion == 0) return true;  // no logarithm to save
-    const double y0 = c.p->yield_log_speed, x = -sn / (c.cohesion * y0);
-    const double low = (c.cohesion * (1.0 - omega) + c.cohesion * y0 * c.tan_phi * (x / (1.0 + x))) * (1.0 - 1e-9);
+    const double low = log_radius_floor(c.cohesion, c.tan_phi, c.p->yield_log_speed, sn, omega);
     return st2 > low * low;
   }
 
@@ -180,7 +225,7 @@ struct Cpm {
     const double volume = c.area * len;  // stresses × strains × volume: energies
     // Strains: the normal one from the distance, the shear one incremented by this step's tangential motion.
     Vec<D> et = carry_shear<D>(s.eps_t, g.n, g.spin_n, g.dt) + vs * (g.dt * inv_len);
-    const double eps_raw = cohesive ? (g.r_a + g.r_b - g.overlap - len) * inv_len : -g.overlap * inv_len;
+    const double eps_raw = normal_strain(cohesive, g.r_a, g.r_b, g.overlap, len, inv_len);
     // 1. Isotropic confinement: the strain σ_0 would cause is added here, σ_0 taken off at the end.
     const double eps = eps_raw + c.eps_conf;
     // 2. Normal stress. κ follows the elastic part of the strain in tension (ξ_1 = 0: no shear contribution).
@@ -200,13 +245,13 @@ struct Cpm {
         omega = damage(p, s.kappa);
       }
     }
-    double sn = (el > 0 ? 1.0 - omega : 1.0) * c.kn * el;  // Šmilauer (15), damage only in tension
+    double sn = normal_stress(el, omega, c.kn);
     if constexpr (Energy)
       if (cohesive && el > 0) out.fractured += 0.5 * c.kn * el * el * (omega - omega_before) * volume;
     // Compressive hardening: beyond ε_s the stress follows σ_Ns = k_N (ε_s + K̃_s (ε_N − ε_s)), the excess
     // turning into plastic strain; unloading is elastic with k_N from there.
     if (p.compression_hardening && el < p.hardening_strain) {
-      const double sns = c.kn * (p.hardening_strain + p.hardening_modulus_ratio * (eps - p.hardening_strain));
+      const double sns = hardening_stress(p, c.kn, eps);
       if (sns > sn) {
         const double dpl = (sn - sns) / c.kn;
         s.eps_pl += dpl;
@@ -275,7 +320,7 @@ struct Cpm {
     const double eps_raw = cohesive ? (g.r_a + g.r_b - g.overlap - len) / len : -g.overlap / len;
     const double el = eps_raw + c.eps_conf - s.eps_pl;
     const double omega = cohesive ? (c.p->never_damage ? 0.0 : damage(*c.p, s.kappa)) : 1.0;
-    const double sn = (el > 0 ? 1.0 - omega : 1.0) * c.kn * el;
+    const double sn = normal_stress(el, omega, c.kn);
     return c.area * len * (0.5 * sn * el + 0.5 * c.kt * s.eps_t.squaredNorm() - c.p->confinement * eps_raw);
   }
   // A non-cohesive contact that opens lets its shear strain energy go.

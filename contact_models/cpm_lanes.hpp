@@ -34,11 +34,9 @@ struct LaneLaw<Cpm, 3> {
     const Lane3 &n = g.n, &v_rel = g.v_rel;
 
     // Coefficients, as Cpm::pair.
-    const Lane r = ra.min(rb);
     const Lane fa = gather(p.stiffness, g.ia), fb = gather(p.stiffness, g.ib);
-    const Lane f = pick(fa == fb, fa, 2.0 * fa * fb / (fa + fb));
-    const Lane kn = prm.modulus * f, kt = kn * prm.kt_kn_ratio;
-    const Lane area = M_PI * r * r;
+    const Cpm::Section<Lane> sec = Cpm::section<3>(prm, ra, rb, fa, fb);
+    const Lane &kn = sec.kn, &kt = sec.kt, &area = sec.area;
     const double eps_conf = Cpm::confinement_strain(prm);
 
     // Cpm::force. Non-cohesive and apart (within the touching reach): no force, the history starts anew.
@@ -50,7 +48,7 @@ struct LaneLaw<Cpm, 3> {
     LaneMask tilted = LaneMask::Constant(false);
     Lane3 et = carry_shear(load_lanes3<kStride>(states[0].eps_t.data()), n, g.angle, g.turn, loaded, tilted) +
                vs * (dt * inv_len);
-    const Lane eps_raw = pick(cohesive, (ra + rb - overlap - len) * inv_len, -overlap * inv_len);
+    const Lane eps_raw = Cpm::normal_strain(cohesive, ra, rb, overlap, len, inv_len);
     const Lane eps = eps_raw + eps_conf;
     // 2. Normal stress and damage.
     const Lane eps_pl = load_lanes<kStride>(&states[0].eps_pl);
@@ -71,27 +69,22 @@ struct LaneLaw<Cpm, 3> {
           if (cohesive[l] && kappa[l] > e0) g.set(l, Cpm::damage(prm, kappa[l]));
       omega = pick(cohesive, g, omega);
     }
-    Lane sn = pick(el > 0.0, 1.0 - omega, 1.0) * kn * el;
+    Lane sn = Cpm::normal_stress(el, omega, kn);
     // Compressive hardening.
     Lane new_eps_pl = eps_pl;
     if (prm.compression_hardening) {
-      const double es = prm.hardening_strain;
-      const Lane sns = kn * (es + prm.hardening_modulus_ratio * (eps - es));
-      const LaneMask flows = el < es && sns > sn;
+      const Lane sns = Cpm::hardening_stress(prm, kn, eps);
+      const LaneMask flows = el < prm.hardening_strain && sns > sn;
       new_eps_pl = pick(flows, eps_pl + (sn - sns) / kn, eps_pl);
       sn = pick(flows, sns, sn);
     }
     // 3. Shear: radial return onto r_pl(σ_N), the logarithm only where Cpm::may_yield lets it through.
     const Lane st2 = kt * kt * dot(et, et);
     const double coh0 = prm.cohesion, tan_phi = prm.tan_friction;
-    const Lane coh = coh0 * (1.0 - omega);
-    const Lane linear = coh - sn * tan_phi;
-    Lane r_pl = pick(0.0 < linear, linear, 0.0);
+    Lane r_pl = Cpm::linear_radius(coh0, tan_phi, sn, omega);
     if (prm.compression_yield == CpmYield::Logarithmic && coh0 != 0) {
-      const double y0 = prm.yield_log_speed;
       const LaneMask compressed = !(sn >= 0.0);
-      const Lane x = -sn / (coh0 * y0);
-      const Lane low = (coh + coh0 * y0 * tan_phi * (x / (1.0 + x))) * (1.0 - 1e-9);
+      const Lane low = Cpm::log_radius_floor(coh0, tan_phi, prm.yield_log_speed, sn, omega);
       const LaneMask may = st2 > low * low;
       Lane r_log = kInf;
       if ((compressed && may).any())

@@ -88,27 +88,54 @@ struct ParallelBond {
     double inv_a, r_i, r_j;  // 1/A, R̄/I, R̄/J: stress per unit force and moment, Tang (3.41)
   };
 
+  // The beam's arithmetic in 3D, written once over the number type N: double for one contact (force), Lane for
+  // kLanes contacts at once (parallel_bond_lanes.hpp), V its 3-vector; the same operations in the same order give
+  // the same bits. Its section and stiffnesses from the radii, 1/(R_A + R_B) given: Tang (3.37)–(3.41), A = πR̄²,
+  // I = πR̄⁴/4, J = πR̄⁴/2.
+  template <class N>
+  struct Beam {
+    N kn_a, ks_a, kn_i, ks_j, inv_a, r_i, r_j;  // as Coeffs
+  };
+  template <class N>
+  [[gnu::always_inline]] static Beam<N> beam(const Params& p, const N& ra, const N& rb, const N& inv_sum) {
+    const N kn = p.bond_modulus.mean * inv_sum;                                  // Tang (3.38)
+    const N ks = kn * (1.0 / p.bond_kn_ks_ratio);                                // the reciprocal is hoisted
+    const N r = p.bond_radius_multiplier * min_of(ra, rb), inv_r = 1.0 / r;     // Tang (3.40)
+    const N r4 = r * r * r * r, inv_r3 = inv_r * inv_r * inv_r;
+    return {kn * M_PI * r * r,     ks * M_PI * r * r,     kn * 0.25 * M_PI * r4,  ks * 0.5 * M_PI * r4,
+            inv_r * inv_r * M_1_PI, 4.0 * M_1_PI * inv_r3, 2.0 * M_1_PI * inv_r3};
+  }
+  // Tang (3.37) in 3D: this step's increments from the relative motion (normal speed vn, shear velocity vs, relative
+  // spin w_rel), the shear force and the bending moment turned with the contact plane by `carry`.
+  template <class N, class V, class Carry>
+  [[gnu::always_inline]] static void load_beam(const Beam<N>& c, const V& n, const N& vn, const V& vs, const V& w_rel,
+                                               const N& kdt, N& fn, V& fs, N& mn, V& ms, Carry&& carry) {
+    fn = fn - c.kn_a * vn * kdt;
+    fs = carry(fs) - c.ks_a * vs * kdt;
+    const N wn = dot(w_rel, n);
+    mn = mn - c.ks_j * wn * kdt;
+    ms = carry(ms) - c.kn_i * (w_rel - wn * n) * kdt;
+  }
+  // Tang (3.41) without square roots: a stress |X|k (|X|² = x2, k per unit of X) reaches what the strength leaves,
+  // `need`, when need ≤ 0 or x2 k² ≥ need².
+  template <class N>
+  [[gnu::always_inline]] static auto exceeds(const N& need, const N& x2, const N& k) {
+    return need <= 0.0 || x2 * (k * k) >= need * need;
+  }
+
   template <int D>
   static Coeffs pair(const Params& p, double ra, double rb, double fa = 1, double fb = 1) {
     const double inv_sum = 1.0 / (ra + rb);
-    const double kn = p.bond_modulus.mean * inv_sum;    // Tang (3.38)
-    const double ks = kn * (1.0 / p.bond_kn_ks_ratio);  // the reciprocal is loop-invariant: hoisted
-    const double r = p.bond_radius_multiplier * std::min(ra, rb), inv_r = 1.0 / r;  // Tang (3.40)
     // The grain contact (Linear::pair), sharing 1/(R_A + R_B) when the particles have no stiffness factors.
     const Linear::Coeffs lc = fa == 1 && fb == 1 ? Linear::pair_from<D>(p.contact, D == 2 ? 0.5 : ra * rb * inv_sum)
                                                  : Linear::pair<D>(p.contact, ra, rb, fa, fb);
     if constexpr (D == 2) {  // A = 2R̄, I = 2R̄³/3 (t = 1 m), Tang (3.39)
+      const double kn = p.bond_modulus.mean * inv_sum, ks = kn * (1.0 / p.bond_kn_ks_ratio);
+      const double r = p.bond_radius_multiplier * std::min(ra, rb), inv_r = 1.0 / r;
       return {lc, kn * 2 * r, ks * 2 * r, kn * (2.0 / 3.0) * r * r * r, 0.0, 0.5 * inv_r, 1.5 * inv_r * inv_r, 0.0};
-    } else {  // A = πR̄², I = πR̄⁴/4, J = πR̄⁴/2
-      const double r4 = r * r * r * r, inv_r3 = inv_r * inv_r * inv_r;
-      return {lc,
-              kn * M_PI * r * r,
-              ks * M_PI * r * r,
-              kn * 0.25 * M_PI * r4,
-              ks * 0.5 * M_PI * r4,
-              inv_r * inv_r * M_1_PI,
-              4.0 * M_1_PI * inv_r3,
-              2.0 * M_1_PI * inv_r3};
+    } else {
+      const Beam<double> b = beam(p, ra, rb, inv_sum);
+      return {lc, b.kn_a, b.ks_a, b.kn_i, b.ks_j, b.inv_a, b.r_i, b.r_j};
     }
   }
   template <int D>
@@ -134,18 +161,16 @@ struct ParallelBond {
   }
 
   // Tang (3.41): the beam's largest tensile stress −F_n/A + |M|R̄/I and shear stress |F_s|/A + |M_n|R̄/J against
-  // the strengths, without square roots: |M|R̄/I ≥ σ̄_c + F_n/A ⇔ the right side is ≤ 0 or its square is
-  // ≤ |M|²(R̄/I)²; likewise for shear.
+  // the strengths.
   template <int D>
   [[gnu::always_inline]] static bool breaks_in_tension(const Coeffs& c, const State<D>& s) {
-    const double need = s.tensile + s.bond_fn * c.inv_a;
-    return need <= 0 || s.bond_ms.squaredNorm() * (c.r_i * c.r_i) >= need * need;
+    return exceeds<double>(s.tensile + s.bond_fn * c.inv_a, s.bond_ms.squaredNorm(), c.r_i);
   }
   template <int D>
   [[gnu::always_inline]] static bool breaks_in_shear(const Coeffs& c, const State<D>& s) {
     double need = s.shear;
-    if constexpr (D == 3) need -= std::abs(s.bond_mn) * c.r_j;
-    return need <= 0 || s.bond_fs.squaredNorm() * (c.inv_a * c.inv_a) >= need * need;
+    if constexpr (D == 3) need = need - abs_of(s.bond_mn) * c.r_j;
+    return exceeds<double>(need, s.bond_fs.squaredNorm(), c.inv_a);
   }
 
   template <int D, bool Energy>
@@ -159,14 +184,14 @@ struct ParallelBond {
     // Tang (3.37), increments from the relative motion of this step; the shear force and the bending moment
     // turn with the contact plane.
     const double kdt = s.stiffness * dt;
-    s.bond_fn -= c.kn_a * vn * kdt;
-    s.bond_fs = carry_shear<D>(s.bond_fs, g.n, g.spin_n, dt) - c.ks_a * vs * kdt;
     if constexpr (D == 2) {
+      s.bond_fn -= c.kn_a * vn * kdt;
+      s.bond_fs = carry_shear<2>(s.bond_fs, g.n, g.spin_n, dt) - c.ks_a * vs * kdt;
       s.bond_ms -= c.kn_i * g.w_rel * kdt;
     } else {
-      const double wn = g.w_rel.dot(g.n);
-      s.bond_mn -= c.ks_j * wn * kdt;
-      s.bond_ms = carry_shear<3>(s.bond_ms, g.n, g.spin_n, dt) - c.kn_i * (g.w_rel - wn * g.n) * kdt;
+      const Beam<double> b{c.kn_a, c.ks_a, c.kn_i, c.ks_j, c.inv_a, c.r_i, c.r_j};
+      load_beam(b, g.n, vn, vs, g.w_rel, kdt, s.bond_fn, s.bond_fs, s.bond_mn, s.bond_ms,
+                [&](const Vec<3>& v) { return carry_shear<3>(v, g.n, g.spin_n, dt); });
     }
     if (breaks_in_tension<D>(c, s)) [[unlikely]]
       out.event.mode = CrackMode::Tensile;

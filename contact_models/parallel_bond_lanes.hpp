@@ -41,13 +41,8 @@ struct LaneLaw<ParallelBond, 3> {
 
     // Coefficients, as ParallelBond::pair with unit stiffness factors.
     const Lane inv_sum = 1.0 / g.reach;
-    const Lane kn = prm.bond_modulus.mean * inv_sum, ks = kn * (1.0 / prm.bond_kn_ks_ratio);  // Tang (3.38)
-    const Lane r = prm.bond_radius_multiplier * ra.min(rb), inv_r = 1.0 / r;                   // Tang (3.40)
+    const ParallelBond::Beam<Lane> beam = ParallelBond::beam(prm, ra, rb, inv_sum);
     const Lane kn_c = 4.0 * prm.contact.modulus * (ra * rb * inv_sum), ks_c = kn_c * (1.0 / prm.contact.kn_ks_ratio);
-    const Lane r4 = r * r * r * r, inv_r3 = inv_r * inv_r * inv_r;
-    const Lane kn_a = kn * M_PI * r * r, ks_a = ks * M_PI * r * r;  // Tang (3.37), (3.39)
-    const Lane kn_i = kn * 0.25 * M_PI * r4, ks_j = ks * 0.5 * M_PI * r4;
-    const Lane inv_a = inv_r * inv_r * M_1_PI, r_i = 4.0 * M_1_PI * inv_r3, r_j = 2.0 * M_1_PI * inv_r3;
 
     // The grain contact with Coulomb slip (Linear::force), Tang (3.5), (3.9), (3.10), (3.36).
     LaneMask tilted = LaneMask::Constant(false);
@@ -65,16 +60,12 @@ struct LaneLaw<ParallelBond, 3> {
 
     // The bond, Tang (3.37), its stresses (3.41).
     const Lane kdt = load_lanes<kStrideP>(&props[0].stiffness) * dt;
-    const Lane bfn = load_lanes<kStride>(&states[0].bond_fn) - kn_a * vn * kdt;
-    const Lane3 bfs =
-        carry_shear(load_lanes3<kStride>(states[0].bond_fs.data()), n, angle, turn, bonded, tilted) - ks_a * vs * kdt;
-    const Lane wn = dot(w_rel, n);
-    const Lane bmn = load_lanes<kStride>(&states[0].bond_mn) - ks_j * wn * kdt;
-    const Lane3 bms = carry_shear(load_lanes3<kStride>(states[0].bond_ms.data()), n, angle, turn, bonded, tilted) -
-                      kn_i * (w_rel - wn * n) * kdt;
-    const Lane need_t = tensile + bfn * inv_a, need_s = shear - bmn.abs() * r_j;
-    const LaneMask breaks = (need_t <= 0.0 || dot(bms, bms) * (r_i * r_i) >= need_t * need_t) ||
-                            (need_s <= 0.0 || dot(bfs, bfs) * (inv_a * inv_a) >= need_s * need_s);
+    Lane bfn = load_lanes<kStride>(&states[0].bond_fn), bmn = load_lanes<kStride>(&states[0].bond_mn);
+    Lane3 bfs = load_lanes3<kStride>(states[0].bond_fs.data()), bms = load_lanes3<kStride>(states[0].bond_ms.data());
+    ParallelBond::load_beam(beam, n, vn, vs, w_rel, kdt, bfn, bfs, bmn, bms,
+                            [&](const Lane3& v) { return carry_shear(v, n, angle, turn, bonded, tilted); });
+    const LaneMask breaks = ParallelBond::exceeds(tensile + bfn * beam.inv_a, dot(bms, bms), beam.r_i) ||
+                            ParallelBond::exceeds(shear - abs_of(bmn) * beam.r_j, dot(bfs, bfs), beam.inv_a);
     if ((!apart && ((bonded && breaks) || tilted)).any()) return false;
 
     const Lane3 force = pick(bonded, grain + (bfn * n + bfs), grain);

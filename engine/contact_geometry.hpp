@@ -1,6 +1,9 @@
 // What a contact model receives for one contact, and what it returns. The engine computes the geometry
 // (Tang 3.1–3.4, 3.6) once; models only turn it into forces.
 #pragma once
+#include <algorithm>
+#include <cmath>
+
 #include "engine/crack.hpp"
 #include "engine/dim.hpp"
 
@@ -75,5 +78,15 @@ template <int D>
   const double t2 = mag2 - p * p;
   return t2 > 0 ? Vec<D>(t * std::sqrt(mag2 / t2)) : Vec<D>::Zero();
 }
+
+// One contact's numbers in the words of a law written once over its number type (engine/lanes.hpp has the same
+// words for kLanes contacts at once): a dot product in Eigen's order, the smaller of two, a magnitude, a choice.
+template <class A, class B>
+[[gnu::always_inline]] inline double dot(const Eigen::MatrixBase<A>& a, const Eigen::MatrixBase<B>& b) {
+  return a.dot(b);
+}
+[[gnu::always_inline]] inline double min_of(double a, double b) { return std::min(a, b); }
+[[gnu::always_inline]] inline double abs_of(double a) { return std::abs(a); }
+[[gnu::always_inline]] inline double pick(bool m, double a, double b) { return m ? a : b; }
 
 }  // namespace mc

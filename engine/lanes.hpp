@@ -82,6 +82,8 @@ struct Lane {
 [[gnu::always_inline]] inline LaneMask operator>=(const Lane& a, const Lane& b) { return {a.v >= b.v}; }
 [[gnu::always_inline]] inline LaneMask operator==(const Lane& a, const Lane& b) { return {a.v == b.v}; }
 [[gnu::always_inline]] inline LaneMask operator!=(const Lane& a, const Lane& b) { return {a.v != b.v}; }
+[[gnu::always_inline]] inline Lane min_of(const Lane& a, const Lane& b) { return a.min(b); }
+[[gnu::always_inline]] inline Lane abs_of(const Lane& a) { return a.abs(); }
 using LaneIndex = std::array<int, kLanes>;
 
 struct Lane3 {
