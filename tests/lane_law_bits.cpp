@@ -92,56 +92,62 @@ std::size_t pairs_with_other_bytes(const Set& a, const Set& b) {
   return differ;
 }
 
-}  // namespace
-
-TEST_CASE("parallel_bond_in_lanes_gives_the_one_contact_bits_through_failure") {
-  World<3> lanes = pulled_block(false), one = pulled_block(true);
-  REQUIRE(lanes.particles.size() >= 8 * kLanes);
-  const std::size_t bonds = lanes.bond_count();
-  for (int s = 0; s < 6000; ++s) {
-    lanes.step(), one.step();
-    if (!same_bits(lanes.particles.x, one.particles.x) || !same_bits(lanes.particles.w, one.particles.w)) {
-      FAIL("positions or spins differ at step ", s + 1);
-      break;
-    }
+// Each model with a lane law, the specimen it is run on and what the run must have gone through, so that equal bits
+// mean something: the same checks, typed over the cases.
+struct ParallelBondThroughFailure {
+  using Model = ParallelBond;
+  static constexpr int kSteps = 6000;
+  static World<3> make(bool traced) { return pulled_block(traced); }
+  // The block parted along a band of broken bonds, in tension and in shear.
+  static void went_through(const World<3>& w, const ContactSet<Model, 3>&, std::size_t bonds) {
+    MESSAGE("bonds ", bonds, ", cracks ", w.cracks.size());
+    CHECK(w.cracks.size() > bonds / 8);
+    CHECK(w.crack_count(CrackKind::Break, CrackMode::Tensile) > 0);
+    CHECK(w.crack_count(CrackKind::Break, CrackMode::Shear) > 0);
   }
-  CHECK(same_bits(lanes.particles.v, one.particles.v));
-  CHECK(lanes.cracks.size() == one.cracks.size());
-  CHECK(pairs_with_other_bytes(static_cast<const ContactSet<ParallelBond, 3>&>(*lanes.sets[0]),
-                               static_cast<const ContactSet<ParallelBond, 3>&>(*one.sets[0])) == 0);
-  // The run went through failure: the block parted along a band of broken bonds, in tension and in shear.
-  MESSAGE("bonds ", bonds, ", cracks ", lanes.cracks.size());
-  CHECK(lanes.cracks.size() > bonds / 8);
-  CHECK(lanes.crack_count(CrackKind::Break, CrackMode::Tensile) > 0);
-  CHECK(lanes.crack_count(CrackKind::Break, CrackMode::Shear) > 0);
-}
+};
 
-TEST_CASE("cpm_in_lanes_gives_the_one_contact_bits_through_damage_hardening_and_breakage") {
-  for (const double pull : {2e-5, -2e-5}) {
-    World<3> lanes = cpm_block(false, pull), one = cpm_block(true, pull);
-    const std::size_t bonds = lanes.bond_count();
-    int steps = 0;
-    for (; steps < 400; ++steps) {
-      lanes.step(), one.step();
-      if (!same_bits(lanes.particles.x, one.particles.x) || !same_bits(lanes.particles.w, one.particles.w)) break;
-    }
-    CHECK_MESSAGE(steps == 400, "pull ", pull, ": positions or spins differ at step ", steps + 1);
-    CHECK(same_bits(lanes.particles.v, one.particles.v));
-    CHECK(lanes.cracks.size() == one.cracks.size());
-    const auto& a = static_cast<const ContactSet<Cpm, 3>&>(*lanes.sets[0]);
-    const auto& b = static_cast<const ContactSet<Cpm, 3>&>(*one.sets[0]);
-    CHECK(pairs_with_other_bytes(a, b) == 0);
-    // The run went through what the lanes must carry: contacts damaged past ε_0 (κ > ε_0 = 1e-4) and broken in
-    // both runs, plastic hardening in compression.
+// CPM contacts damaged past ε_0 (κ > ε_0 = 1e-4) and broken; in compression, plastic hardening as well.
+template <int Sign>
+struct CpmThroughDamage {
+  using Model = Cpm;
+  static constexpr int kSteps = 400;
+  static World<3> make(bool traced) { return cpm_block(traced, Sign * 2e-5); }
+  static void went_through(const World<3>& w, const ContactSet<Model, 3>& set, std::size_t bonds) {
     std::size_t damaged = 0, hardened = 0;
-    for (std::size_t c = 0; c < a.pairs().size(); ++c) {
-      const auto st = a.state(c);
+    for (std::size_t c = 0; c < set.pairs().size(); ++c) {
+      const auto st = set.state(c);
       damaged += Cpm::bonded<3>(st) && st.kappa > 1e-4, hardened += st.eps_pl < 0;
     }
-    MESSAGE("pull ", pull, ": bonds ", bonds, ", broken ", bonds - lanes.bond_count(), ", damaged ", damaged,
+    MESSAGE("pull ", Sign, ": bonds ", bonds, ", broken ", bonds - w.bond_count(), ", damaged ", damaged,
             ", hardened ", hardened);
-    CHECK(lanes.crack_count(CrackKind::Break, CrackMode::Tensile) > 0);
+    CHECK(w.crack_count(CrackKind::Break, CrackMode::Tensile) > 0);
     CHECK(damaged > 0);
-    if (pull < 0) CHECK(hardened > bonds / 10);
+    if (Sign < 0) CHECK(hardened > bonds / 10);
   }
+};
+using CpmPulled = CpmThroughDamage<1>;
+using CpmPushed = CpmThroughDamage<-1>;
+
+}  // namespace
+
+// A world stepped in lanes (no energy tracing) and one stepped a contact at a time (tracing) keep the same positions,
+// spins, velocities, crack logs and contact states to the last bit.
+TEST_CASE_TEMPLATE("law_in_lanes_gives_the_one_contact_bits_through_what_the_specimen_goes_through", Case,
+                   ParallelBondThroughFailure, CpmPulled, CpmPushed) {
+  using Set = ContactSet<typename Case::Model, 3>;
+  World<3> lanes = Case::make(false), one = Case::make(true);
+  REQUIRE(lanes.particles.size() >= 8 * kLanes);
+  const std::size_t bonds = lanes.bond_count();
+  int steps = 0;
+  for (; steps < Case::kSteps; ++steps) {
+    lanes.step(), one.step();
+    if (!same_bits(lanes.particles.x, one.particles.x) || !same_bits(lanes.particles.w, one.particles.w)) break;
+  }
+  CHECK_MESSAGE(steps == Case::kSteps, "positions or spins differ at step ", steps + 1);
+  CHECK(same_bits(lanes.particles.v, one.particles.v));
+  CHECK(lanes.cracks.size() == one.cracks.size());
+  const auto& a = static_cast<const Set&>(*lanes.sets[0]);
+  CHECK(pairs_with_other_bytes(a, static_cast<const Set&>(*one.sets[0])) == 0);
+  Case::went_through(lanes, a, bonds);
 }
