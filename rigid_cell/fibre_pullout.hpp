@@ -52,4 +52,25 @@ double snubbing_factor(const FibreMaterial& f, double phi);
 // (5.10): the inclined fibre's strength f_tf exp(−k_rup φ'_f).
 double inclined_strength(const FibreMaterial& f, double phi);
 
+// One fibre across one crack (§5.1, Fig. 5.1): the crack's opening along the fibre, w = v_a + v_b, shared between the
+// pull-outs of its two sides, each with its embedment. Pull-out is slip: it never goes back.
+struct TwoSidedPullout {
+  double embedment[2] = {0, 0};  // L_e of each side [m]
+  double pullout[2] = {0, 0};    // v of each side [m]
+  double force = 0;              // the force the fibre carries [N]
+};
+
+// What a side resists further pull-out with at v: the debonding force below v_d, the sliding force from v_d on (at
+// v_d itself P_0: the bond is gone).
+double pullout_resistance(const FibreMaterial& f, double embedment, double v);
+
+// Opens the crack to w along the fibre (w at least the pull-outs' sum) and returns the force. The weaker side slides,
+// the one that resists further pull-out less, while the other holds; both slide at one force while both resist more
+// as they slide. So the two sides debond together (one law, v_a = v_b) until the shorter is debonded whole; its
+// resistance then drops to P_0, or falls as it slides, and it pulls out while the longer side holds (Květoň Fig. 5.1);
+// a side whose slide hardens (β_f > 0) may load the other again past its debonding, and both move on together. Found
+// piece by piece between the points where a side's resistance turns (v_d, the top of a hardening slide), each piece by
+// a closed form or bisection on a bracket. A crack closed below the pull-outs' sum leaves the fibre slack: force 0.
+double open_crack(const FibreMaterial& f, TwoSidedPullout& t, double w);
+
 }  // namespace mc::rigid_cell

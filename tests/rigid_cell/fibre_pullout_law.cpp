@@ -140,3 +140,121 @@ TEST_CASE("fibre_too_long_breaks_and_an_inclined_one_breaks_sooner_and_snubs") {
   CHECK(spalling_length(micro, 1.0, M_PI / 3, 3e6) == test::relative(0.5 / (500 * 3e6 * 40e-6 * 0.75), 1e-14));
   CHECK(spalling_length(f, 1.0, M_PI / 3, 3e6) == 0.0);  // k_sp = 0: spalling off
 }
+
+namespace {
+
+// Květoň §6.1: the 10 mm fibre, 35 % (3.5 mm) on one side of the crack and 6.5 mm on the other.
+TwoSidedPullout kveton_crossing(double short_side = kShort, double long_side = 6.5e-3) {
+  TwoSidedPullout t;
+  t.embedment[0] = long_side, t.embedment[1] = short_side;
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("two_sided_pullout_debonds_both_sides_alike_then_the_short_side_pulls_out") {
+  const FibreMaterial f = kveton_fibre();
+  const double vd = full_debonding_slip(f, kShort);
+  // Both sides debond with one law: the opening splits in halves, at the debonding force of either.
+  {
+    TwoSidedPullout t = kveton_crossing();
+    const double p = open_crack(f, t, vd);
+    CHECK(t.pullout[0] == test::relative(0.5 * vd, 1e-12));
+    CHECK(t.pullout[1] == test::relative(0.5 * vd, 1e-12));
+    CHECK(p == test::relative(debonding_force(f, 0.5 * vd), 1e-12));
+  }
+  // Past 2 v_d of the short side: it is debonded whole and slides at P_0 (1 − s/L)(1 + β s/d), below what the long
+  // side held; the long side holds its v_d(short) of pull-out.
+  TwoSidedPullout t = kveton_crossing();
+  const double slide = 0.5e-3;
+  const double p = open_crack(f, t, 2 * vd + slide);
+  CHECK(t.pullout[0] == test::relative(vd, 1e-12));
+  CHECK(t.pullout[1] == test::relative(vd + slide, 1e-12));
+  CHECK(p == test::relative(sliding_force(f, kShort, vd + slide), 1e-12));
+  CHECK(p < pullout_resistance(f, 6.5e-3, t.pullout[0]));
+  // Out: the short side gone, no force.
+  CHECK(open_crack(f, t, 2 * vd + kShort) == 0.0);
+}
+
+TEST_CASE("two_sided_pullout_is_in_equilibrium_along_the_whole_opening_and_independent_of_the_steps") {
+  // Sides of 3.5 and 6.5 mm (§6.1), 3.5 and 16.5 mm, and 5 and 16.5 mm: with β_f = 0.01 a slide hardens where
+  // β L > d (L > 4 mm); the 5 mm side's rises to 1.0125 P_0 = 1.272 N, above the 1.2566 N the long side held at its
+  // drop when G_d = 0, so the long side debonds again while the short one slides.
+  const double sides[][2] = {{kShort, 6.5e-3}, {kShort, 16.5e-3}, {5e-3, 16.5e-3}};
+  for (const auto& side : sides)
+    for (const double beta : {-0.01, 0.0, 0.01})
+      for (const double g : {0.0, 5.0}) {
+        const double short_side = side[0], long_side = side[1];
+        CAPTURE(short_side);
+        CAPTURE(long_side);
+        CAPTURE(beta);
+        CAPTURE(g);
+        const FibreMaterial f = kveton_fibre(g, beta);
+        TwoSidedPullout stepped = kveton_crossing(short_side, long_side);
+        const double w_end = 1.2 * (short_side + full_debonding_slip(f, long_side));
+        double long_after_drop = 0;  // the long side's largest pull-out while the short one slides
+        double worst_sum = 0, worst_joint = 0, worst_weaker = 0, worst_stronger = 0;
+        bool short_debonded_first = true;
+        for (int k = 1; k <= 3000; ++k) {
+          const double w = w_end * k / 3000.0;
+          const double p = open_crack(f, stepped, w);
+          worst_sum = std::max(worst_sum, std::abs(stepped.pullout[0] + stepped.pullout[1] - w) / w);
+          double r[2];
+          bool debonding[2];
+          for (int i = 0; i < 2; ++i) {
+            r[i] = pullout_resistance(f, stepped.embedment[i], stepped.pullout[i]);
+            debonding[i] = stepped.pullout[i] < full_debonding_slip(f, stepped.embedment[i]);
+          }
+          if (p == 0) continue;  // pulled out
+          // The force is what the weaker side slides at; the other resists at least as much.
+          worst_weaker = std::max(worst_weaker, std::abs(std::min(r[0], r[1]) - p) / p);
+          worst_stronger = std::max(worst_stronger, (p - std::max(r[0], r[1])) / p);
+          // Both still debonding: both slide, at one force.
+          if (debonding[0] && debonding[1]) worst_joint = std::max(worst_joint, std::abs(r[0] - r[1]) / p);
+          // The long side (0) is never debonded whole while the short one (1) is not.
+          if (!debonding[0] && debonding[1]) short_debonded_first = false;
+          if (!debonding[1]) long_after_drop = std::max(long_after_drop, stepped.pullout[0]);
+        }
+        // Round-off: the opening is shared exactly, the debonding sides' forces agree to the closed form's bits.
+        CHECK(worst_sum < 1e-12);
+        CHECK(worst_weaker < 1e-12);
+        CHECK(worst_stronger < 1e-12);
+        CHECK(worst_joint < 1e-10);
+        CHECK(short_debonded_first);
+        // Only the hardening 5 mm slide, with no bond energy to drop from, loads the long side again.
+        const bool reloads = short_side == 5e-3 && beta > 0 && g == 0;
+        CHECK((long_after_drop > full_debonding_slip(f, short_side) * (1 + 1e-9)) == reloads);
+        // One step to the same opening reaches the same pull-outs: the split does not depend on the path.
+        for (const double w : {0.3 * w_end, 0.6 * w_end, w_end}) {
+          TwoSidedPullout jumped = kveton_crossing(short_side, long_side), walked = jumped;
+          open_crack(f, jumped, w);
+          for (int k = 1; k <= 1000; ++k) open_crack(f, walked, w * k / 1000.0);
+          CHECK(jumped.pullout[0] == test::relative(walked.pullout[0], 1e-9));
+          CHECK(jumped.pullout[1] == test::relative(walked.pullout[1], 1e-9));
+        }
+      }
+}
+
+TEST_CASE("two_sided_pullout_work_is_both_sides_debonding_and_the_short_sides_slide") {
+  // β_f ≤ 0.01 on a 3.5 mm side (β L < d): the short side's slide softens, the long side holds from the drop on.
+  // ∫F dw = 2 ∫₀^{v_d} P_deb dv + P_0 L (1/2 + β L/(6 d)), v_d and P_0 of the short side: the debonding half of each
+  // side and the short side's slide, = pullout_work(short) + its debonding work again. Simpson's rule on the two
+  // smooth pieces of F(w), either side of the drop at 2 v_d (G_d 5 N/m: no √ at the start): to 1e-10.
+  for (const double beta : {-0.01, 0.0, 0.01}) {
+    CAPTURE(beta);
+    const FibreMaterial f = kveton_fibre(5.0, beta);
+    const double vd = full_debonding_slip(f, kShort);
+    // At w = 0 the crossing has not moved and carries nothing; from w = 0+ on it carries √(π² E_f d_f³ G_d/2) and
+    // more: the integrand is taken from the right.
+    auto force_at = [&](double w) {
+      TwoSidedPullout t = kveton_crossing();
+      return open_crack(f, t, std::max(w, 1e-15 * vd));
+    };
+    const double debonding = simpson(force_at, 0.0, 2 * vd, 2000);
+    const double sliding = simpson(force_at, 2 * vd * (1 + 1e-15), 2 * vd + kShort, 2000);
+    const double side_debonding = simpson([&](double v) { return debonding_force(f, v); }, 0.0, vd, 2000);
+    MESSAGE("beta ", beta, ": both sides' debonding / closed form - 1 = ", debonding / (2 * side_debonding) - 1,
+            ", the short side's slide / closed form - 1 = ", sliding / (pullout_work(f, kShort) - side_debonding) - 1);
+    CHECK((debonding + sliding) == test::relative(pullout_work(f, kShort) + side_debonding, 1e-10));
+  }
+}
