@@ -80,6 +80,38 @@ double SpecimenShape<D>::outline_depth(const Eigen::Vector2d& p) const {
   return d;
 }
 
+// Along u (not normalised: its length scales the distance) from p: the first edge crossed, or the circle.
+template <int D>
+double SpecimenShape<D>::outline_exit(const Eigen::Vector2d& p, const Eigen::Vector2d& u) const {
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  if (polygon_.empty()) {  // |p + t u − c| = r, the positive root
+    const Eigen::Vector2d q = p - centre_;
+    const double a = u.squaredNorm(), b = q.dot(u), c = q.squaredNorm() - radius_ * radius_;
+    if (a == 0) return kNone;
+    return (-b + std::sqrt(std::max(0.0, b * b - a * c))) / a;
+  }
+  double t_min = kNone;
+  for (std::size_t i = 0; i < polygon_.size(); ++i) {
+    const Eigen::Vector2d a = polygon_[i], e = polygon_[(i + 1) % polygon_.size()] - a;
+    const double den = u.x() * e.y() - u.y() * e.x();  // u × e
+    if (den == 0) continue;                            // parallel to the edge
+    const Eigen::Vector2d w = a - p;
+    const double t = (w.x() * e.y() - w.y() * e.x()) / den, s = (w.x() * u.y() - w.y() * u.x()) / den;
+    if (t > 0 && s >= 0 && s <= 1) t_min = std::min(t_min, t);
+  }
+  return t_min;
+}
+
+template <int D>
+double SpecimenShape<D>::exit_distance(const Vec<D>& x, const Vec<D>& u) const {
+  double t = outline_exit(plane(x), plane(u));
+  if constexpr (D == 3) {
+    if (u[2] > 0) t = std::min(t, (thickness_ - x[2]) / u[2]);
+    if (u[2] < 0) t = std::min(t, -x[2] / u[2]);
+  }
+  return t;
+}
+
 template <int D>
 bool SpecimenShape<D>::inside(const Vec<D>& x) const {
   if constexpr (D == 3)

@@ -22,6 +22,8 @@ class SpecimenShape {
   bool inside(const Vec<D>& x) const;
   // The distance from a point inside to the nearest boundary surface.
   double depth(const Vec<D>& x) const;
+  // The distance from a point inside along the unit direction u to where the line first leaves the shape.
+  double exit_distance(const Vec<D>& x, const Vec<D>& u) const;
   double volume() const;  // 2D: area × 1 m
   Vec<D> lo() const;
   Vec<D> hi() const;
@@ -39,6 +41,7 @@ class SpecimenShape {
   Eigen::AlignedBox2d outline_bounds() const;
   bool inside_outline(const Eigen::Vector2d& p) const;
   double outline_depth(const Eigen::Vector2d& p) const;
+  double outline_exit(const Eigen::Vector2d& p, const Eigen::Vector2d& u) const;
   void outline_mirrors(const Eigen::Vector2d& p, double reach, std::vector<Eigen::Vector2d>& out) const;
 };
 
