@@ -195,8 +195,8 @@ TEST_CASE("shipped_hertz_collision_lasts_as_long_and_overlaps_as_deep_as_hertz_s
   const double m = 2600 * 4.0 / 3.0 * M_PI * 1e-9, m_eff = 0.5 * m, e_eff = 50e6 / 0.8, r_eff = 0.5e-3, v = 0.1;
   const double duration = 2.868 * std::pow(m_eff * m_eff / (r_eff * e_eff * e_eff * v), 0.2);
   const double overlap = std::pow(15 * m_eff * v * v / (16 * e_eff * std::sqrt(r_eff)), 0.4);
-  CHECK(res["contact_duration_s"].number == test::relative(duration, 0.01));
-  CHECK(res["max_overlap_m"].number == test::relative(overlap, 0.01));
+  CHECK(res["contact_duration_s"].number == mc::test::relative(duration, 0.01));
+  CHECK(res["max_overlap_m"].number == mc::test::relative(overlap, 0.01));
   CHECK(res["restitution"].number == doctest::Approx(1.0).epsilon(1e-3));
 }
 
@@ -212,7 +212,7 @@ TEST_CASE("shipped_rolling_slope_rolls_at_g_sin_minus_mu_r_cos_and_stays_where_m
   const Result r = mesocrack({"run", scene, "-o", "r.h5"}, d.dir);
   REQUIRE_MESSAGE(r.code == 0, r.describe());
   const Json rolled = summary_of("r.h5", d.dir);
-  CHECK(rolled["results"]["speed_final_m_per_s"].number == test::relative(a * 0.1, 1e-4));
+  CHECK(rolled["results"]["speed_final_m_per_s"].number == mc::test::relative(a * 0.1, 1e-4));
   const Result held = mesocrack({"run", scene, "-o", "h.h5", "--set", "contacts[0].rolling_friction=0.4"}, d.dir);
   REQUIRE_MESSAGE(held.code == 0, held.describe());
   const Json stayed = summary_of("h.h5", d.dir);

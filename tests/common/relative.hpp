@@ -4,6 +4,6 @@
 #pragma once
 #include <doctest/doctest.h>
 
-namespace test {
+namespace mc::test {
 inline doctest::Approx relative(double x, double e) { return doctest::Approx(x).epsilon(e).scale(0.0); }
-}  // namespace test
+}  // namespace mc::test

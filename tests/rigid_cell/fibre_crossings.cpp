@@ -9,6 +9,7 @@
 #include "rigid_cell/fibre_crossings.hpp"
 #include "rigid_cell/node_placement.hpp"
 #include "tests/common/relative.hpp"
+#include "tests/rigid_cell/cubic_grid.hpp"
 
 using namespace mc;
 using namespace mc::rigid_cell;
@@ -43,10 +44,7 @@ double brute_crossing(const Facet<3>& f, const Fibre& fib, double& margin) {
 TEST_CASE("fibre_through_cubic_cells_crosses_each_facet_plane_between_its_ends") {
   const double h = 0.01;
   const auto shape = SpecimenShape<3>::box(Vec<3>(5 * h, 4 * h, 3 * h));
-  std::vector<Vec<3>> nodes;
-  for (int i = 0; i < 5; ++i)
-    for (int j = 0; j < 4; ++j)
-      for (int k = 0; k < 3; ++k) nodes.push_back(h * Vec<3>(i + 0.5, j + 0.5, k + 0.5));
+  const std::vector<Vec<3>> nodes = test::cubic_grid_nodes(h, 5, 4, 3);
   const auto t = tessellate(nodes, shape, 1.5 * h);
   // Along x from 2 mm to 38 mm, off every edge: the planes x = 10, 20, 30 mm; back along −x the same, reversed.
   const Vec<3> a(0.002, 0.0152, 0.0147), b(0.038, 0.0152, 0.0147);

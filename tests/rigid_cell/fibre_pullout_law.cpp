@@ -40,23 +40,23 @@ TEST_CASE("fibre_debonding_starts_at_the_bond_energy_force_and_meets_friction_at
   const FibreMaterial f = kveton_fibre();
   const double d = f.diameter;
   // P(0) = √(π² E_f d_f³ G_d/2) (Květoň §6.2): 0.2177 N for the §6.1 fibre.
-  CHECK(debonding_force(f, 0.0) == test::relative(std::sqrt(0.5 * M_PI * M_PI * f.modulus * d * d * d * 5.0), 1e-14));
-  CHECK(debonding_force(f, 0.0) == test::relative(0.2177, 1e-3));
+  CHECK(debonding_force(f, 0.0) == mc::test::relative(std::sqrt(0.5 * M_PI * M_PI * f.modulus * d * d * d * 5.0), 1e-14));
+  CHECK(debonding_force(f, 0.0) == mc::test::relative(0.2177, 1e-3));
   // Without bond energy the debonding branch reaches P_0 = π L_e d_f τ_0 exactly at v_d (2τ_0 L_e²/(E_f d_f)):
   // (5.1) is continuous there, which fixes the D_f of the thesis's (5.2) as d_f. Round-off only: 1e-12.
   for (const double le : {1e-3, kShort, 6.5e-3}) {
     const FibreMaterial g0 = kveton_fibre(0.0);
     const double vd = full_debonding_slip(g0, le);
-    CHECK(vd == test::relative(2 * g0.friction_stress * le * le / (g0.modulus * d), 1e-14));
-    CHECK(debonding_force(g0, vd) == test::relative(friction_force(g0, le), 1e-12));
-    CHECK(friction_force(g0, le) == test::relative(M_PI * le * d * g0.friction_stress, 1e-14));
+    CHECK(vd == mc::test::relative(2 * g0.friction_stress * le * le / (g0.modulus * d), 1e-14));
+    CHECK(debonding_force(g0, vd) == mc::test::relative(friction_force(g0, le), 1e-12));
+    CHECK(friction_force(g0, le) == mc::test::relative(M_PI * le * d * g0.friction_stress, 1e-14));
   }
   // With G_d > 0 the force drops at v_d from the debonding branch to P_0 (Květoň §6.1: "instant drop").
   const double vd = full_debonding_slip(f, kShort);
-  CHECK(vd == test::relative(61.0e-6, 2e-3));  // 40.8 µm of friction, 20.2 µm of bond energy
-  CHECK(debonding_force(f, vd) == test::relative(1.097, 1e-3));
-  CHECK(pullout_force(f, kShort, vd * (1 + 1e-12)) == test::relative(friction_force(f, kShort), 1e-9));
-  CHECK(friction_force(f, kShort) == test::relative(0.8796, 1e-3));
+  CHECK(vd == mc::test::relative(61.0e-6, 2e-3));  // 40.8 µm of friction, 20.2 µm of bond energy
+  CHECK(debonding_force(f, vd) == mc::test::relative(1.097, 1e-3));
+  CHECK(pullout_force(f, kShort, vd * (1 + 1e-12)) == mc::test::relative(friction_force(f, kShort), 1e-9));
+  CHECK(friction_force(f, kShort) == mc::test::relative(0.8796, 1e-3));
 }
 
 TEST_CASE("fibre_slides_out_over_its_embedment_with_slip_hardening_or_softening") {
@@ -66,7 +66,7 @@ TEST_CASE("fibre_slides_out_over_its_embedment_with_slip_hardening_or_softening"
     CAPTURE(beta);
     // (5.1) half-way out: P_0 (1/2)(1 + β_f L_e/(2 d_f)): 0.5625 P_0 softening, 0.5 P_0, 0.9375 P_0 hardening.
     CHECK(pullout_force(f, kShort, vd + 0.5 * kShort) ==
-          test::relative(p0 * 0.5 * (1 + beta * kShort / (2 * f.diameter)), 1e-12));
+          mc::test::relative(p0 * 0.5 * (1 + beta * kShort / (2 * f.diameter)), 1e-12));
     // Out: nothing left.
     CHECK(pullout_force(f, kShort, vd + kShort) == 0.0);
     CHECK(pullout_force(f, kShort, vd + 2 * kShort) == 0.0);
@@ -91,7 +91,7 @@ TEST_CASE("fibre_debonded_length_solves_the_embedment_quadratic_and_inverts_full
     }
     // Debonded whole at v_d(L_e): the debonded length is L_e.
     for (const double le : {1e-3, kShort, 6.5e-3})
-      CHECK(debonded_length(f, full_debonding_slip(f, le)) == test::relative(le, 1e-12));
+      CHECK(debonded_length(f, full_debonding_slip(f, le)) == mc::test::relative(le, 1e-12));
   }
 }
 
@@ -128,16 +128,16 @@ TEST_CASE("fibre_too_long_breaks_and_an_inclined_one_breaks_sooner_and_snubs") {
   FibreMaterial micro = f;
   micro.rupture_coefficient = 0.33, micro.snubbing_coefficient = 0.1, micro.spalling_coefficient = 500;
   CHECK(inclined_strength(micro, 0.0) == f.tensile_strength);
-  CHECK(inclined_strength(micro, 0.5) == test::relative(f.tensile_strength * std::exp(-0.165), 1e-14));
+  CHECK(inclined_strength(micro, 0.5) == mc::test::relative(f.tensile_strength * std::exp(-0.165), 1e-14));
   CHECK(inclined_strength(micro, 0.5) * M_PI * f.diameter * f.diameter / 4 <
         debonding_force(f, full_debonding_slip(f, kShort)));
   // (5.9): snubbing raises the force by exp(k_sn φ'_f), 5.1 % at 0.5 rad; none along the straining direction.
   CHECK(snubbing_factor(micro, 0.0) == 1.0);
-  CHECK(snubbing_factor(micro, 0.5) == test::relative(std::exp(0.05), 1e-14));
+  CHECK(snubbing_factor(micro, 0.5) == mc::test::relative(std::exp(0.05), 1e-14));
   // (5.8): no spalling along the normal; at θ = 60° and P_N = 1 N, with the matrix's f_t = 3 MPa:
   // sin 30°/(500 · 3 MPa · 40 µm · cos² 30°) = 11.1 µm.
   CHECK(spalling_length(micro, 1.0, 0.0, 3e6) == 0.0);
-  CHECK(spalling_length(micro, 1.0, M_PI / 3, 3e6) == test::relative(0.5 / (500 * 3e6 * 40e-6 * 0.75), 1e-14));
+  CHECK(spalling_length(micro, 1.0, M_PI / 3, 3e6) == mc::test::relative(0.5 / (500 * 3e6 * 40e-6 * 0.75), 1e-14));
   CHECK(spalling_length(f, 1.0, M_PI / 3, 3e6) == 0.0);  // k_sp = 0: spalling off
 }
 
@@ -159,18 +159,18 @@ TEST_CASE("two_sided_pullout_debonds_both_sides_alike_then_the_short_side_pulls_
   {
     TwoSidedPullout t = kveton_crossing();
     const double p = open_crack(f, t, vd);
-    CHECK(t.pullout[0] == test::relative(0.5 * vd, 1e-12));
-    CHECK(t.pullout[1] == test::relative(0.5 * vd, 1e-12));
-    CHECK(p == test::relative(debonding_force(f, 0.5 * vd), 1e-12));
+    CHECK(t.pullout[0] == mc::test::relative(0.5 * vd, 1e-12));
+    CHECK(t.pullout[1] == mc::test::relative(0.5 * vd, 1e-12));
+    CHECK(p == mc::test::relative(debonding_force(f, 0.5 * vd), 1e-12));
   }
   // Past 2 v_d of the short side: it is debonded whole and slides at P_0 (1 − s/L)(1 + β s/d), below what the long
   // side held; the long side holds its v_d(short) of pull-out.
   TwoSidedPullout t = kveton_crossing();
   const double slide = 0.5e-3;
   const double p = open_crack(f, t, 2 * vd + slide);
-  CHECK(t.pullout[0] == test::relative(vd, 1e-12));
-  CHECK(t.pullout[1] == test::relative(vd + slide, 1e-12));
-  CHECK(p == test::relative(sliding_force(f, kShort, vd + slide), 1e-12));
+  CHECK(t.pullout[0] == mc::test::relative(vd, 1e-12));
+  CHECK(t.pullout[1] == mc::test::relative(vd + slide, 1e-12));
+  CHECK(p == mc::test::relative(sliding_force(f, kShort, vd + slide), 1e-12));
   CHECK(p < pullout_resistance(f, 6.5e-3, t.pullout[0]));
   // Out: the short side gone, no force.
   CHECK(open_crack(f, t, 2 * vd + kShort) == 0.0);
@@ -229,8 +229,8 @@ TEST_CASE("two_sided_pullout_is_in_equilibrium_along_the_whole_opening_and_indep
           TwoSidedPullout jumped = kveton_crossing(short_side, long_side), walked = jumped;
           open_crack(f, jumped, w);
           for (int k = 1; k <= 1000; ++k) open_crack(f, walked, w * k / 1000.0);
-          CHECK(jumped.pullout[0] == test::relative(walked.pullout[0], 1e-9));
-          CHECK(jumped.pullout[1] == test::relative(walked.pullout[1], 1e-9));
+          CHECK(jumped.pullout[0] == mc::test::relative(walked.pullout[0], 1e-9));
+          CHECK(jumped.pullout[1] == mc::test::relative(walked.pullout[1], 1e-9));
         }
       }
 }
@@ -255,6 +255,6 @@ TEST_CASE("two_sided_pullout_work_is_both_sides_debonding_and_the_short_sides_sl
     const double side_debonding = simpson([&](double v) { return debonding_force(f, v); }, 0.0, vd, 2000);
     MESSAGE("beta ", beta, ": both sides' debonding / closed form - 1 = ", debonding / (2 * side_debonding) - 1,
             ", the short side's slide / closed form - 1 = ", sliding / (pullout_work(f, kShort) - side_debonding) - 1);
-    CHECK((debonding + sliding) == test::relative(pullout_work(f, kShort) + side_debonding, 1e-10));
+    CHECK((debonding + sliding) == mc::test::relative(pullout_work(f, kShort) + side_debonding, 1e-10));
   }
 }

@@ -9,6 +9,7 @@
 #include "rigid_cell/node_placement.hpp"
 #include "rigid_cell/tessellation.hpp"
 #include "tests/rigid_cell/box_cell.hpp"
+#include "tests/rigid_cell/cubic_grid.hpp"
 
 using namespace mc;
 using namespace mc::rigid_cell;
@@ -56,10 +57,7 @@ TEST_CASE("inertia of a regular tetrahedron cell equals V a^2 / 20 about every a
 TEST_CASE("nodes on a cubic grid tessellate into cubes of side h with inertia V h^2 / 6 about the node") {
   const double h = 0.01;
   const auto shape = SpecimenShape<3>::box(Vec<3>(5 * h, 4 * h, 3 * h));
-  std::vector<Vec<3>> nodes;
-  for (int i = 0; i < 5; ++i)
-    for (int j = 0; j < 4; ++j)
-      for (int k = 0; k < 3; ++k) nodes.push_back(h * Vec<3>(i + 0.5, j + 0.5, k + 0.5));
+  const std::vector<Vec<3>> nodes = test::cubic_grid_nodes(h, 5, 4, 3);
   const auto t = tessellate(nodes, shape, 1.5 * h);
   REQUIRE(t.cells.size() == nodes.size());
   for (const auto& c : t.cells) {
