@@ -179,4 +179,14 @@ double open_crack(const FibreMaterial& f, TwoSidedPullout& t, double w) {
   return t.force;
 }
 
+double bridge_force(const FibreMaterial& f, FibreBridge& b, double w, double phi) {
+  if (b.ruptured) return 0.0;
+  const double force = open_crack(f, b.sides, w) * snubbing_factor(f, phi);
+  if (force >= inclined_strength(f, phi) * 0.25 * M_PI * f.diameter * f.diameter) {
+    b.ruptured = true;
+    return 0.0;
+  }
+  return force;
+}
+
 }  // namespace mc::rigid_cell

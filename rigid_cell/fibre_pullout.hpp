@@ -73,4 +73,16 @@ double pullout_resistance(const FibreMaterial& f, double embedment, double v);
 // a closed form or bisection on a bracket. A crack closed below the pull-outs' sum leaves the fibre slack: force 0.
 double open_crack(const FibreMaterial& f, TwoSidedPullout& t, double w);
 
+// One fibre across one crack with its history: the two sides' pull-outs, and whether it has broken.
+struct FibreBridge {
+  TwoSidedPullout sides;
+  bool ruptured = false;
+};
+
+// The force a fibre bridges a crack with at the opening w along it, inclined φ'_f to the straining direction: the
+// two-sided pull-out force times the snubbing factor (5.9). Where that reaches the inclined fibre's strength (5.10)
+// over its section π d_f²/4 the fibre breaks: elasto-brittle (§5.4), it carries nothing from then on, whatever the
+// crack does.
+double bridge_force(const FibreMaterial& f, FibreBridge& b, double w, double phi);
+
 }  // namespace mc::rigid_cell

@@ -258,3 +258,49 @@ TEST_CASE("two_sided_pullout_work_is_both_sides_debonding_and_the_short_sides_sl
     CHECK((debonding + sliding) == mc::test::relative(pullout_work(f, kShort) + side_debonding, 1e-10));
   }
 }
+
+TEST_CASE("fibre_bridge_breaks_for_good_where_the_snubbed_force_reaches_the_inclined_strength") {
+  const FibreMaterial f = kveton_fibre();
+  const double d = f.diameter, strength = f.tensile_strength * 0.25 * M_PI * d * d;  // 1.2566 N
+  const double k = 0.5 * M_PI * M_PI * f.modulus * d * d * d;
+  // The debonding pull-out at which (5.1) carries P: (P²/k − G_d)/τ_0, each side of a debonding crack v = w/2.
+  auto breaking_opening = [&](double p) { return 2 * (p * p / k - f.debonding_energy) / f.friction_stress; };
+  // Květoň §6.1: the 20 mm fibre (7 mm on its short side) breaks while it debonds, at 2 × 80.8 µm; the 10 mm one
+  // never does: it pulls out of its 3.5 mm side.
+  {
+    FibreBridge long_fibre;
+    long_fibre.sides.embedment[0] = 13e-3, long_fibre.sides.embedment[1] = 7e-3;
+    const double w = breaking_opening(strength);
+    CHECK(w == mc::test::relative(161.6e-6, 1e-3));
+    CHECK(bridge_force(f, long_fibre, 0.99 * w, 0.0) > 0.9 * strength);
+    CHECK(!long_fibre.ruptured);
+    CHECK(bridge_force(f, long_fibre, 1.01 * w, 0.0) == 0.0);
+    CHECK(long_fibre.ruptured);
+    // For good: closed and opened again, it carries nothing.
+    CHECK(bridge_force(f, long_fibre, 0.0, 0.0) == 0.0);
+    CHECK(bridge_force(f, long_fibre, 0.5 * w, 0.0) == 0.0);
+  }
+  {
+    FibreBridge short_fibre;
+    short_fibre.sides.embedment[0] = 6.5e-3, short_fibre.sides.embedment[1] = kShort;
+    // Its largest force at 2 v_d, where the short side is debonded whole: 1.097 N, below the 1.2566 N it can bear.
+    const double vd = full_debonding_slip(f, kShort), out = 2 * vd + kShort;
+    double largest = 0;
+    for (int i = 1; i <= 1000; ++i) largest = std::max(largest, bridge_force(f, short_fibre, 2 * vd * i / 1000, 0.0));
+    for (int i = 1; i <= 1000; ++i)
+      largest = std::max(largest, bridge_force(f, short_fibre, 2 * vd + kShort * i / 1000, 0.0));
+    CHECK(!short_fibre.ruptured);
+    CHECK(largest == mc::test::relative(debonding_force(f, vd), 1e-12));
+    CHECK(bridge_force(f, short_fibre, out, 0.0) == 0.0);  // pulled out
+  }
+  // Inclined 0.5 rad with k_sn 0.1 and k_rup 0.33 (§6.4): the force is snubbed up by e^0.05 and the strength cut by
+  // e^-0.165, so the long fibre breaks at the debonding force 1.2566 e^-0.215 N = 1.0134 N, sooner.
+  FibreMaterial micro = f;
+  micro.snubbing_coefficient = 0.1, micro.rupture_coefficient = 0.33;
+  FibreBridge inclined;
+  inclined.sides.embedment[0] = 13e-3, inclined.sides.embedment[1] = 7e-3;
+  const double w = breaking_opening(strength * std::exp(-0.215));
+  CHECK(bridge_force(micro, inclined, 0.99 * w, 0.5) > 0.0);
+  CHECK(bridge_force(micro, inclined, 1.01 * w, 0.5) == 0.0);
+  CHECK(inclined.ruptured);
+}
