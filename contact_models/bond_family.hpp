@@ -1,4 +1,4 @@
-// Pieces the bond models share (contact_bond, softening_bond, parallel_bond), written once:
+// Pieces the bond models share (contact_bond, softening_bond, parallel_bond), and rolling_resistance the first:
 //  - GrainContact: the linear contact with Coulomb slip that a parallel bond acts beside, and that a contact or
 //    softening bond becomes once broken, working on the shear force the bond's state carries (`fs`);
 //  - GluedTrial: the trial forces of the springs glued at the contact point while a contact or softening bond

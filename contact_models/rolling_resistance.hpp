@@ -8,6 +8,7 @@
 #pragma once
 #include <cmath>
 
+#include "contact_models/bond_family.hpp"  // GrainContact: the linear contact on a state's `fs`
 #include "contact_models/linear.hpp"
 #include "engine/contact_geometry.hpp"
 #include "engine/contact_set.hpp"
@@ -50,9 +51,7 @@ struct RollingResistance {
 
   template <int D, bool Energy>
   [[gnu::always_inline]] static ContactForce<D> force(const Coeffs& c, const ContactGeometry<D>& g, State<D>& s) {
-    Linear::State<D> ls{s.fs};
-    ContactForce<D> out = Linear::force<D, Energy>(c.contact, g, ls);
-    s.fs = ls.fs;
+    ContactForce<D> out = GrainContact::force<D, Energy>(c.contact, g, s);
     if (g.overlap <= 0) {  // separated: the rolling history starts again at the next touch
       if constexpr (Energy) out.dissipated += rolling_energy<D>(c, s);
       s.mr.setZero();
@@ -78,7 +77,7 @@ struct RollingResistance {
 
   template <int D>
   static ContactStiffness stiffness(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
-    ContactStiffness k = Linear::stiffness<D>(c.contact, g, Linear::State<D>{s.fs});
+    ContactStiffness k = GrainContact::stiffness<D>(c.contact, g, s);
     k.rotational += c.kr;
     return k;
   }
@@ -89,12 +88,12 @@ struct RollingResistance {
   template <int D>
   static double strain_energy(const Coeffs& c, const ContactGeometry<D>& g, const State<D>& s) {
     if (g.overlap <= 0) return 0;
-    return Linear::strain_energy<D>(c.contact, g, Linear::State<D>{s.fs}) + rolling_energy<D>(c, s);
+    return GrainContact::strain_energy<D>(c.contact, g, s) + rolling_energy<D>(c, s);
   }
   // A contact that opens lets its shear and rolling springs' energy go.
   template <int D>
   static double released_energy(const Coeffs& c, const State<D>& s) {
-    return Linear::released_energy<D>(c.contact, Linear::State<D>{s.fs}) + rolling_energy<D>(c, s);
+    return GrainContact::released_energy<D>(c.contact, s) + rolling_energy<D>(c, s);
   }
   template <int D>
   static bool persistent(const State<D>&) {
