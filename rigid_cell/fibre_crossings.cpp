@@ -4,23 +4,13 @@
 #include <stdexcept>
 #include <string>
 
-#include <nanoflann.hpp>
+#include "rigid_cell/node_tree.hpp"
 
 namespace mc::rigid_cell {
 
 namespace {
 
-struct NodeCloud {
-  const std::vector<Cell<3>>& cells;
-  std::size_t kdtree_get_point_count() const { return cells.size(); }
-  double kdtree_get_pt(std::size_t i, int k) const { return cells[i].node[k]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const { return false; }
-};
-using NodeTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, NodeCloud, double, std::size_t>,
-                                                     NodeCloud, 3, std::size_t>;
-
-int nearest_cell(const NodeTree& tree, const Vec<3>& x) {
+int nearest_cell(const StaticNodeTree<3>& tree, const Vec<3>& x) {
   std::size_t i = 0;
   double d2 = 0;
   nanoflann::KNNResultSet<double, std::size_t> result(1);
@@ -37,8 +27,11 @@ std::vector<FibreCrossing> fibre_crossings(const Tessellation<3>& t, const std::
     facets_of[static_cast<std::size_t>(t.facets[f].a)].push_back(static_cast<int>(f));
     if (t.facets[f].b >= 0) facets_of[static_cast<std::size_t>(t.facets[f].b)].push_back(static_cast<int>(f));
   }
-  const NodeCloud cloud{t.cells};
-  NodeTree tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  std::vector<Vec<3>> nodes;
+  nodes.reserve(t.cells.size());
+  for (const Cell<3>& c : t.cells) nodes.push_back(c.node);
+  const NodeCloud<3> cloud{nodes};
+  StaticNodeTree<3> tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   tree.buildIndex();
   std::vector<FibreCrossing> out;
   for (std::size_t i = 0; i < fibres.size(); ++i) {

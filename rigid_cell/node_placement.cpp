@@ -2,35 +2,12 @@
 
 #include <limits>
 
-// nanoflann 1.4 leaves a dynamic tree's bounding box unset until its first point, which GCC flags.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <nanoflann.hpp>
-#pragma GCC diagnostic pop
-
 #include "engine/random_stream.hpp"
+#include "rigid_cell/node_tree.hpp"
 
 namespace mc::rigid_cell {
 
 namespace {
-
-// The nanoflann dataset adaptor over the nodes kept so far.
-template <int D>
-struct NodeCloud {
-  const std::vector<Vec<D>>& x;
-  std::size_t kdtree_get_point_count() const { return x.size(); }
-  double kdtree_get_pt(std::size_t i, int k) const { return x[i][k]; }
-  template <class Box>
-  bool kdtree_get_bbox(Box&) const { return false; }
-};
-
-template <int D>
-using DynamicTree = nanoflann::KDTreeSingleIndexDynamicAdaptor<
-    nanoflann::L2_Simple_Adaptor<double, NodeCloud<D>, double, std::size_t>, NodeCloud<D>, D, std::size_t>;
-
-template <int D>
-using StaticTree = nanoflann::KDTreeSingleIndexAdaptor<
-    nanoflann::L2_Simple_Adaptor<double, NodeCloud<D>, double, std::size_t>, NodeCloud<D>, D, std::size_t>;
 
 // Stops the search at the first node within the radius.
 struct AnyWithin {
@@ -54,7 +31,7 @@ std::vector<Vec<D>> place_nodes(const SpecimenShape<D>& shape, double l_min, std
                                 int max_rejections) {
   std::vector<Vec<D>> nodes;
   NodeCloud<D> cloud{nodes};
-  DynamicTree<D> tree(D, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  DynamicNodeTree<D> tree(D, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   const Vec<D> lo = shape.lo(), hi = shape.hi();
   RandomStream random(seed);
   for (int rejected = 0; rejected < max_rejections;) {
@@ -83,7 +60,7 @@ NearestPair nearest_pair(const std::vector<Vec<D>>& nodes) {
   best.distance = std::numeric_limits<double>::infinity();
   if (nodes.size() < 2) return best;
   NodeCloud<D> cloud{nodes};
-  StaticTree<D> tree(D, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  StaticNodeTree<D> tree(D, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   tree.buildIndex();
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     std::size_t idx[2] = {0, 0};
