@@ -179,14 +179,31 @@ double open_crack(const FibreMaterial& f, TwoSidedPullout& t, double w) {
   return t.force;
 }
 
+double side_debonded_length(const FibreMaterial& f, double embedment, double v) {
+  return v >= full_debonding_slip(f, embedment) ? embedment : debonded_length(f, v);
+}
+
+double bonded_stiffness(const FibreMaterial& f) { return f.modulus * 0.25 * M_PI * f.diameter; }
+
+double unloading_stiffness(const FibreMaterial& f, const FibreBridge& b) {
+  const TwoSidedPullout& t = b.sides;
+  const double debonded = side_debonded_length(f, t.embedment[0], t.pullout[0]) +
+                          side_debonded_length(f, t.embedment[1], t.pullout[1]);
+  const double elastic = 2 * f.modulus * 0.25 * M_PI * f.diameter * f.diameter / std::max(debonded, f.diameter);
+  return b.opening > 0 ? std::max(elastic, b.force / b.opening) : elastic;
+}
+
 double bridge_force(const FibreMaterial& f, FibreBridge& b, double w, double phi) {
   if (b.ruptured) return 0.0;
-  const double force = open_crack(f, b.sides, w) * snubbing_factor(f, phi);
+  if (w < b.opening) return std::max(0.0, b.force - unloading_stiffness(f, b) * (b.opening - w));
+  const double pulled = open_crack(f, b.sides, w) * snubbing_factor(f, phi);
+  const double force = std::min(pulled, bonded_stiffness(f) * w);
+  b.opening = w;
   if (force >= inclined_strength(f, phi) * 0.25 * M_PI * f.diameter * f.diameter) {
     b.ruptured = true;
-    return 0.0;
+    return b.force = 0.0;
   }
-  return force;
+  return b.force = force;
 }
 
 }  // namespace mc::rigid_cell

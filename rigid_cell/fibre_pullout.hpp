@@ -73,16 +73,33 @@ double pullout_resistance(const FibreMaterial& f, double embedment, double v);
 // a closed form or bisection on a bracket. A crack closed below the pull-outs' sum leaves the fibre slack: force 0.
 double open_crack(const FibreMaterial& f, TwoSidedPullout& t, double w);
 
-// One fibre across one crack with its history: the two sides' pull-outs, and whether it has broken.
+// The length of a side debonded at pull-out v: (5.5) while it debonds, its whole embedment once debonded.
+double side_debonded_length(const FibreMaterial& f, double embedment, double v);
+// The bonded fibre's stiffness across a closed crack, E_f (π d_f²/4)/d_f: the stretch of one diameter of fibre at the
+// exit points. (5.1) starts at P(0) > 0 with no opening, a rigid start no secant stiffness can follow; the fibre
+// opens elastically at this stiffness until (5.1) is reached (P(0)/k: 0.23 µm for the fibre of §6.1, against
+// v_d = 61 µm).
+double bonded_stiffness(const FibreMaterial& f);
+
+// One fibre across one crack with its history: the two sides' pull-outs, the opening the crack last loaded it to and
+// the force there, and whether it has broken.
 struct FibreBridge {
   TwoSidedPullout sides;
+  double opening = 0;  // the largest opening along the fibre so far [m]
+  double force = 0;    // the force at it [N]
   bool ruptured = false;
 };
 
-// The force a fibre bridges a crack with at the opening w along it, inclined φ'_f to the straining direction: the
-// two-sided pull-out force times the snubbing factor (5.9). Where that reaches the inclined fibre's strength (5.10)
+// The force a fibre bridges a crack with at the opening w along it, inclined φ'_f to the straining direction.
+// Loading (w at or past the largest opening so far): the two-sided pull-out force times the snubbing factor (5.9),
+// at most the bonded stiffness times w (the rigid start); where that reaches the inclined fibre's strength (5.10)
 // over its section π d_f²/4 the fibre breaks: elasto-brittle (§5.4), it carries nothing from then on, whatever the
-// crack does.
+// crack does. Unloading and reloading (w below it): the pull-out is slip, it stays; what springs back is the
+// debonded fibre's elastic stretch, 2 E_f A_f/(L_d^a + L_d^b) (friction takes the force off the debonded
+// length uniformly, so its mean is half the exit force; at least the secant to the origin), down to no force
+// where the fibre goes slack: the line is retraced on reloading up to the largest opening, where the law resumes.
 double bridge_force(const FibreMaterial& f, FibreBridge& b, double w, double phi);
+// The unloading stiffness of a bridge at its largest opening (the line bridge_force follows below it) [N/m].
+double unloading_stiffness(const FibreMaterial& f, const FibreBridge& b);
 
 }  // namespace mc::rigid_cell
