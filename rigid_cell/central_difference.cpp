@@ -19,8 +19,10 @@ constexpr int kPowerIterations = 3000;
 
 template <int D>
 CentralDifference<D>::CentralDifference(const CellAssembly<D>& model, const SparseMatrix& map, const SparseMatrix& mass,
-                                        std::vector<bool> is_prescribed, double mass_damping, double stiffness_damping)
+                                        std::vector<bool> is_prescribed, double mass_damping, double stiffness_damping,
+                                        FibreBridges<D>* bridges)
     : model_(model),
+      bridges_(bridges),
       map_(map),
       mass_(mass),
       is_prescribed_(std::move(is_prescribed)),
@@ -91,8 +93,15 @@ Eigen::VectorXd CentralDifference<D>::step(double dt, KinematicState& s, const K
     states[c].D_max = damage[c];
   }
 
+  // The fibres across the cracking facets at the new displacements: their forces, no iteration.
+  Eigen::VectorXd f_cells = model_.internal_forces(u_cells, damage);
+  if (bridges_) {
+    bridges_->evaluate(u_cells, damage);
+    bridges_->commit();
+    bridges_->add_forces(f_cells);
+  }
   // M ü = f_ext − K(D) u − C u̇ at t + dt, the damping on the mid-step velocity (the scheme stays explicit).
-  Eigen::VectorXd f = map_.transpose() * model_.internal_forces(u_cells, damage);
+  Eigen::VectorXd f = map_.transpose() * f_cells;
   if (mass_damping_ != 0) f += mass_damping_ * (mass_ * v_half);
   if (stiffness_damping_ != 0) f += stiffness_damping_ * intact_forces(v_half);
   Eigen::VectorXd a = Eigen::VectorXd::Zero(n);

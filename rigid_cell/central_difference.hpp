@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "rigid_cell/cell_assembly.hpp"
+#include "rigid_cell/fibre_bridges.hpp"
 #include "rigid_cell/free_stiffness.hpp"
 
 namespace mc::rigid_cell {
@@ -24,9 +25,11 @@ template <int D>
 class CentralDifference {
  public:
   // `map`: cell degrees of freedom = map · reduced ones; `mass`: the reduced mass matrix; `is_prescribed`: the
-  // reduced degrees of freedom whose motion is given. Throws InputError when a free body has no mass.
+  // reduced degrees of freedom whose motion is given; `bridges` (may be null) the fibres across the facets, whose
+  // forces follow the new displacements each step. Throws InputError when a free body has no mass.
   CentralDifference(const CellAssembly<D>& model, const SparseMatrix& map, const SparseMatrix& mass,
-                    std::vector<bool> is_prescribed, double mass_damping, double stiffness_damping);
+                    std::vector<bool> is_prescribed, double mass_damping, double stiffness_damping,
+                    FibreBridges<D>* bridges = nullptr);
 
   // The highest circular frequency of the undamaged specimen on its free degrees of freedom [rad/s], by power
   // iteration on M⁻¹K₀ (its Rayleigh quotient, a lower bound that converges to it from below).
@@ -45,6 +48,7 @@ class CentralDifference {
 
  private:
   const CellAssembly<D>& model_;
+  FibreBridges<D>* bridges_;
   const SparseMatrix& map_;
   const SparseMatrix& mass_;
   std::vector<bool> is_prescribed_;

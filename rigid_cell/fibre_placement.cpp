@@ -9,6 +9,7 @@
 namespace mc::rigid_cell {
 
 long fibre_count(const FibrePlacement& p, double volume) {
+  if (p.count > 0) return p.count;
   return std::lround(p.volume_fraction * volume / (0.25 * M_PI * p.diameter * p.diameter * p.length));
 }
 

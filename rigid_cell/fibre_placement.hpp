@@ -18,6 +18,7 @@ enum class FibreBoundary { Redraw, Cut };
 
 struct FibrePlacement {
   double volume_fraction = 0;  // V_f [-]
+  long count = 0;              // a number of fibres instead (0: as many as V_f asks)
   double length = 0;           // l_f [m]
   double diameter = 0;         // d_f [m]
   FibreOrientation orientation = FibreOrientation::Isotropic;
@@ -30,7 +31,7 @@ struct Fibre {
   Vec<3> a, b;  // its ends [m]
 };
 
-// The number of fibres a placement asks for in a volume.
+// The number of fibres a placement asks for in a volume: its count, else V_f V/(π d_f²/4 · l_f).
 long fibre_count(const FibrePlacement& p, double volume);
 // A unit direction drawn as the placement says.
 Vec<3> draw_direction(const FibrePlacement& p, RandomStream& rng);

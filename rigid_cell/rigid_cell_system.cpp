@@ -1,12 +1,14 @@
 #include "rigid_cell/rigid_cell_system.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
 
 #include "engine/errors.hpp"
 #include "engine/ramp.hpp"
+#include "rigid_cell/fibre_crossings.hpp"
 #include "rigid_cell/node_placement.hpp"
 
 namespace mc::rigid_cell {
@@ -29,8 +31,10 @@ std::string box_text(const Vec<D>& lo, const Vec<D>& hi) {
 template <int D>
 RigidCellSystem<D>::RigidCellSystem(RigidCellSetup<D> setup) : setup_(std::move(setup)) {
   build_cells();
+  build_fibres();
   build_plates();
-  solver_ = std::make_unique<StaticSolver<D>>(*model_, *plates_, prescribed_, setup_.dynamics.has_value());
+  solver_ = std::make_unique<StaticSolver<D>>(*model_, *plates_, prescribed_, setup_.dynamics.has_value(),
+                                              bridges_.get());
   u_ = u_before_ = reactions_ = f_ext_ = v_ = a_ = plate_loads_ = wave_load_ =
       Eigen::VectorXd::Zero(plates_->reduced());
   for (int p = 0; p < plates_->plates(); ++p)
@@ -80,12 +84,60 @@ double RigidCellSystem<D>::section_stress(int section) const {
   const Eigen::VectorXd u_cells = solver_->cell_displacements(u_);
   double force = 0;
   for (const auto& [c, sign] : s.facets) force -= sign * model_->force(c, u_cells, damage_[c])[axis];
-  return force / s.area;
+  return (force - section_bridging_force(section)) / s.area;
+}
+
+template <int D>
+double RigidCellSystem<D>::section_bridging_force(int section) const {
+  if (!bridges_) return 0.0;
+  const int axis = setup_.sections[section].axis;
+  double force = 0;
+  for (const auto& [c, sign] : sections_[section].facets) force -= sign * bridges_->contact_force(c)[axis];
+  return force;
+}
+
+template <int D>
+std::array<std::size_t, 3> RigidCellSystem<D>::fibre_counts() const {
+  std::array<std::size_t, 3> n{0, 0, 0};
+  if (!bridges_) return n;
+  std::vector<int> most(fibres_.size(), -1);  // 0 bridging, 1 pulled out, 2 broken
+  for (std::size_t i = 0; i < bridges_->sites(); ++i) {
+    const BridgeState<D>& s = bridges_->state(i);
+    if (s.active == 0) continue;
+    const TwoSidedPullout& t = s.bridge.sides;
+    int state = -1;
+    if (s.bridge.ruptured) state = 2;
+    else if (pullout_resistance(bridges_->material(i), t.embedment[0], t.pullout[0]) == 0 ||
+             pullout_resistance(bridges_->material(i), t.embedment[1], t.pullout[1]) == 0)
+      state = 1;
+    else if (s.force > 0)
+      state = 0;
+    int& m = most[bridges_->site(i).fibre];
+    m = std::max(m, state);
+  }
+  for (int m : most)
+    if (m >= 0) ++n[m];
+  return n;
+}
+
+template <int D>
+Eigen::VectorXd RigidCellSystem<D>::cell_forces(const Eigen::VectorXd& u_cells) const {
+  Eigen::VectorXd f = model_->internal_forces(u_cells, damage_);
+  if (bridges_) bridges_->add_forces(f);
+  return f;
 }
 
 template <int D>
 void RigidCellSystem<D>::build_cells() {
-  const auto nodes = place_nodes(*setup_.shape, setup_.l_min, setup_.seed, setup_.max_rejections);
+  for (std::size_t i = 0; i < setup_.nodes.size(); ++i) {
+    if (!setup_.shape->inside(setup_.nodes[i]))
+      throw InputError("specimen.nodes: node " + std::to_string(i) + " lies outside the specimen's shape");
+    for (std::size_t j = 0; j < i; ++j)
+      if (setup_.nodes[i] == setup_.nodes[j])
+        throw InputError("specimen.nodes: nodes " + std::to_string(j) + " and " + std::to_string(i) + " coincide");
+  }
+  const auto nodes = setup_.nodes.empty() ? place_nodes(*setup_.shape, setup_.l_min, setup_.seed, setup_.max_rejections)
+                                          : setup_.nodes;
   tessellation_ = tessellate(nodes, *setup_.shape, kReachPerLmin * setup_.l_min);
   polygons_ = std::make_unique<const CellPolygons<D>>(tessellation_);
   for (const auto& c : tessellation_.cells) phase_.push_back(setup_.phase_at ? setup_.phase_at(c.node) : 0);
@@ -94,6 +146,65 @@ void RigidCellSystem<D>::build_cells() {
     params.push_back(setup_.facet(phase_[tessellation_.facets[c].a], phase_[tessellation_.facets[c].b]));
   if (setup_.strength_field) apply_strength_field(params);
   model_ = std::make_unique<CellAssembly<D>>(tessellation_, std::move(params));
+}
+
+// The fibres of each family, placed from their own random stream (the same seed, the same fibres, whatever the
+// cells), walked through the cells; each crossing of a contact facet a bridge site, with the fibre's direction
+// turned from cell a's side to cell b's.
+template <int D>
+void RigidCellSystem<D>::build_fibres() {
+  if (setup_.fibres.empty()) return;
+  if constexpr (D == 2) {
+    throw InputError("[rigid_cell.fibres]: fibres are straight segments in a volume: they need a 3D specimen");
+  } else {
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<FibreMaterial> materials;
+    for (std::size_t k = 0; k < setup_.fibres.size(); ++k) {
+      const FibreFamily& family = setup_.fibres[k];
+      materials.push_back(family.material);
+      std::vector<Fibre> placed = family.given;
+      if (placed.empty()) {
+        std::uint64_t mix = setup_.seed ^ (0xF1B4E00000000000ULL + k);  // a stream apart from the nodes'
+        RandomStream rng(splitmix64(mix));
+        placed = place_fibres(*setup_.shape, family.placement, rng);
+      }
+      fibres_.insert(fibres_.end(), placed.begin(), placed.end());
+      family_of_fibre_.insert(family_of_fibre_.end(), placed.size(), static_cast<int>(k));
+    }
+    const auto placed = std::chrono::steady_clock::now();
+    std::vector<FibreCrossing> crossings;
+    try {
+      crossings = fibre_crossings(tessellation_, fibres_);
+    } catch (const std::runtime_error& e) {
+      throw InputError(std::string("[rigid_cell.fibres]: ") + e.what());
+    }
+    std::vector<BridgeSite<3>> sites;
+    sites.reserve(crossings.size());
+    for (const FibreCrossing& c : crossings) {
+      const Fibre& f = fibres_[c.fibre];
+      const Vec<3> u = (f.b - f.a).normalized();
+      BridgeSite<3> s;
+      s.fibre = c.fibre, s.family = family_of_fibre_[c.fibre], s.contact = static_cast<std::size_t>(c.facet);
+      s.at = c.at, s.length = (f.b - f.a).norm(), s.a_on_cell_a = c.cosine > 0;
+      s.direction = c.cosine > 0 ? u : Vec<3>(-u);
+      s.theta = std::acos(std::min(1.0, std::abs(c.cosine)));
+      s.point = c.point;
+      sites.push_back(s);
+    }
+    bridges_ = std::make_unique<FibreBridges<3>>(tessellation_, *model_, std::move(materials), std::move(sites));
+    const auto crossed = std::chrono::steady_clock::now();
+    fibre_seconds_[0] = std::chrono::duration<double>(placed - start).count();
+    fibre_seconds_[1] = std::chrono::duration<double>(crossed - placed).count();
+    double volume = 0;
+    for (std::size_t i = 0; i < fibres_.size(); ++i) {
+      const double d = setup_.fibres[family_of_fibre_[i]].material.diameter;
+      volume += 0.25 * M_PI * d * d * (fibres_[i].b - fibres_[i].a).norm();
+    }
+    setup_.facts.push_back({"fibres", static_cast<double>(fibres_.size())});
+    setup_.facts.push_back({"fibre_crossings", static_cast<double>(bridges_->sites())});
+    setup_.facts.push_back({"fibre_bridged_facets", static_cast<double>(bridges_->contacts().size())});
+    setup_.facts.push_back({"fibre_volume_fraction", volume / setup_.shape->volume()});
+  }
 }
 
 // Květoň (3.21): f_t(x) = f̄_t h(x), G_t(x) = Ḡ_t h(x)² at each contact facet's centroid. The crack band's
@@ -344,7 +455,7 @@ SpecimenData RigidCellSystem<D>::specimen() const {
 template <int D>
 void RigidCellSystem<D>::frame(std::vector<double>& x, std::vector<double>& v, std::vector<double>& force) const {
   const Eigen::VectorXd u = solver_->cell_displacements(u_), before = solver_->cell_displacements(u_before_);
-  const Eigen::VectorXd f = model_->internal_forces(u, damage_);
+  const Eigen::VectorXd f = cell_forces(u);
   // Dynamics: Newmark's velocities; static solves: the step's travel over its loading time.
   const Eigen::VectorXd velocity = setup_.dynamics ? Eigen::VectorXd(solver_->cell_displacements(v_))
                                                    : Eigen::VectorXd((u - before) / setup_.load_step);
@@ -391,9 +502,10 @@ void RigidCellSystem<D>::save(Archive& a) const {
   a.reals["reactions"] = vec(reactions_);
   a.reals["damage"] = damage_;
   if (setup_.dynamics) a.reals["v"] = vec(v_), a.reals["a"] = vec(a_);
-  a.reals["factored_damage"] = solver_->factored_damage();
+  a.reals["factored_damage"] = solver_->factored_state();
   a.put("D_max", states_);
   a.put("cracks", cracks_);
+  if (bridges_) a.put("fibre_bridges", bridges_->converged());
 }
 
 template <int D>
@@ -418,6 +530,11 @@ void RigidCellSystem<D>::restore(const Archive& a) {
     solver_->factorise_at(f->second);
   a.get("D_max", states_);
   a.get("cracks", cracks_);
+  if (bridges_) {
+    std::vector<BridgeState<D>> states;
+    a.get("fibre_bridges", states);
+    bridges_->restore(std::move(states));
+  }
 }
 
 template class RigidCellSystem<2>;

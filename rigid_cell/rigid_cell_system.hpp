@@ -20,6 +20,8 @@
 #include "rigid_cell/cell_assembly.hpp"
 #include "rigid_cell/cell_polygons.hpp"
 #include "rigid_cell/central_difference.hpp"
+#include "rigid_cell/fibre_bridges.hpp"
+#include "rigid_cell/fibre_placement.hpp"
 #include "rigid_cell/newmark.hpp"
 #include "rigid_cell/plate_constraints.hpp"
 #include "rigid_cell/random_field.hpp"
@@ -94,6 +96,15 @@ struct SectionPlane {
   double at = 0;  // [m]
 };
 
+// A family of short fibres (Květoň Part II): one material, placed by volume fraction (or count) and orientation,
+// or given one by one (`given`, placed as they are).
+struct FibreFamily {
+  std::string name;
+  FibreMaterial material;
+  FibrePlacement placement;
+  std::vector<Fibre> given;
+};
+
 template <int D>
 struct RigidCellSetup {
   std::shared_ptr<const SpecimenShape<D>> shape;
@@ -119,6 +130,9 @@ struct RigidCellSetup {
   bool crack_log = false;
   // Květoň (3.21): the field h that scales each contact facet's f_t by h and G_t by h² at its centroid; null: none.
   std::shared_ptr<const RandomField<D>> strength_field;
+  // The nodes of the cells, when given (else placed at random l_min apart in the shape) [m].
+  std::vector<Vec<D>> nodes;
+  std::vector<FibreFamily> fibres;  // 3D only
 };
 
 template <int D>
@@ -180,6 +194,17 @@ class RigidCellSystem final : public System {
   double boundary_work() const { return work_; }
   double strain_energy() const;
   double kinetic_energy() const;  // ½ u̇ᵀ M u̇ (dynamics; 0 for static solves)
+  // The fibres (none without [rigid_cell.fibres]): each fibre's ends and family, and their crossings.
+  const std::vector<Fibre>& fibres() const { return fibres_; }
+  const std::vector<int>& fibre_families() const { return family_of_fibre_; }
+  const FibreBridges<D>* bridges() const { return bridges_.get(); }
+  // How many fibres bridge a crack now (carry a force), have been pulled out of a side (anchored no more), have
+  // broken; the bridges' force across a section along its axis [N]. A fibre counts once, by its most advanced
+  // crossing (broken, then pulled out, then bridging).
+  std::array<std::size_t, 3> fibre_counts() const;
+  double section_bridging_force(int section) const;
+  double fibre_placement_seconds() const { return fibre_seconds_[0]; }
+  double fibre_crossing_seconds() const { return fibre_seconds_[1]; }
   // Central differences: the undamaged specimen's highest frequency [rad/s] and the critical step it sets [s].
   double highest_frequency() const { return explicit_ ? explicit_->highest_frequency() : 0.0; }
   double critical_timestep() const { return explicit_ ? explicit_->critical_timestep() : 0.0; }
@@ -190,6 +215,10 @@ class RigidCellSystem final : public System {
   std::vector<int> phase_;  // per cell
   std::unique_ptr<const CellPolygons<D>> polygons_;
   std::unique_ptr<CellAssembly<D>> model_;
+  std::vector<Fibre> fibres_;
+  std::vector<int> family_of_fibre_;
+  std::unique_ptr<FibreBridges<D>> bridges_;
+  double fibre_seconds_[2] = {0, 0};
   std::unique_ptr<PlateConstraints<D>> plates_;
   std::vector<int> prescribed_;  // reduced degrees of freedom
   std::unique_ptr<StaticSolver<D>> solver_;
@@ -214,6 +243,9 @@ class RigidCellSystem final : public System {
   std::int64_t snap_throughs_ = 0;
 
   void build_cells();
+  void build_fibres();
+  // The cells' internal forces: the facets' and the fibres' of their last evaluation.
+  Eigen::VectorXd cell_forces(const Eigen::VectorXd& u_cells) const;
   void apply_strength_field(std::vector<FacetParams>& params);
   void build_plates();
   void build_gauges();
@@ -221,6 +253,7 @@ class RigidCellSystem final : public System {
   void dynamic_step();
   void explicit_step();
   void build_explicit();
+  void check_bridges_below_facets() const;
   // The plates' held motion at t (on their held degrees of freedom; zero elsewhere): velocity × the smooth rise
   // (9.1) and its derivatives.
   KinematicState held_motion(double t) const;

@@ -30,6 +30,9 @@ constexpr int kStallIterations = 50;
 constexpr int kMaxCgIterations = 50;
 constexpr double kCgTolerance = 1e-10;  // relative residual, far below the secant iteration's tolerances
 
+// The largest magnitude of v's entries; 0 for none (a specimen whose every degree of freedom is prescribed).
+double largest(const Eigen::VectorXd& v) { return v.size() == 0 ? 0.0 : v.cwiseAbs().maxCoeff(); }
+
 std::vector<bool> mask(int size, const std::vector<int>& prescribed) {
   std::vector<bool> is_prescribed(size, false);
   for (int d : prescribed) is_prescribed.at(d) = true;
@@ -40,13 +43,14 @@ std::vector<bool> mask(int size, const std::vector<int>& prescribed) {
 
 template <int D>
 StaticSolver<D>::StaticSolver(const CellAssembly<D>& model, const PlateConstraints<D>& plates,
-                              const std::vector<int>& prescribed, bool inertia)
+                              const std::vector<int>& prescribed, bool inertia, FibreBridges<D>* bridges)
     : model_(model),
+      bridges_(bridges),
       // Checked first: an unsupported specimen is refused before its stiffness pattern is built.
       map_((check_support(model, plates.map(), prescribed, inertia), plates.map())),
       is_prescribed_(mask(plates.reduced(), prescribed)),
       select_(free_rows(is_prescribed_)),
-      free_stiffness_(model, map_ * select_.transpose()) {
+      free_stiffness_(model, map_ * select_.transpose(), bridges) {
   cholesky_.setMode(Eigen::CholmodAuto);
   cg_.setMaxIterations(kMaxCgIterations);
   cg_.setTolerance(kCgTolerance);
@@ -127,12 +131,50 @@ const SparseMatrix& StaticSolver<D>::stiffness(const std::vector<double>& damage
 }
 
 template <int D>
-Eigen::VectorXd StaticSolver<D>::forces(const Eigen::VectorXd& u, const std::vector<double>& damage) const {
+std::vector<double> StaticSolver<D>::stiffness_state(const std::vector<double>& damage) const {
+  if (!bridges_) return damage;
+  std::vector<double> state = damage;
+  const std::vector<double> key = bridges_->stiffness_key();
+  state.insert(state.end(), key.begin(), key.end());
+  return state;
+}
+
+template <int D>
+Eigen::VectorXd StaticSolver<D>::secant_forces(const Eigen::VectorXd& u, const std::vector<double>& damage) const {
   const Eigen::VectorXd u_cells = map_ * u;
-  Eigen::VectorXd f = map_.transpose() * model_.internal_forces(u_cells, damage);
+  Eigen::VectorXd f_cells = model_.internal_forces(u_cells, damage);
+  if (bridges_) bridges_->add_secant_forces(u_cells, f_cells);
+  Eigen::VectorXd f = map_.transpose() * f_cells;
   if (c_M_ != 0) f += c_M_ * (mass_ * u);
   if (c_K_ != 0) f += c_K_ * intact_forces(u);
   return f;
+}
+
+template <int D>
+Eigen::VectorXd StaticSolver<D>::forces(const Eigen::VectorXd& u, const std::vector<double>& damage) const {
+  Eigen::VectorXd f_cells = model_.internal_forces(map_ * u, damage);
+  if (bridges_) bridges_->add_forces(f_cells);
+  Eigen::VectorXd f = map_.transpose() * f_cells;
+  if (c_M_ != 0) f += c_M_ * (mass_ * u);
+  if (c_K_ != 0) f += c_K_ * intact_forces(u);
+  return f;
+}
+
+template <int D>
+void StaticSolver<D>::factorise_at(const std::vector<double>& state) {
+  const std::size_t n = model_.contacts();
+  const std::vector<double> damage(state.begin(), state.begin() + static_cast<std::ptrdiff_t>(std::min(n, state.size())));
+  if (!bridges_) return factorise(stiffness(damage), damage);
+  const std::vector<double> now = bridges_->stiffness_key();
+  bridges_->set_stiffness_key(state, n);
+  factorise(stiffness(damage), damage);
+  bridges_->set_stiffness_key(now, 0);
+}
+
+template <int D>
+void StaticSolver<D>::discard_and_throw(const std::string& message) {
+  if (bridges_) bridges_->discard();
+  throw InstabilityError(message);
 }
 
 template <int D>
@@ -155,10 +197,10 @@ void StaticSolver<D>::factorise(const SparseMatrix& Kff, const std::vector<doubl
   omp_set_max_active_levels(levels);
   factored_.clear();  // no usable factor until this one succeeds
   if (cholesky_.info() != Eigen::Success)
-    throw InstabilityError(
+    discard_and_throw(
         "rigid cells: the stiffness is singular (a cell or group of cells moves freely, or "
         "damage has cut the specimen through)");
-  factored_ = damage;
+  factored_ = stiffness_state(damage);
   cg_.preconditioner().use(&cholesky_);
 }
 
@@ -167,7 +209,8 @@ void StaticSolver<D>::factorise(const SparseMatrix& Kff, const std::vector<doubl
 template <int D>
 Eigen::VectorXd StaticSolver<D>::free_solution(const std::vector<double>& damage, const Eigen::VectorXd& rhs,
                                                const Eigen::VectorXd& guess, StaticResult& r) {
-  if (!factored_.empty() && damage == factored_) return cholesky_.solve(rhs);
+  if (rhs.size() == 0) return rhs;  // every degree of freedom prescribed: nothing to solve
+  if (!factored_.empty() && stiffness_state(damage) == factored_) return cholesky_.solve(rhs);
   const SparseMatrix& Kff = stiffness(damage);
   if (!factored_.empty()) {
     cg_.compute(Kff);
@@ -186,7 +229,7 @@ template <int D>
 Eigen::VectorXd StaticSolver<D>::equilibrium(const std::vector<double>& damage, const Eigen::VectorXd& prescribed,
                                              const Eigen::VectorXd& f, const Eigen::VectorXd& guess, StaticResult& r) {
   // f_free − K_fp u_p, the prescribed displacements' forces on the free degrees of freedom for this damage.
-  const Eigen::VectorXd rhs = select_ * (f - forces(prescribed, damage));
+  const Eigen::VectorXd rhs = select_ * (f - secant_forces(prescribed, damage));
   return prescribed + select_.transpose() * free_solution(damage, rhs, select_ * guess, r);
 }
 
@@ -202,7 +245,7 @@ StaticResult StaticSolver<D>::solve(Eigen::VectorXd& u, const Eigen::VectorXd& f
                                     std::vector<FacetState>& states, const StaticOptions& options,
                                     const GaugeControl* control) {
   StaticResult r;
-  double change = 0, previous_change = 0, smallest_change = 1;
+  double change = 0, previous_change = 0, smallest_change = 1, bridge_change = 0;
   int stalled = 0;
   std::vector<double> next(model_.contacts());
   Eigen::VectorXd prescribed = u;
@@ -219,7 +262,7 @@ StaticResult StaticSolver<D>::solve(Eigen::VectorXd& u, const Eigen::VectorXd& f
       const Eigen::VectorXd u0 = equilibrium(damage, prescribed, f_ext, u - r.lambda * u1, r);
       const double sensitivity = control->gauge.dot(u1);
       if (!(std::abs(sensitivity) > 0))
-        throw InstabilityError("rigid cells: the controlling gauge no longer moves with the plate that drives it");
+        discard_and_throw("rigid cells: the controlling gauge no longer moves with the plate that drives it");
       r.lambda = (control->target - control->gauge.dot(u0)) / sensitivity;
       u = u0 + r.lambda * u1;
     }
@@ -242,22 +285,26 @@ StaticResult StaticSolver<D>::solve(Eigen::VectorXd& u, const Eigen::VectorXd& f
       damage[c] = std::clamp(damage[c] + boost * (next[c] - damage[c]), states[c].D_max,
                              std::max(next[c], kMaxExtrapolatedDamage));
     previous_change = change;
-    stalled = change < smallest_change ? 0 : stalled + 1;
-    smallest_change = std::min(smallest_change, change);
+    // The fibres across the cracking facets, at this iterate and its damage: their secants go into the next solve.
+    bridge_change = bridges_ ? bridges_->evaluate(u_cells, damage) : 0.0;
+    const double moved = std::max(change, bridge_change);
+    stalled = moved < smallest_change ? 0 : stalled + 1;
+    smallest_change = std::min(smallest_change, moved);
     if (stalled == kStallIterations && !options.monotone) break;
-    if (change > options.damage_tolerance) continue;
+    if (moved > options.damage_tolerance) continue;
     const Eigen::VectorXd f_int = forces(u, damage);
     const double scale = std::max(
-        {(select_ * f_int).cwiseAbs().maxCoeff(), f_int.cwiseAbs().maxCoeff(), f_ext.cwiseAbs().maxCoeff(), 1e-300});
-    r.residual = (select_ * (f_ext - f_int)).cwiseAbs().maxCoeff() / scale;
+        {largest(select_ * f_int), largest(f_int), largest(f_ext), 1e-300});
+    r.residual = largest(select_ * (f_ext - f_int)) / scale;
     if (r.residual <= options.force_tolerance) {
       for (std::size_t c = 0; c < states.size(); ++c) states[c].D_max = damage[c];
+      if (bridges_) bridges_->commit();
       return r;
     }
     // No facet changed, but the forces are out of balance: the conjugate gradients' error, relative to their
     // right-hand side, is too large for a specimen nearly cut through (its forces are small against its
     // stiffness), and would repeat in every iteration. The next solves use the factor of this damage itself.
-    if (change == 0 && factored_ != damage) {
+    if (moved == 0 && factored_ != stiffness_state(damage)) {
       factorise(stiffness(damage), damage);
       ++r.factorisations;
     }
@@ -267,8 +314,10 @@ StaticResult StaticSolver<D>::solve(Eigen::VectorXd& u, const Eigen::VectorXd& f
     << " iterations ("
     << (stalled == kStallIterations ? "no smaller change in the last " + std::to_string(kStallIterations) + "; " : "")
     << "largest change of a facet's damage in the last one " << change << ", tolerance " << options.damage_tolerance
+    << (bridges_ ? "; of a fibre's force over the largest " + std::to_string(bridge_change) : std::string())
     << "; out-of-balance ratio " << r.residual << ", tolerance " << options.force_tolerance << ")";
-  throw InstabilityError(m.str());
+  discard_and_throw(m.str());
+  return r;
 }
 
 template <int D>

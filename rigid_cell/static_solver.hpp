@@ -55,8 +55,9 @@ class StaticSolver {
   // `prescribed`: the reduced degrees of freedom whose displacement is given. Throws InputError naming a cell that
   // no chain of contact facets and plates joins to a prescribed degree of freedom, unless `inertia` says every
   // solve will carry a mass (set_inertia): a free body then moves as its load and inertia say.
+  // `bridges` (may be null): the fibres across the facets, evaluated at each iterate and kept with its convergence.
   StaticSolver(const CellAssembly<D>& model, const PlateConstraints<D>& plates, const std::vector<int>& prescribed,
-               bool inertia = false);
+               bool inertia = false, FibreBridges<D>* bridges = nullptr);
   // Without plates: `prescribed` indexes cell × kDofs + component.
   StaticSolver(const CellAssembly<D>& model, const std::vector<int>& prescribed);
 
@@ -86,10 +87,11 @@ class StaticSolver {
   // K₀ u: the undamaged stiffness's forces, over every reduced degree of freedom.
   Eigen::VectorXd intact_forces(const Eigen::VectorXd& u) const;
 
-  // The damage whose stiffness is factorised (empty before the first solve), and a factorisation at a given one:
-  // a checkpoint keeps it, since the solves that use it as a preconditioner depend on it in their last bits.
-  const std::vector<double>& factored_damage() const { return factored_; }
-  void factorise_at(const std::vector<double>& damage) { factorise(stiffness(damage), damage); }
+  // The state whose stiffness is factorised (empty before the first solve): the damage, then the bridges' secants;
+  // and a factorisation at a given one: a checkpoint keeps it, since the solves that use it as a preconditioner
+  // depend on it in their last bits.
+  const std::vector<double>& factored_state() const { return factored_; }
+  void factorise_at(const std::vector<double>& state);
 
  private:
   using Cholesky = Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>;
@@ -117,6 +119,7 @@ class StaticSolver {
   };
 
   const CellAssembly<D>& model_;
+  FibreBridges<D>* bridges_;
   SparseMatrix map_;  // u_cells = map_ · u
   // Newmark's constant part c_M M + c_K K₀ (set_inertia): c_M = 0 and c_K = 0 for a static solve.
   SparseMatrix mass_;        // reduced
@@ -130,16 +133,21 @@ class StaticSolver {
   // BLAS thread, no OpenMP level), so the bits do not depend on the thread count. On a 3D disc of 786 DOFs the
   // supernodal one takes 1.3 s for 120 steps where simplicial took 4.0 s.
   Cholesky cholesky_;
-  std::vector<double> factored_;  // the damage of the factorised stiffness; empty: no usable factor
+  std::vector<double> factored_;  // the state (stiffness_state) of the factorised stiffness; empty: no usable factor
   bool analysed_ = false;
   Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower, FactorPreconditioner> cg_;
 
   static void check_support(const CellAssembly<D>& model, const SparseMatrix& map, const std::vector<int>& prescribed,
                             bool inertia);
   void factorise(const SparseMatrix& Kff, const std::vector<double>& damage);
+  [[noreturn]] void discard_and_throw(const std::string& message);
   // The lower triangle of the free stiffness for a damage, with the constant shift of a dynamic solve.
   const SparseMatrix& stiffness(const std::vector<double>& damage);
-  // (K(D) + shift) u over every reduced degree of freedom.
+  // What the stiffness is built from: the damage, then the bridges' secants of their last evaluation.
+  std::vector<double> stiffness_state(const std::vector<double>& damage) const;
+  // (K(D) + shift) u over every reduced degree of freedom, the bridges' secants included: linear in u.
+  Eigen::VectorXd secant_forces(const Eigen::VectorXd& u, const std::vector<double>& damage) const;
+  // The internal forces at u: the facets' secant ones, the bridges' of their last evaluation (at u), and the shift.
   Eigen::VectorXd forces(const Eigen::VectorXd& u, const std::vector<double>& damage) const;
   Eigen::VectorXd free_solution(const std::vector<double>& damage, const Eigen::VectorXd& rhs,
                                 const Eigen::VectorXd& guess, StaticResult& r);

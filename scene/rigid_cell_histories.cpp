@@ -41,8 +41,17 @@ std::vector<CellSeries> rigid_cell_series(const Scene& s) {
   for (std::size_t p = 0; p < s.probes.size(); ++p)
     out.push_back({W::Opening, s.probes[p].name, "m", static_cast<int>(p)});
   if (s.rigid_cell)
-    for (std::size_t i = 0; i < s.rigid_cell->sections.size(); ++i)
-      out.push_back({W::SectionStress, section_history_name(s.rigid_cell->sections[i]), "Pa", static_cast<int>(i)});
+    for (std::size_t i = 0; i < s.rigid_cell->sections.size(); ++i) {
+      const std::string name = section_history_name(s.rigid_cell->sections[i]);
+      out.push_back({W::SectionStress, name, "Pa", static_cast<int>(i)});
+      if (!s.rigid_cell->fibres.empty())
+        out.push_back({W::SectionBridging, name + ".bridging_force", "N", static_cast<int>(i)});
+    }
+  if (s.rigid_cell && !s.rigid_cell->fibres.empty()) {
+    out.push_back({W::FibresBridging, "fibres.bridging", "-"});
+    out.push_back({W::FibresPulledOut, "fibres.pulled_out", "-"});
+    out.push_back({W::FibresRuptured, "fibres.ruptured", "-"});
+  }
   if (s.rigid_cell && s.rigid_cell->energy) {
     out.push_back({W::BoundaryWork, "energy.boundary_work", "J"});
     out.push_back({W::StrainEnergy, "energy.strain", "J"});

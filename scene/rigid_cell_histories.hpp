@@ -25,6 +25,10 @@ struct CellSeries {
     PlateVelocity,      // a plate's velocity (dynamics; translations)
     Opening,            // an opening probe's reading (`plate` holds the probe's index)
     SectionStress,      // the mean normal stress across a section plane (`plate` holds its index)
+    SectionBridging,    // the fibres' force across it
+    FibresBridging,     // fibres that carry a force across a crack
+    FibresPulledOut,    // fibres pulled out of a side
+    FibresRuptured,     // fibres broken
     BoundaryWork,
     StrainEnergy,
     KineticEnergy,  // dynamics

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/world.hpp"
+#include "rigid_cell/fibre_pullout.hpp"  // FibreMaterial: plain data
 
 namespace mc {
 
@@ -164,6 +165,7 @@ struct CellSpecimenSpec {
   double thickness = 0;                         // 3D disc and polygon: along z from 0 [m]
   double l_min = 0;                             // least node distance [m]
   int max_rejections = 2000;                    // placement saturation (rigid_cell/node_placement.hpp)
+  std::vector<double> nodes;                    // the cells' nodes, when given (D numbers each) [m]
 };
 
 // The facet law between two phases (rigid_cell/facet_law.hpp): E₀ and α given, or from the macroscopic E and ν
@@ -218,8 +220,24 @@ struct SectionSpec {
   double at = 0;  // [m]
 };
 
+// A family of short fibres ([[rigid_cell.fibres]], Květoň Part II; rigid_cell/fibre_*.hpp), 3D only: the fibres'
+// material, and their placement by volume fraction or count, orientation and boundary rule, or given one by one.
+struct FibreFamilySpec {
+  std::string name;
+  rigid_cell::FibreMaterial material;
+  double volume_fraction = 0;  // V_f [-]; 0: by count, or given
+  std::int64_t count = 0;
+  double length = 0;  // l_f [m]
+  enum class Orientation { Isotropic, Aligned, Preferential } orientation = Orientation::Isotropic;
+  std::vector<double> direction;  // aligned, preferential
+  double concentration = 0;       // κ of the preferential spread [-]
+  bool cut = false;               // a fibre partly outside is cut at the surface (else drawn again, §5.4)
+  std::vector<double> ends;       // given fibres: x, y, z of end a, then of end b, per fibre [m]
+};
+
 struct RigidCellSpec {
   CellSpecimenSpec specimen;
+  std::vector<FibreFamilySpec> fibres;
   std::vector<SectionSpec> sections;
   std::optional<StressWaveSpec> stress_wave;
   std::optional<CellDynamicsSpec> dynamics;  // absent: static load steps

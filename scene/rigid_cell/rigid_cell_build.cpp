@@ -1,5 +1,6 @@
 #include "scene/rigid_cell/rigid_cell_build.hpp"
 
+#include <cstdio>
 #include <optional>
 
 #include "engine/errors.hpp"
@@ -78,6 +79,26 @@ PlateSpec<D> plate_of(const GroupSpec& g) {
   return p;
 }
 
+FibreFamily fibre_family(const FibreFamilySpec& f) {
+  FibreFamily family{f.name, f.material, {}, {}};
+  FibrePlacement& p = family.placement;
+  p.volume_fraction = f.volume_fraction;
+  p.count = static_cast<long>(f.count);
+  p.length = f.length;
+  p.diameter = f.material.diameter;
+  using O = FibreFamilySpec::Orientation;
+  p.orientation = f.orientation == O::Aligned        ? FibreOrientation::Aligned
+                  : f.orientation == O::Preferential ? FibreOrientation::Preferential
+                                                     : FibreOrientation::Isotropic;
+  if (!f.direction.empty()) p.direction = Vec<3>(f.direction[0], f.direction[1], f.direction[2]).normalized();
+  p.concentration = f.concentration;
+  p.boundary = f.cut ? FibreBoundary::Cut : FibreBoundary::Redraw;
+  for (std::size_t i = 0; i + 6 <= f.ends.size(); i += 6)
+    family.given.push_back({Vec<3>(f.ends[i], f.ends[i + 1], f.ends[i + 2]),
+                            Vec<3>(f.ends[i + 3], f.ends[i + 4], f.ends[i + 5])});
+  return family;
+}
+
 template <int D>
 RigidCellSetup<D> setup_of(const Scene& s) {
   const RigidCellSpec& r = *s.rigid_cell;
@@ -126,6 +147,10 @@ RigidCellSetup<D> setup_of(const Scene& s) {
                      d->beta, d->gamma, d->mass_damping, d->stiffness_damping};
   for (const SectionSpec& x : r.sections) setup.sections.push_back({x.axis, x.at});
   setup.options = {r.damage_tolerance, r.force_tolerance, r.max_iterations};
+  for (std::size_t i = 0; i + D <= r.specimen.nodes.size(); i += D)
+    setup.nodes.push_back(vec_of<D>(std::vector<double>(r.specimen.nodes.begin() + static_cast<std::ptrdiff_t>(i),
+                                                        r.specimen.nodes.begin() + static_cast<std::ptrdiff_t>(i + D))));
+  for (const FibreFamilySpec& f : r.fibres) setup.fibres.push_back(fibre_family(f));
   setup.crack_log = r.crack_log;
   return setup;
 }
@@ -152,6 +177,10 @@ std::vector<Series> series_of(const Scene& s, const RigidCellSystem<D>* sys) {
       case W::PlateVelocity: f = [sys, p, k] { return sys->plate_velocity(p, k); }; break;
       case W::Opening: f = [sys, p] { return sys->opening(p); }; break;
       case W::SectionStress: f = [sys, p] { return sys->section_stress(p); }; break;
+      case W::SectionBridging: f = [sys, p] { return sys->section_bridging_force(p); }; break;
+      case W::FibresBridging: f = [sys] { return static_cast<double>(sys->fibre_counts()[0]); }; break;
+      case W::FibresPulledOut: f = [sys] { return static_cast<double>(sys->fibre_counts()[1]); }; break;
+      case W::FibresRuptured: f = [sys] { return static_cast<double>(sys->fibre_counts()[2]); }; break;
       case W::BoundaryWork: f = [sys] { return sys->boundary_work(); }; break;
       case W::StrainEnergy: f = [sys] { return sys->strain_energy(); }; break;
       case W::KineticEnergy: f = [sys] { return sys->kinetic_energy(); }; break;
@@ -174,6 +203,10 @@ std::unique_ptr<System> build(const Scene& s) {
     throw InputError(what.rfind(s.file, 0) == 0 ? what : s.file + ": " + what);
   }
   sys->set_histories(series_of<D>(s, sys.get()));
+  if (!sys->fibres().empty())
+    std::fprintf(stderr, "%s: %zu fibres placed in %.3f s, %zu crossings found in %.3f s\n", s.file.c_str(),
+                 sys->fibres().size(), sys->fibre_placement_seconds(),
+                 sys->bridges() ? sys->bridges()->sites() : std::size_t{0}, sys->fibre_crossing_seconds());
   return sys;
 }
 

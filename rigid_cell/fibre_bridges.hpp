@@ -1,0 +1,118 @@
+// The fibres' bridging forces on the rigid cells (Květoň §5.4, (5.11)): at each crossing of a fibre with a contact
+// facet, a virtual facet of the fibre's section carries the fibre's force across the crack, between the two cells
+// the facet parts, at the crossing point. A crossing takes part once its facet has begun to crack (the fibres'
+// stiffness in the elastic range is neglected, §5.4); from then on the facet's stress is the matrix's plus the
+// fibres' (5.11). The opening a crossing sees is the jump Δ of the two cells' motions there; with the spalling
+// length s_f (5.8) the exit points R and L lie s_f back along the fibre, R − L = Δ + 2 s_f f (5.7): the fibre is
+// pulled out by w = |R − L| − 2 s_f and pulls along R − L, at the angle φ'_f (5.6) to its own direction.
+//
+// Several cracks on one fibre (§5.2): each crossing's embedment on a side reaches to the next cracked crossing of
+// the fibre there (or the fibre's end), less the length that crossing has debonded towards it, and less the
+// spalling. What the thesis leaves out, and this does too: debonded zones of two cracks that overlap, and a middle
+// piece of fibre freed on both sides, which would slide with the cells rather than hold them.
+//
+// The secant iteration of a static or implicit step evaluates every crossing from its last converged state at each
+// iterate (trial), puts each crossing's secant stiffness k e eᵀ on its two cells (k = F/(e·Δ), e the unit vector
+// of R − L: exact at the iterate, positive semi-definite), and keeps the trial once the step has converged.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "rigid_cell/cell_assembly.hpp"
+#include "rigid_cell/fibre_pullout.hpp"
+
+namespace mc::rigid_cell {
+
+// One fibre crossing one contact facet.
+template <int D>
+struct BridgeSite {
+  int fibre = -1;            // its fibre, in the order the fibres were placed
+  int family = 0;            // the fibre's family: its material
+  std::size_t contact = 0;   // the facet
+  double at = 0;             // the crossing's distance from the fibre's end a [m]
+  double length = 0;         // the fibre's length [m]
+  bool a_on_cell_a = true;   // the fibre's end a lies on the side of the facet's cell a
+  Vec<D> direction = Vec<D>::Zero();  // f: the fibre's unit direction from cell a's side to cell b's
+  double theta = 0;          // the fibre's angle to the facet's normal [rad]
+  Vec<D> point = Vec<D>::Zero();      // where it crosses [m]
+};
+
+// A crossing's state: the bridge's history, its spalling length and the force it carried when last evaluated, and
+// the secant it was put into the stiffness with.
+template <int D>
+struct BridgeState {
+  FibreBridge bridge;
+  double spalling = 0;      // s_f (5.8) [m], from the normal force of the last converged state
+  double normal_force = 0;  // P_N [N]
+  double force = 0;         // F [N]
+  double secant = 0;        // k [N/m]
+  Vec<D> pull = Vec<D>::Zero();  // e: the unit vector of R − L
+  double active = 0;        // 1 once its facet has begun to crack
+};
+
+template <int D>
+class FibreBridges {
+ public:
+  static constexpr int kDofs = CellAssembly<D>::kDofs;
+  using Element = Eigen::Matrix<double, 2 * kDofs, 2 * kDofs>;
+
+  // `sites` ordered fibre by fibre, each fibre's from its end a; `materials` by family.
+  FibreBridges(const Tessellation<D>& t, const CellAssembly<D>& model, std::vector<FibreMaterial> materials,
+               std::vector<BridgeSite<D>> sites);
+
+  std::size_t sites() const { return sites_.size(); }
+  const BridgeSite<D>& site(std::size_t i) const { return sites_[i]; }
+  const BridgeState<D>& state(std::size_t i) const { return trial_[i]; }
+  const FibreMaterial& material(std::size_t i) const { return materials_[sites_[i].family]; }
+  // The contacts some fibre crosses, ascending; bridged(c) is c's index among them, or −1.
+  const std::vector<std::size_t>& contacts() const { return contacts_; }
+  int bridged(std::size_t contact) const { return index_[contact]; }
+
+  // Every crossing at the cells' displacements, from its converged state; a crossing whose facet's damage is above
+  // zero takes part. Returns the largest change of a crossing's force since the last evaluation, over the largest
+  // force (0 when none carries any).
+  double evaluate(const Eigen::VectorXd& u_cells, const std::vector<double>& damage);
+  void commit() { converged_ = trial_; }
+  void discard() { trial_ = converged_; }
+
+  // The bridges of contact (index among contacts()) as a stiffness on its two cells: Σ k G_fᵀ e eᵀ G_f.
+  Element contact_stiffness(std::size_t j) const;
+  // f += the secant forces Σ G_fᵀ k e eᵀ G_f q (linear in u: what the stiffness above gives).
+  void add_secant_forces(const Eigen::VectorXd& u_cells, Eigen::VectorXd& f) const;
+  // f += the crossings' forces of the last evaluation, Σ G_fᵀ F e.
+  void add_forces(Eigen::VectorXd& f) const;
+  // The force the bridges of a contact exert on its cell b (on a: its opposite) [N].
+  Vec<D> contact_force(std::size_t contact) const;
+
+  // The secants and pull directions the stiffness is built from (D + 1 numbers per crossing), and setting them: a
+  // checkpoint keeps those of the factorised stiffness.
+  std::vector<double> stiffness_key() const;
+  void set_stiffness_key(const std::vector<double>& key, std::size_t from);
+
+  // The converged states (a checkpoint's), and taking them back: throws InputError for another number of crossings.
+  const std::vector<BridgeState<D>>& converged() const { return converged_; }
+  void restore(std::vector<BridgeState<D>> states);
+
+ private:
+  using Jump = Eigen::Matrix<double, D, 2 * kDofs>;
+  std::vector<FibreMaterial> materials_;
+  std::vector<BridgeSite<D>> sites_;
+  std::vector<Jump> jumps_;            // Δ = jump · (q_a, q_b) at each crossing point
+  std::vector<std::pair<int, int>> cells_;  // each crossing's cells a, b
+  std::vector<double> matrix_strength_;     // f_t of each crossing's facet (5.8)
+  std::vector<Vec<D>> normals_;
+  std::vector<std::size_t> contacts_;
+  std::vector<int> index_;
+  std::vector<std::size_t> first_, by_contact_;  // contact j's crossings: by_contact_[first_[j], first_[j + 1])
+  std::vector<std::size_t> fibre_first_;          // crossings of one fibre: [fibre_first_[k], fibre_first_[k + 1])
+  std::vector<std::size_t> fibre_of_site_;        // the index k of a crossing's fibre range
+  std::vector<BridgeState<D>> converged_, trial_;
+
+  Eigen::Matrix<double, 2 * kDofs, 1> gather(std::size_t i, const Eigen::VectorXd& u_cells) const;
+  void embedments(std::size_t i, double spalled, double out[2]) const;
+};
+
+extern template class FibreBridges<2>;
+extern template class FibreBridges<3>;
+
+}  // namespace mc::rigid_cell
