@@ -96,8 +96,8 @@ Eigen::VectorXd CentralDifference<D>::step(double dt, KinematicState& s, const K
   // The fibres across the cracking facets at the new displacements: their forces, no iteration.
   Eigen::VectorXd f_cells = model_.internal_forces(u_cells, damage);
   if (bridges_) {
-    bridges_->evaluate(u_cells, damage);
-    bridges_->commit();
+    bridges_->evaluate(u_cells);
+    bridges_->commit(damage);
     bridges_->add_forces(f_cells);
   }
   // M ü = f_ext − K(D) u − C u̇ at t + dt, the damping on the mid-step velocity (the scheme stays explicit).

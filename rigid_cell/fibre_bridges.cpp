@@ -49,40 +49,37 @@ Eigen::Matrix<double, 2 * FibreBridges<D>::kDofs, 1> FibreBridges<D>::gather(std
   return q;
 }
 
-// §5.2: each side reaches to the nearest cracked crossing of the fibre beyond it, less what that one has debonded
-// towards this one (its converged state), or to the fibre's end; then less the spalling at this exit point.
+// §5.2: each side reaches to the fibre's end, less the lengths the other cracks on that side have debonded (both
+// sides of each, from their converged states), less the spalling at this exit point.
 template <int D>
 void FibreBridges<D>::embedments(std::size_t i, double spalled, double out[2]) const {
   const BridgeSite<D>& s = sites_[i];
   const std::size_t k = fibre_of_site_[i], begin = fibre_first_[k], end = fibre_first_[k + 1];
-  auto debonded_towards = [&](std::size_t j, bool towards_end_b) {
-    const BridgeSite<D>& o = sites_[j];
-    const int side = (o.a_on_cell_a == towards_end_b) ? 1 : 0;  // the side of j on which this crossing lies
+  auto debonded = [&](std::size_t j) {
+    const FibreMaterial& f = materials_[sites_[j].family];
     const TwoSidedPullout& t = converged_[j].bridge.sides;
-    return side_debonded_length(materials_[o.family], t.embedment[side], t.pullout[side]);
+    return side_debonded_length(f, t.embedment[0], t.pullout[0]) + side_debonded_length(f, t.embedment[1], t.pullout[1]);
   };
   double towards_a = s.at, towards_b = s.length - s.at;
-  for (std::size_t j = i; j-- > begin;)
-    if (converged_[j].active != 0) {
-      towards_a = s.at - sites_[j].at - debonded_towards(j, true);
-      break;
-    }
-  for (std::size_t j = i + 1; j < end; ++j)
-    if (converged_[j].active != 0) {
-      towards_b = sites_[j].at - s.at - debonded_towards(j, false);
-      break;
-    }
+  for (std::size_t j = begin; j < end; ++j) {
+    if (j == i || converged_[j].active == 0) continue;
+    (j < i ? towards_a : towards_b) -= debonded(j);
+  }
   out[s.a_on_cell_a ? 0 : 1] = std::max(0.0, towards_a - spalled);
   out[s.a_on_cell_a ? 1 : 0] = std::max(0.0, towards_b - spalled);
 }
 
 template <int D>
-double FibreBridges<D>::evaluate(const Eigen::VectorXd& u_cells, const std::vector<double>& damage) {
+double FibreBridges<D>::evaluate(const Eigen::VectorXd& u_cells, bool monotone) {
   double change = 0, largest = 0;
-  for (std::size_t i = 0; i < sites_.size(); ++i) {
+  // Each crossing from its own converged state and its fibre's other crossings' converged ones: independent, so
+  // spread over the threads with the same result for any count (the maxima are order-free).
+  const auto n = static_cast<std::ptrdiff_t>(sites_.size());
+#pragma omp parallel for schedule(dynamic, 256) reduction(max : change, largest)
+  for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
     const BridgeSite<D>& s = sites_[i];
     BridgeState<D> next = converged_[i];
-    if (next.active == 0 && damage[s.contact] > 0) next.active = 1;
     if (next.active != 0) {
       const FibreMaterial& f = materials_[s.family];
       next.spalling = spalling_length(f, converged_[i].normal_force, s.theta, matrix_strength_[i]);  // (5.8)
@@ -97,8 +94,11 @@ double FibreBridges<D>::evaluate(const Eigen::VectorXd& u_cells, const std::vect
         const double phi = std::acos(std::clamp(next.pull.dot(s.direction), -1.0, 1.0));  // (5.6)
         const double w = std::max(0.0, length - 2 * next.spalling);
         next.force = bridge_force(f, next.bridge, w, phi);
-        const double along = next.pull.dot(jump);
-        next.secant = along > 0 ? next.force / along : 0.0;
+        next.secant = next.force / length;
+        if (monotone && next.secant > trial_[i].secant) {  // a snap-through: the secant only falls
+          next.secant = trial_[i].secant;
+          next.force = next.bridge.force = next.secant * length;
+        }
         next.normal_force = next.force * std::abs(next.pull.dot(normals_[i]));
       }
     }
@@ -115,8 +115,8 @@ typename FibreBridges<D>::Element FibreBridges<D>::contact_stiffness(std::size_t
   for (std::size_t k = first_[j]; k < first_[j + 1]; ++k) {
     const std::size_t i = by_contact_[k];
     if (trial_[i].secant == 0) continue;
-    const Eigen::Matrix<double, 2 * kDofs, 1> g = jumps_[i].transpose() * trial_[i].pull;
-    K.noalias() += trial_[i].secant * g * g.transpose();
+    // A 12 × 3 by 3 × 12 product: coefficient by coefficient (Eigen's blocked product for it took most of a step).
+    K.noalias() += trial_[i].secant * jumps_[i].transpose().lazyProduct(jumps_[i]);
   }
   return K;
 }
@@ -124,9 +124,10 @@ typename FibreBridges<D>::Element FibreBridges<D>::contact_stiffness(std::size_t
 template <int D>
 void FibreBridges<D>::add_secant_forces(const Eigen::VectorXd& u_cells, Eigen::VectorXd& f) const {
   for (std::size_t i = 0; i < sites_.size(); ++i) {
-    if (trial_[i].secant == 0) continue;
-    const Eigen::Matrix<double, 2 * kDofs, 1> g = jumps_[i].transpose() * trial_[i].pull;
-    const Eigen::Matrix<double, 2 * kDofs, 1> fe = trial_[i].secant * g.dot(gather(i, u_cells)) * g;
+    const BridgeState<D>& t = trial_[i];
+    if (t.secant == 0) continue;
+    const Vec<D> span = jumps_[i] * gather(i, u_cells) + 2 * t.spalling * sites_[i].direction;  // R − L (5.7)
+    const Eigen::Matrix<double, 2 * kDofs, 1> fe = jumps_[i].transpose() * (t.secant * span);
     f.template segment<kDofs>(kDofs * cells_[i].first) += fe.template head<kDofs>();
     f.template segment<kDofs>(kDofs * cells_[i].second) += fe.template tail<kDofs>();
   }
@@ -154,22 +155,23 @@ Vec<D> FibreBridges<D>::contact_force(std::size_t contact) const {
 template <int D>
 std::vector<double> FibreBridges<D>::stiffness_key() const {
   std::vector<double> key;
-  key.reserve((D + 1) * trial_.size());
-  for (const BridgeState<D>& s : trial_) {
-    key.push_back(s.secant);
-    for (int k = 0; k < D; ++k) key.push_back(s.pull[k]);
-  }
+  key.reserve(trial_.size());
+  for (const BridgeState<D>& s : trial_) key.push_back(s.secant);
   return key;
 }
 
 template <int D>
 void FibreBridges<D>::set_stiffness_key(const std::vector<double>& key, std::size_t from) {
-  if (key.size() != from + (D + 1) * trial_.size())
+  if (key.size() != from + trial_.size())
     throw InputError("its checkpoint holds other fibres than the scene places; resume with the scene that wrote it");
-  for (std::size_t i = 0; i < trial_.size(); ++i) {
-    trial_[i].secant = key[from + (D + 1) * i];
-    for (int k = 0; k < D; ++k) trial_[i].pull[k] = key[from + (D + 1) * i + 1 + k];
-  }
+  for (std::size_t i = 0; i < trial_.size(); ++i) trial_[i].secant = key[from + i];
+}
+
+template <int D>
+void FibreBridges<D>::commit(const std::vector<double>& damage) {
+  converged_ = trial_;
+  for (std::size_t i = 0; i < sites_.size(); ++i)
+    if (converged_[i].active == 0 && damage[sites_[i].contact] > 0) trial_[i].active = converged_[i].active = 1;
 }
 
 template <int D>

@@ -1,19 +1,25 @@
 // The fibres' bridging forces on the rigid cells (Květoň §5.4, (5.11)): at each crossing of a fibre with a contact
 // facet, a virtual facet of the fibre's section carries the fibre's force across the crack, between the two cells
-// the facet parts, at the crossing point. A crossing takes part once its facet has begun to crack (the fibres'
+// the facet parts, at the crossing point. A crossing takes part from the step after its facet has begun to crack (the fibres'
 // stiffness in the elastic range is neglected, §5.4); from then on the facet's stress is the matrix's plus the
 // fibres' (5.11). The opening a crossing sees is the jump Δ of the two cells' motions there; with the spalling
 // length s_f (5.8) the exit points R and L lie s_f back along the fibre, R − L = Δ + 2 s_f f (5.7): the fibre is
 // pulled out by w = |R − L| − 2 s_f and pulls along R − L, at the angle φ'_f (5.6) to its own direction.
 //
-// Several cracks on one fibre (§5.2): each crossing's embedment on a side reaches to the next cracked crossing of
-// the fibre there (or the fibre's end), less the length that crossing has debonded towards it, and less the
-// spalling. What the thesis leaves out, and this does too: debonded zones of two cracks that overlap, and a middle
-// piece of fibre freed on both sides, which would slide with the cells rather than hold them.
+// Several cracks on one fibre (§5.2): each crossing's embedment on a side is the fibre's length to its end there,
+// less the lengths the other cracks on that side have debonded (from their last converged states), and less the
+// spalling. (Cut at the next crack instead, the embedments of the §6.3 prism's fibres shrank to the 1-2 mm between
+// facets as soon as those had begun to damage, before any had opened: one crack, and no hardening.) What the thesis
+// leaves out, and this does too: debonded zones of two cracks that overlap, and a middle piece of fibre freed on
+// both sides, which would slide with the cells rather than hold them.
 //
 // The secant iteration of a static or implicit step evaluates every crossing from its last converged state at each
-// iterate (trial), puts each crossing's secant stiffness k e eᵀ on its two cells (k = F/(e·Δ), e the unit vector
-// of R − L: exact at the iterate, positive semi-definite), and keeps the trial once the step has converged.
+// iterate (trial), puts each crossing's secant on its two cells, and keeps the trial once the step has converged. The
+// fibre pulls its exit points together with F along R − L, so F e = k (Δ + 2 s_f f), k = F/|R − L|: an isotropic
+// spring k I on the jump (a zero-length cable's secant, positive definite whatever way the crack moves) with the
+// spalling's 2 k s_f f as a force of its own. A secant k e eᵀ along the pull alone, also exact at the iterate,
+// turns with e from iterate to iterate: on the prism of §6.3 its iteration swung by 2 % of the fibres' force and
+// never settled.
 #pragma once
 #include <cstddef>
 #include <vector>
@@ -68,23 +74,29 @@ class FibreBridges {
   const std::vector<std::size_t>& contacts() const { return contacts_; }
   int bridged(std::size_t contact) const { return index_[contact]; }
 
-  // Every crossing at the cells' displacements, from its converged state; a crossing whose facet's damage is above
-  // zero takes part. Returns the largest change of a crossing's force since the last evaluation, over the largest
-  // force (0 when none carries any).
-  double evaluate(const Eigen::VectorXd& u_cells, const std::vector<double>& damage);
-  void commit() { converged_ = trial_; }
+  // Every crossing that takes part at the cells' displacements, from its converged state. Returns the largest change
+  // of a crossing's force since the last evaluation, over the largest force (0 when none carries any). `monotone`
+  // (a snap-through, static_solver.hpp): no crossing's secant rises above the last evaluation's, as no facet's damage
+  // falls below it; the iteration then settles, with the force below the law where the secant was held (stored as
+  // the force at that opening, so unloading and reloading go through it).
+  double evaluate(const Eigen::VectorXd& u_cells, bool monotone = false);
+  // Keeps the last evaluation, and lets the crossings of the facets whose converged damage is above zero take part
+  // from the next step on. Within a step the crossings that take part stay the same: a crossing that joined as its
+  // facet's damage rose above zero in an iterate would carry its force at once, unload the facet, whose damage
+  // then fell back, and leave again (a cycle of four iterates on the prism of §6.3 that never settled).
+  void commit(const std::vector<double>& damage);
   void discard() { trial_ = converged_; }
 
-  // The bridges of contact (index among contacts()) as a stiffness on its two cells: Σ k G_fᵀ e eᵀ G_f.
+  // The bridges of contact (index among contacts()) as a stiffness on its two cells: Σ k G_fᵀ G_f.
   Element contact_stiffness(std::size_t j) const;
-  // f += the secant forces Σ G_fᵀ k e eᵀ G_f q (linear in u: what the stiffness above gives).
+  // f += the secant forces Σ G_fᵀ k (G_f q + 2 s_f f): the stiffness above and the spalling's constant part.
   void add_secant_forces(const Eigen::VectorXd& u_cells, Eigen::VectorXd& f) const;
   // f += the crossings' forces of the last evaluation, Σ G_fᵀ F e.
   void add_forces(Eigen::VectorXd& f) const;
   // The force the bridges of a contact exert on its cell b (on a: its opposite) [N].
   Vec<D> contact_force(std::size_t contact) const;
 
-  // The secants and pull directions the stiffness is built from (D + 1 numbers per crossing), and setting them: a
+  // The secants the stiffness is built from (one per crossing, after `from` numbers of the key), and setting them: a
   // checkpoint keeps those of the factorised stiffness.
   std::vector<double> stiffness_key() const;
   void set_stiffness_key(const std::vector<double>& key, std::size_t from);

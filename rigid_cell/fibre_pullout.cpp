@@ -185,17 +185,11 @@ double side_debonded_length(const FibreMaterial& f, double embedment, double v) 
 
 double bonded_stiffness(const FibreMaterial& f) { return f.modulus * 0.25 * M_PI * f.diameter; }
 
-double unloading_stiffness(const FibreMaterial& f, const FibreBridge& b) {
-  const TwoSidedPullout& t = b.sides;
-  const double debonded = side_debonded_length(f, t.embedment[0], t.pullout[0]) +
-                          side_debonded_length(f, t.embedment[1], t.pullout[1]);
-  const double elastic = 2 * f.modulus * 0.25 * M_PI * f.diameter * f.diameter / std::max(debonded, f.diameter);
-  return b.opening > 0 ? std::max(elastic, b.force / b.opening) : elastic;
-}
+double unloading_stiffness(const FibreBridge& b) { return b.opening > 0 ? b.force / b.opening : 0.0; }
 
 double bridge_force(const FibreMaterial& f, FibreBridge& b, double w, double phi) {
   if (b.ruptured) return 0.0;
-  if (w < b.opening) return std::max(0.0, b.force - unloading_stiffness(f, b) * (b.opening - w));
+  if (w < b.opening) return unloading_stiffness(b) * w;
   const double pulled = open_crack(f, b.sides, w) * snubbing_factor(f, phi);
   const double force = std::min(pulled, bonded_stiffness(f) * w);
   b.opening = w;

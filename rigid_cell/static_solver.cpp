@@ -286,7 +286,7 @@ StaticResult StaticSolver<D>::solve(Eigen::VectorXd& u, const Eigen::VectorXd& f
                              std::max(next[c], kMaxExtrapolatedDamage));
     previous_change = change;
     // The fibres across the cracking facets, at this iterate and its damage: their secants go into the next solve.
-    bridge_change = bridges_ ? bridges_->evaluate(u_cells, damage) : 0.0;
+    bridge_change = bridges_ ? bridges_->evaluate(u_cells, options.monotone && r.iterations > 1) : 0.0;
     const double moved = std::max(change, bridge_change);
     stalled = moved < smallest_change ? 0 : stalled + 1;
     smallest_change = std::min(smallest_change, moved);
@@ -298,7 +298,7 @@ StaticResult StaticSolver<D>::solve(Eigen::VectorXd& u, const Eigen::VectorXd& f
     r.residual = largest(select_ * (f_ext - f_int)) / scale;
     if (r.residual <= options.force_tolerance) {
       for (std::size_t c = 0; c < states.size(); ++c) states[c].D_max = damage[c];
-      if (bridges_) bridges_->commit();
+      if (bridges_) bridges_->commit(damage);
       return r;
     }
     // No facet changed, but the forces are out of balance: the conjugate gradients' error, relative to their

@@ -1,0 +1,164 @@
+// Fibres bridging the cracks between rigid cells, through the real `mesocrack` command on the scenes of Květoň
+// §6.1-6.2: one fibre across a cracked contact follows the crossing's law (fibre_pullout.hpp) through debonding, the
+// drop and the slide; fibres across an intact contact lift the load above the matrix's peak only beyond a volume
+// fraction; and bad fibre input is refused naming the key.
+#include <algorithm>
+
+#include "rigid_cell/fibre_pullout.hpp"
+#include "tests/common/cli_harness.hpp"
+#include "tests/common/relative.hpp"
+
+namespace {
+
+using mc::rigid_cell::FibreBridge;
+using mc::rigid_cell::FibreMaterial;
+
+std::string pullout_scene() { return slurp(kScenes / "fibre_pullout_two_sided_3d.toml"); }
+std::string contact_scene() { return slurp(kScenes / "fibre_contact_volume_fraction_3d.toml"); }
+
+struct Curve {
+  std::vector<double> u, force;
+  double final_pulled_out = 0, final_ruptured = 0;
+};
+
+Curve run_curve(const TempDir& d, const std::string& name, const std::string& text, std::vector<std::string> set = {}) {
+  write_file(d / (name + ".toml"), text);
+  std::vector<std::string> args = {"run", name + ".toml", "-o", name + ".h5"};
+  for (const std::string& s : set) args.push_back("--set"), args.push_back(s);
+  const Result r = mesocrack(args, d.dir);
+  REQUIRE_MESSAGE(r.code == 0, r.describe());
+  const mc::H5File f((d / (name + ".h5")).string(), mc::H5File::Mode::ReadOnly);
+  Curve c{f.read_doubles("/history/group.right.disp_x"), f.read_doubles("/history/group.right.reaction_x")};
+  c.final_pulled_out = f.read_doubles("/history/fibres.pulled_out").back();
+  c.final_ruptured = f.read_doubles("/history/fibres.ruptured").back();
+  return c;
+}
+
+// §6.1's fibre: E_f 30 GPa, d_f 40 µm, f_tf 1000 MPa, τ_0 2 MPa, G_d 5 N/m, β_f 0.
+FibreMaterial kveton_fibre() {
+  FibreMaterial f;
+  f.modulus = 30e9, f.diameter = 40e-6, f.tensile_strength = 1000e6, f.friction_stress = 2e6, f.debonding_energy = 5;
+  return f;
+}
+
+}  // namespace
+
+TEST_CASE("two_sided_pullout_scene_follows_the_crossing_law_through_debonding_the_drop_and_the_slide") {
+  const TempDir d;
+  const Curve c = run_curve(d, "pullout", pullout_scene());
+  // The fibre lies along the pull: the crossing opens by the plate's travel. The law alone, stepped alike.
+  const FibreMaterial f = kveton_fibre();
+  FibreBridge b;
+  b.sides.embedment[0] = 6.5e-3, b.sides.embedment[1] = 3.5e-3;
+  double peak = 0, peak_at = 0, largest_gap = 0;
+  for (std::size_t i = 1; i < c.u.size(); ++i) {
+    // The first step cracks the facet (the fibre joins from the next one): from there on the reaction is the
+    // fibre's, plus what the facet's 1 kPa matrix still carries (at most 4 mN, and softening away).
+    if (i >= 2) largest_gap = std::max(largest_gap, std::abs(c.force[i] - bridge_force(f, b, c.u[i], 0.0)));
+    if (c.force[i] > peak) peak = c.force[i], peak_at = c.u[i];
+  }
+  MESSAGE("peak " << peak << " N at " << peak_at * 1e6 << " um; largest gap to the law " << largest_gap << " N");
+  CHECK(largest_gap < 4e-3);
+  // Květoň Fig. 6.1: the short side debonded whole at 2 v_d (v_d = 61.0 µm), 1.097 N; the drop to its friction
+  // P_0 = π 3.5 mm d_f τ_0 = 0.880 N; pulled out after 3.5 mm more. A step is 2 µm: the peak is the step's.
+  CHECK(peak == doctest::Approx(debonding_force(f, full_debonding_slip(f, 3.5e-3))).epsilon(1e-3));
+  CHECK(peak_at == doctest::Approx(2 * full_debonding_slip(f, 3.5e-3)).epsilon(0.02));
+  const auto after = std::find_if(c.u.begin(), c.u.end(), [&](double u) { return u > peak_at + 1e-6; });
+  const double dropped = c.force[static_cast<std::size_t>(after - c.u.begin())];
+  CHECK(dropped == doctest::Approx(friction_force(f, 3.5e-3)).epsilon(0.01));
+  CHECK(c.force.back() == 0.0);
+  CHECK(c.final_pulled_out == 1);
+  CHECK(c.final_ruptured == 0);
+}
+
+TEST_CASE("two_sided_pullout_of_a_fibre_too_long_breaks_it_while_it_debonds") {
+  const TempDir d;
+  // §6.1's 20 mm fibre, 7 mm on the right: the force of both sides debonding reaches f_tf π d_f²/4 = 1.2566 N at an
+  // opening of 2 (P²/k − G_d)/τ_0 = 161.6 µm, before the short side is debonded (2 v_d = 2 × 123 µm).
+  std::string s = pullout_scene();
+  s = edit(s, "ends = [\"8.5 mm\", \"1 mm\", \"1 mm\", \"18.5 mm\", \"1 mm\", \"1 mm\"]",
+           "ends = [\"2 mm\", \"1 mm\", \"1 mm\", \"22 mm\", \"1 mm\", \"1 mm\"]");
+  const Curve c = run_curve(d, "long", s, {"run.steps=100"});
+  const double peak = *std::max_element(c.force.begin(), c.force.end());
+  const auto broken = std::find(c.force.begin() + 2, c.force.end(), 0.0);
+  REQUIRE(broken != c.force.end());
+  const double at = c.u[static_cast<std::size_t>(broken - c.force.begin())];
+  MESSAGE("peak " << peak << " N; broken at " << at * 1e6 << " um");
+  CHECK(peak < 1000e6 * 0.25 * M_PI * 40e-6 * 40e-6);
+  CHECK(at == doctest::Approx(161.6e-6).epsilon(0.02));  // within the 2 µm step
+  CHECK(c.final_ruptured == 1);
+}
+
+TEST_CASE("fibres_lift_the_load_of_a_cracked_contact_above_its_first_peak_only_beyond_one_percent") {
+  const TempDir d;
+  // Květoň §6.2: the matrix's elastic limit, then a drop (the fibres' force depends on the opening, still near zero),
+  // then the fibres' own rise. V_f = n π d_f²/4 / (2 mm × 2 mm).
+  for (const int n : {1, 2, 10, 20, 40}) {
+    CAPTURE(n);
+    const Curve c = run_curve(d, "n" + std::to_string(n), contact_scene(),
+                              {"rigid_cell.fibres[0].count=" + std::to_string(n), "output.history_every=1"});
+    std::size_t i = 0;
+    while (i + 1 < c.force.size() && c.force[i + 1] >= c.force[i]) ++i;
+    const double first = c.force[i];
+    std::size_t j = i + 1;
+    while (j + 1 < c.force.size() && c.force[j + 1] <= c.force[j]) ++j;
+    const double trough = c.force[j], second = *std::max_element(c.force.begin() + static_cast<std::ptrdiff_t>(j), c.force.end());
+    const double vf = n * 0.25 * M_PI * 40e-6 * 40e-6 / 4e-6;
+    MESSAGE("n " << n << " (V_f " << 100 * vf << " %): first peak " << first << " N, drop to " << trough
+                 << " N, second peak " << second << " N");
+    CHECK(trough < 0.9 * first);  // the sudden drop
+    // "only for V_f > 1 % the force exceeds the initial peak" (§6.2), measured, not set: with 20 fibres (0.63 %)
+    // the second peak is 0.69 of the first, with 40 (1.26 %) 1.10 of it. The first peak grows with n, as the
+    // thesis says of G_d > 0: each fibre starts at P(0) = 0.22 N once the facet cracks.
+    CHECK((second > first) == (vf > 0.01));
+    CHECK(c.final_pulled_out + c.final_ruptured == n);  // all out in the end
+  }
+}
+
+TEST_CASE("fibre_bad_input_names_the_key_and_what_it_allows") {
+  const TempDir d;
+  const std::string s = contact_scene();
+  check_edits_refused(
+      d.dir, s,
+      {{"count = 20", "volume_fraction = 0", {"rigid_cell.fibres[0].volume_fraction", "0", "out of range"}},
+       {"count = 20", "volume_fraction = 1", {"rigid_cell.fibres[0].volume_fraction", "1", "out of range"}},
+       {"length = \"10 mm\"", "length = \"30 mm\"", {"rigid_cell.fibres[0].length", "longer than the specimen"}},
+       {"diameter = \"0.04 mm\"", "diameter = 0", {"rigid_cell.fibres[0].diameter", "out of range"}},
+       {"orientation = \"aligned\"", "orientation = \"random\"", {"rigid_cell.fibres[0].orientation", "random", "isotropic"}},
+       {"count = 20", "count = 20\nvolume_fraction = 0.01", {"volume_fraction", "count"}},
+       {"kind = \"voronoi_cells\"", "kind = \"random_packing\"", {"rigid_cell.fibres", "voronoi_cells"}},
+       {"nodes = [\"5 mm\", \"1 mm\", \"1 mm\", \"15 mm\", \"1 mm\", \"1 mm\"]",
+        "nodes = [\"5 mm\", \"1 mm\", \"1 mm\", \"25 mm\", \"1 mm\", \"1 mm\"]",
+        {"specimen.nodes", "node 1", "outside"}}});
+  // A 2D scene: its specimen read, its fibres refused.
+  std::string flat = edit(s, "dimension = 3", "dimension = 2");
+  flat = edit(flat, "size = [\"20 mm\", \"2 mm\", \"2 mm\"]", "size = [\"20 mm\", \"2 mm\"]");
+  flat = edit(flat, "nodes = [\"5 mm\", \"1 mm\", \"1 mm\", \"15 mm\", \"1 mm\", \"1 mm\"]",
+              "nodes = [\"5 mm\", \"1 mm\", \"15 mm\", \"1 mm\"]");
+  write_file(d / "scene.toml", flat);
+  check_refused(d.dir, {"run", "scene.toml"}, 2, {"rigid_cell.fibres[0]", "3D", "scene.toml"});
+}
+
+TEST_CASE("fibre_prism_is_the_same_for_any_thread_count_and_resumed_gives_the_same_bits") {
+  const TempDir d;
+  const std::string scene = (kScenes / "fibre_prism_tension_3d.toml").string();
+  // Eight 5 µm steps: the first crack and the fibres across it taking part (from step 3 on).
+  const std::vector<std::string> steps = {"--set", "run.steps=8", "--set", "output.checkpoint_every=5", "--set",
+                                          "output.frame_every=5"};
+  auto run = [&](std::vector<std::string> args) {
+    args.insert(args.end(), steps.begin(), steps.end());
+    const Result r = mesocrack(args, d.dir);
+    REQUIRE_MESSAGE(r.code == 0, r.describe());
+  };
+  run({"run", scene, "-o", "one.h5", "--threads", "1"});
+  run({"run", scene, "-o", "two.h5", "--threads", "2"});
+  const mc::H5File f((d / "one.h5").string(), mc::H5File::Mode::ReadOnly);
+  REQUIRE(f.read_doubles("/history/fibres.bridging").back() > 1000);
+  check_same_run(d / "one.h5", d / "two.h5");
+  const Result first = mesocrack({"run", scene, "-o", "parts.h5", "--set", "run.steps=5", "--set",
+                                  "output.checkpoint_every=5", "--set", "output.frame_every=5"},
+                                 d.dir);
+  REQUIRE_MESSAGE(first.code == 0, first.describe());
+  run({"run", scene, "--resume", "parts.h5"});
+  check_same_run(d / "one.h5", d / "parts.h5");
+}
