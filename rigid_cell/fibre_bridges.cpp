@@ -85,14 +85,14 @@ double FibreBridges<D>::evaluate(const Eigen::VectorXd& u_cells, bool monotone) 
       next.spalling = spalling_length(f, converged_[i].normal_force, s.theta, matrix_strength_[i]);  // (5.8)
       embedments(i, next.spalling, next.bridge.sides.embedment);
       const Vec<D> jump = jumps_[i] * gather(i, u_cells);
-      const Vec<D> span = jump + 2 * next.spalling * s.direction;  // R − L (5.7)
-      const double length = span.norm();
+      const double length = jump.norm();
       next.force = 0, next.secant = 0;
       const bool anchored = next.bridge.sides.embedment[0] > 0 && next.bridge.sides.embedment[1] > 0;
       if (length > 0 && anchored) {
-        next.pull = span / length;
-        const double phi = std::acos(std::clamp(next.pull.dot(s.direction), -1.0, 1.0));  // (5.6)
-        const double w = std::max(0.0, length - 2 * next.spalling);
+        next.pull = jump / length;
+        const Vec<D> exits = jump + 2 * next.spalling * s.direction;  // R − L (5.7)
+        const double phi = std::acos(std::clamp(exits.normalized().dot(s.direction), -1.0, 1.0));  // (5.6)
+        const double w = length;
         next.force = bridge_force(f, next.bridge, w, phi);
         next.secant = next.force / length;
         if (monotone && next.secant > trial_[i].secant) {  // a snap-through: the secant only falls
@@ -126,8 +126,7 @@ void FibreBridges<D>::add_secant_forces(const Eigen::VectorXd& u_cells, Eigen::V
   for (std::size_t i = 0; i < sites_.size(); ++i) {
     const BridgeState<D>& t = trial_[i];
     if (t.secant == 0) continue;
-    const Vec<D> span = jumps_[i] * gather(i, u_cells) + 2 * t.spalling * sites_[i].direction;  // R − L (5.7)
-    const Eigen::Matrix<double, 2 * kDofs, 1> fe = jumps_[i].transpose() * (t.secant * span);
+    const Eigen::Matrix<double, 2 * kDofs, 1> fe = jumps_[i].transpose() * (t.secant * (jumps_[i] * gather(i, u_cells)));
     f.template segment<kDofs>(kDofs * cells_[i].first) += fe.template head<kDofs>();
     f.template segment<kDofs>(kDofs * cells_[i].second) += fe.template tail<kDofs>();
   }
