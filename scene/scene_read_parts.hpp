@@ -39,6 +39,8 @@ void read_observers(const Table& root, Scene& s);  // scene/observers_read.cpp
 void read_opening(const KeyReader& k, const Scene& s, ProbeSpec& p);
 // A scene with a [rigid_cell] table: its facet laws, cell specimen, mesostructure, plates and load step.
 void read_rigid_cell(const Table& root, Scene& s);  // scene/rigid_cell_read.cpp
+// [[rigid_cell.fibres]], after the specimen: a fibre at most `longest` (the specimen's longest extent) [m].
+void read_fibres(const std::vector<Table>& tables, double longest, Scene& s);  // scene/fibres_read.cpp
 // Each wall under opening control names an opening probe (after read_observers).
 void check_opening_walls(const Table& root, const Scene& s);  // scene/observers_read.cpp
 
