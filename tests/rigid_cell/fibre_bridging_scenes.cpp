@@ -185,7 +185,8 @@ TEST_CASE("aligned_fibres_harden_the_prism_after_its_first_crack_and_it_cracks_a
   // The matrix alone: f_t A = 3.8 MPa × 200 mm² = 760 N at most; measured 600 N, 478 N, 1446 N.
   CHECK(first < 760);
   CHECK(load[j] < first);
-  CHECK(last > 1.5 * first);  // strain hardening
+  // Strain hardening is last > first; 1.5 keeps room below the measured 2.2 for another machine's last bits.
+  CHECK(last > 1.5 * first);
   // Cracking spread, not one crack: one crack across this prism breaks 82 facets (measured with the prism held at its
   // last 2.5 mm only, where it cracked once and softened); here more than twice as many break, over a stretch longer
   // than a fibre.
@@ -213,6 +214,8 @@ TEST_CASE("two_sided_pullout_under_newmark_steps_is_the_static_one_when_inertia_
   double largest = 0;
   for (std::size_t i = 2; i < s.force.size(); ++i) largest = std::max(largest, std::abs(s.force[i] - n.force[i]));
   MESSAGE("largest difference " << largest << " N");
-  CHECK(largest < 1e-6);  // against forces of 0.3-1.1 N
+  // Against forces of 0.3-1.1 N: the inertial force m a of cells moving at a constant 2 µm/s is nil, and the two
+  // iterations stop at the same 1e-6 tolerances, so they differ by the tolerance at most.
+  CHECK(largest < 1e-6);
   CHECK(*std::max_element(n.force.begin(), n.force.end()) > 1.0);
 }
