@@ -6,11 +6,13 @@
 Writes <stem>_history.png, <stem>_xy.png (if the scene asks for x-y plots),
 <stem>_energy.png (if energy series exist), <stem>_specimen.png (2D) or
 <stem>_slice.png (3D), <stem>_cracks.png (if the run logged cracks),
-<stem>_cells.png (rigid cells: the crack pattern of their damaged facets) and,
+<stem>_cells.png (rigid cells: the crack pattern of their damaged facets),
+<stem>_fibres.png (rigid cells with fibres: the cracks with the fibres bridging
+them, and the load against displacement) and,
 for a pull test ([pullout]), <stem>_pullout.png and <stem>_pullout_cracks.png
 next to OUT.h5 (or into DIR) and prints their paths. The figures are drawn by
 report_plots.py (time series), report_specimen.py (specimen and cracks) and
-report_pullout.py (pull tests).
+report_pullout.py (pull tests), report_fibres.py (fibres).
 The file is opened read-only and without HDF5 file locking, so a run that is
 still writing can be looked at.
 """
@@ -28,6 +30,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from report_plots import ReportError, plot_energy, plot_history, plot_xy  # noqa: E402
 from report_specimen import plot_cells, plot_cracks, plot_cracks_at_peak, plot_specimen  # noqa: E402
 from report_pullout import plot_pullout  # noqa: E402
+from report_fibres import plot_fibres  # noqa: E402
 
 FORMAT = "mesocrack-1"
 
@@ -176,9 +179,20 @@ def read_cells(f, run):
         by_peak = int(np.searchsorted(times, peak["time"], side="right")) - 1
         if 0 <= by_peak < F - 1:
             picks.insert(0, (by_peak, peak))
+    fibres = f.get("specimen/fibres")
+    has_fibres = isinstance(fibres, h5py.Group) and "fibre_state" in frames and frames["fibre_state"].shape[0] >= F
+    if has_fibres:
+        point = np.asarray(fibres["point"], dtype=float)
+        start, line = np.asarray(fibres["line_start"], dtype=np.int64), np.asarray(fibres["line_point"], dtype=np.int64)
+        cells["fibres"] = {"a": point[line[start[:-1]]], "b": point[line[start[1:] - 1]],
+                           "family": np.asarray(fibres["family"], dtype=np.int64)}
     for k, p in picks:
-        cells["frames"].append({"index": k, "count": F, "time": float(times[k]), "step": int(frames["step"][k]),
-                                "damage": np.asarray(frames["damage"][k], dtype=float), "peak": p})
+        frame = {"index": k, "count": F, "time": float(times[k]), "step": int(frames["step"][k]),
+                 "damage": np.asarray(frames["damage"][k], dtype=float), "peak": p}
+        if has_fibres:
+            frame["fibre_state"] = np.asarray(frames["fibre_state"][k], dtype=float).astype(np.int64)
+            frame["fibre_force"] = np.asarray(frames["fibre_force"][k], dtype=float)
+        cells["frames"].append(frame)
     return cells
 
 
@@ -226,7 +240,7 @@ def main(argv=None):
             raise ReportError(f"cannot create output directory {out_dir}: {e.strerror}")
         stem = os.path.splitext(os.path.basename(args.file))[0]
         for plot in (plot_history, plot_xy, plot_energy, plot_specimen, plot_cracks, plot_cracks_at_peak, plot_cells,
-                     plot_pullout):
+                     plot_fibres, plot_pullout):
             for path in plot(run, stem, out_dir):
                 print(path, flush=True)
     except ReportError as e:  # every ReportError is about a file: exit 3, as `mesocrack` does for file errors

@@ -46,10 +46,25 @@ struct CellGeometry {
   bool empty() const { return corner.empty(); }
 };
 
+// The short fibres of a specimen of rigid cells (README, "Output file", /specimen/fibres), as placed: each a polyline
+// from its end a through the points where it crosses contact facets, in order, to its end b; its family and how
+// many facets it crosses. Empty without fibres.
+struct FibreGeometry {
+  std::vector<double> point;  // P·3
+  Polygons lines;             // over point, fibre after fibre
+  std::vector<std::int32_t> family, crossings;
+  bool empty() const { return family.empty(); }
+};
+
+// What a fibre does in a frame, its most advanced crossing's (FibreFrame::state).
+enum class FibreState { Idle = 0, Bridging = 1, PulledOut = 2, Ruptured = 3 };
+
 // One frame of the cells: their corners (C·D, as CellGeometry::corner) moved with them, and each contact facet's
-// damage.
+// damage; and per fibre its state (FibreState as a number), the largest force any of its crossings carries [N] and
+// the largest pull-out of a side [m].
 struct CellFrame {
   std::vector<double> corner, damage;
+  std::vector<double> fibre_state, fibre_force, fibre_slip;
 };
 
 // The specimen as built, as the output file keeps it (README, "Output file").
@@ -62,6 +77,7 @@ struct SpecimenData {
   std::vector<std::pair<std::string, double>> facts;  // what generating it measured (porosity, bonds per phase pair …)
   std::vector<std::vector<std::array<double, 2>>> outlines;  // aggregate outlines in the picture plane
   CellGeometry cells;                                        // a specimen of rigid cells: their polygons
+  FibreGeometry fibres;                                      // and its fibres
 };
 
 // Rows of the crack log: one per bond break or first yield (README, "Output file", /cracks).

@@ -44,12 +44,12 @@ std::string join(const std::vector<std::string>& v) {
   return s;
 }
 // Polygons [from, to) in XDMF's Mixed connectivity: each its type (3 polygon; 2 polyline, for a 2D facet's two
-// ends), its corner count, its corners.
-std::vector<std::int64_t> xdmf_mixed(const Polygons& p, std::size_t from, std::size_t to) {
+// ends, or every one of them when they are `open` lines), its corner count, its corners.
+std::vector<std::int64_t> xdmf_mixed(const Polygons& p, std::size_t from, std::size_t to, bool open = false) {
   std::vector<std::int64_t> m;
   for (std::size_t k = from; k < to; ++k) {
     const std::int64_t n = p.start[k + 1] - p.start[k];
-    m.insert(m.end(), {n >= 3 ? 3 : 2, n});
+    m.insert(m.end(), {n >= 3 && !open ? 3 : 2, n});
     m.insert(m.end(), p.corner.begin() + p.start[k], p.corner.begin() + p.start[k + 1]);
   }
   return m;
@@ -94,6 +94,7 @@ void RunOutput::write_initial(const std::string& scene_text, const std::string& 
   file_.create_table("/frames/step", 0, true);
   for (const char* f : {"/frames/x", "/frames/v", "/frames/force"}) file_.create_table(f, n * s.dimension);
   if (!s.cells.empty()) write_cells(s);
+  if (!s.fibres.empty()) write_fibres(s.fibres);
   set_status("running");
   flush();
 }
@@ -121,6 +122,20 @@ void RunOutput::write_cells(const SpecimenData& s) {
   file_.write(g + "xdmf_contacts", contacts, {contacts.size()});
   file_.create_table("/frames/cell_corner", c.corner.size());
   if (c.contacts > 0) file_.create_table("/frames/damage", c.contacts);
+}
+
+// /specimen/fibres (README.md, "Output"): the fibres as polylines, and the frames' tables of what each does.
+void RunOutput::write_fibres(const FibreGeometry& f) {
+  const std::string g = "/specimen/fibres/";
+  file_.write(g + "point", f.point, {f.point.size() / 3, 3});
+  file_.write(g + "line_start", f.lines.start, {f.lines.start.size()});
+  file_.write(g + "line_point", f.lines.corner, {f.lines.corner.size()});
+  file_.write(g + "family", f.family, {f.family.size()});
+  file_.write(g + "crossings", f.crossings, {f.crossings.size()});
+  const auto lines = xdmf_mixed(f.lines, 0, f.lines.size(), true);
+  file_.write(g + "xdmf_lines", lines, {lines.size()});
+  for (const char* t : {"/frames/fibre_state", "/frames/fibre_force", "/frames/fibre_slip"})
+    file_.create_table(t, f.family.size());
 }
 
 namespace {
@@ -191,6 +206,11 @@ void RunOutput::append_frame(double time, std::int64_t step, const std::vector<d
   append_frame_row("/frames/force", force);
   if (file_.exists("/frames/cell_corner")) append_frame_row("/frames/cell_corner", cells.corner);
   if (file_.exists("/frames/damage")) append_frame_row("/frames/damage", cells.damage);
+  if (file_.exists("/frames/fibre_state")) {
+    append_frame_row("/frames/fibre_state", cells.fibre_state);
+    append_frame_row("/frames/fibre_force", cells.fibre_force);
+    append_frame_row("/frames/fibre_slip", cells.fibre_slip);
+  }
   if (published_) write_xdmf();
 }
 
@@ -468,10 +488,31 @@ std::string facets_grid(const XdmfFrame& fr, const CellSizes& c) {
   return x.str();
 }
 
+// The fibres where they were placed, each a polyline through its crossings, by family, crossing count, and its state,
+// force and slip in the frame.
+std::string fibres_grid(const XdmfFrame& fr, const H5File& f) {
+  const std::string g = "/specimen/fibres/";
+  const hsize_t n = f.rows(g + "family");
+  std::ostringstream x;
+  x << fr.head("fibres") << "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << n << "\">"
+    << dataset(fr.h5, g + "xdmf_lines", f.rows(g + "xdmf_lines"), "Int", 8) << "</Topology>\n"
+    << "    <Geometry GeometryType=\"XYZ\">" << dataset(fr.h5, g + "point", f.rows(g + "point"), "Float", 8, 3)
+    << "</Geometry>\n";
+  for (const char* a : {"family", "crossings"})
+    x << "    <Attribute Name=\"" << a << "\" AttributeType=\"Scalar\" Center=\"Cell\">"
+      << dataset(fr.h5, g + a, n, "Int", 4) << "</Attribute>\n";
+  for (const char* a : {"state", "force", "slip"})
+    x << "    <Attribute Name=\"" << a << "\" AttributeType=\"Scalar\" Center=\"Cell\">"
+      << frame_slab(fr.h5, std::string("/frames/fibre_") + a, fr.f, fr.frames, n, 1) << "</Attribute>\n";
+  x << "   </Grid>\n";
+  return x.str();
+}
+
 }  // namespace
 
 // One temporal collection of a grid per frame: the particles as points; or three, the cells' nodes as points, the
-// cells and the contact facets, which ParaView shows as the blocks "nodes", "cells" and "facets".
+// cells and the contact facets, which ParaView shows as the blocks "nodes", "cells" and "facets", and a fourth of
+// the fibres ("fibres") when the specimen has them.
 void RunOutput::write_xdmf() const {
   const int d = static_cast<int>(file_.attr_int("/", "dimension"));
   const auto n = file_.rows("/specimen/radius");
@@ -492,6 +533,8 @@ void RunOutput::write_xdmf() const {
     collection("nodes", [&](const XdmfFrame& fr) { return points_grid(fr, "nodes", n); });
     collection("cells", [&](const XdmfFrame& fr) { return cells_grid(fr, sizes); });
     if (sizes.contacts > 0) collection("facets", [&](const XdmfFrame& fr) { return facets_grid(fr, sizes); });
+    if (file_.exists("/frames/fibre_state"))
+      collection("fibres", [&](const XdmfFrame& fr) { return fibres_grid(fr, file_); });
   }
   x << " </Domain>\n</Xdmf>\n";
   write_atomically(stem_path(file_.path(), ".xdmf"), x.str());

@@ -77,6 +77,7 @@ class RunOutput {
  private:
   void write_initial(const std::string& scene_text, const std::string& scene_file, const SpecimenData& s);
   void write_cells(const SpecimenData& s);
+  void write_fibres(const FibreGeometry& g);
   void append_frame_row(const std::string& ds, const std::vector<double>& row);
   void write_xdmf() const;
   std::string newest_checkpoint() const;  // the complete slot of the highest step

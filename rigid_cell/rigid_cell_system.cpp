@@ -97,27 +97,55 @@ double RigidCellSystem<D>::section_bridging_force(int section) const {
 }
 
 template <int D>
-std::array<std::size_t, 3> RigidCellSystem<D>::fibre_counts() const {
-  std::array<std::size_t, 3> n{0, 0, 0};
-  if (!bridges_) return n;
-  std::vector<int> most(fibres_.size(), -1);  // 0 bridging, 1 pulled out, 2 broken
+std::vector<FibreState> RigidCellSystem<D>::fibre_states() const {
+  std::vector<FibreState> most(fibres_.size(), FibreState::Idle);
+  if (!bridges_) return most;
   for (std::size_t i = 0; i < bridges_->sites(); ++i) {
     const BridgeState<D>& s = bridges_->state(i);
     if (s.active == 0) continue;
     const TwoSidedPullout& t = s.bridge.sides;
-    int state = -1;
-    if (s.bridge.ruptured) state = 2;
+    FibreState state = FibreState::Idle;
+    if (s.bridge.ruptured) state = FibreState::Ruptured;
     else if (pullout_resistance(bridges_->material(i), t.embedment[0], t.pullout[0]) == 0 ||
              pullout_resistance(bridges_->material(i), t.embedment[1], t.pullout[1]) == 0)
-      state = 1;
+      state = FibreState::PulledOut;
     else if (s.force > 0)
-      state = 0;
-    int& m = most[bridges_->site(i).fibre];
+      state = FibreState::Bridging;
+    FibreState& m = most[bridges_->site(i).fibre];
     m = std::max(m, state);
   }
-  for (int m : most)
-    if (m >= 0) ++n[m];
+  return most;
+}
+
+template <int D>
+std::array<std::size_t, 3> RigidCellSystem<D>::fibre_counts() const {
+  std::array<std::size_t, 3> n{0, 0, 0};
+  for (const FibreState s : fibre_states())
+    if (s != FibreState::Idle) ++n[static_cast<int>(s) - 1];
   return n;
+}
+
+// Each fibre as a polyline through its crossings, which come fibre by fibre, each fibre's in order from its end a.
+template <int D>
+FibreGeometry RigidCellSystem<D>::fibre_geometry() const {
+  FibreGeometry g;
+  if (!bridges_) return g;
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < fibres_.size(); ++k) {
+    std::vector<std::int64_t> line;
+    const auto add = [&](const auto& p) {
+      line.push_back(static_cast<std::int64_t>(g.point.size() / 3));
+      g.point.insert(g.point.end(), p.data(), p.data() + 3);
+    };
+    add(fibres_[k].a);
+    const std::size_t first = i;
+    for (; i < bridges_->sites() && bridges_->site(i).fibre == static_cast<int>(k); ++i) add(bridges_->site(i).point);
+    add(fibres_[k].b);
+    g.lines.add(line);
+    g.family.push_back(family_of_fibre_[k]);
+    g.crossings.push_back(static_cast<std::int32_t>(i - first));
+  }
+  return g;
 }
 
 template <int D>
@@ -428,7 +456,7 @@ double RigidCellSystem<D>::strain_energy() const {
 
 template <int D>
 SpecimenData RigidCellSystem<D>::specimen() const {
-  SpecimenData d{D, {}, {}, {}, setup_.phase_names, {}, setup_.facts, setup_.outlines, polygons_->geometry()};
+  SpecimenData d{D, {}, {}, {}, setup_.phase_names, {}, setup_.facts, setup_.outlines, polygons_->geometry(), fibre_geometry()};
   for (int c = 0; c < cells(); ++c) {
     const auto& cell = tessellation_.cells[c];
     d.x.insert(d.x.end(), cell.node.data(), cell.node.data() + D);
@@ -471,7 +499,18 @@ void RigidCellSystem<D>::frame(std::vector<double>& x, std::vector<double>& v, s
 
 template <int D>
 CellFrame RigidCellSystem<D>::cell_frame() const {
-  return {polygons_->moved(solver_->cell_displacements(u_)), damage_};
+  CellFrame f{polygons_->moved(solver_->cell_displacements(u_)), damage_, {}, {}, {}};
+  if (!bridges_) return f;
+  for (const FibreState s : fibre_states()) f.fibre_state.push_back(static_cast<double>(s));
+  f.fibre_force.assign(fibres_.size(), 0.0);
+  f.fibre_slip.assign(fibres_.size(), 0.0);
+  for (std::size_t i = 0; i < bridges_->sites(); ++i) {
+    const BridgeState<D>& s = bridges_->state(i);
+    const int k = bridges_->site(i).fibre;
+    f.fibre_force[k] = std::max(f.fibre_force[k], s.force);
+    f.fibre_slip[k] = std::max({f.fibre_slip[k], s.bridge.sides.pullout[0], s.bridge.sides.pullout[1]});
+  }
+  return f;
 }
 
 template <int D>

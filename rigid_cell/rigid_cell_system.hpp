@@ -198,9 +198,11 @@ class RigidCellSystem final : public System {
   const std::vector<Fibre>& fibres() const { return fibres_; }
   const std::vector<int>& fibre_families() const { return family_of_fibre_; }
   const FibreBridges<D>* bridges() const { return bridges_.get(); }
-  // How many fibres bridge a crack now (carry a force), have been pulled out of a side (anchored no more), have
-  // broken; the bridges' force across a section along its axis [N]. A fibre counts once, by its most advanced
-  // crossing (broken, then pulled out, then bridging).
+  // Each fibre's state, by its most advanced crossing (broken, then pulled out of a side, anchored no more, then
+  // bridging: carrying a force; idle else).
+  std::vector<FibreState> fibre_states() const;
+  // How many fibres bridge a crack now, have been pulled out, have broken; the bridges' force across a section along
+  // its axis [N].
   std::array<std::size_t, 3> fibre_counts() const;
   double section_bridging_force(int section) const;
   double fibre_placement_seconds() const { return fibre_seconds_[0]; }
@@ -244,6 +246,7 @@ class RigidCellSystem final : public System {
 
   void build_cells();
   void build_fibres();
+  FibreGeometry fibre_geometry() const;
   // The cells' internal forces: the facets' and the fibres' of their last evaluation.
   Eigen::VectorXd cell_forces(const Eigen::VectorXd& u_cells) const;
   void apply_strength_field(std::vector<FacetParams>& params);

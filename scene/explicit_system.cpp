@@ -158,7 +158,7 @@ template <int D>
 SpecimenData ExplicitSystem<D>::specimen() const {
   if (world_.is_split()) return specimen_;
   const auto& p = world_.particles;
-  SpecimenData d{D, {}, p.radius, {}, {}, info_.ids, info_.facts, info_.outlines, {}};
+  SpecimenData d{D, {}, p.radius, {}, {}, info_.ids, info_.facts, info_.outlines, {}, {}};
   for (const auto& x : p.x) d.x.insert(d.x.end(), x.data(), x.data() + D);
   d.phase.assign(p.phase.begin(), p.phase.end());
   for (const auto& ph : scene_.phases) d.phase_names.push_back(ph.name);

@@ -8,6 +8,7 @@
 
 #include "engine/crack.hpp"
 #include "tests/common/cli_harness.hpp"
+#include "tests/common/xdmf_grids.hpp"
 
 namespace {
 
@@ -167,104 +168,6 @@ TEST_CASE("rigid_cell_output_polygons_enclose_each_cell_and_their_surface_facets
     CHECK(surface == doctest::Approx(expected).epsilon(1e-9));
   }
 }
-
-namespace {
-
-std::vector<hsize_t> numbers(const std::string& text) {
-  std::vector<hsize_t> v;
-  std::istringstream in(text);
-  for (hsize_t x; in >> x;) v.push_back(x);
-  return v;
-}
-
-hsize_t product(const std::vector<hsize_t>& v) {
-  hsize_t p = 1;
-  for (hsize_t x : v) p *= x;
-  return p;
-}
-
-// What one element (Topology, Geometry, Attribute) of a uniform grid in the sidecar reads: how many rows and values
-// it gives, checked on the way against the datasets it names.
-struct XdmfData {
-  hsize_t rows = 0, values = 0;
-  std::string dataset;  // the HDF5 dataset read whole (empty for a frame's slab)
-};
-
-XdmfData read_data(const std::string& line, const mc::H5File& f) {
-  static const std::regex hdf(R"re(<DataItem Dimensions="([0-9 ]+)"[^>]*Format="HDF">[^:<]*:([^<]+)</DataItem>)re");
-  static const std::regex slab(
-      R"re(<DataItem ItemType="HyperSlab" Dimensions="([0-9 ]+)"><DataItem Dimensions="3 2" )re"
-      R"re(Format="XML">([0-9]+) 0 1 1 1 ([0-9]+)</DataItem>)re");
-  std::smatch m;
-  REQUIRE_MESSAGE(std::regex_search(line, m, hdf), line);
-  const std::vector<hsize_t> dims = numbers(m[1]);
-  const std::string dataset = m[2];
-  CAPTURE(dataset);
-  REQUIRE(f.exists(dataset));
-  CHECK(dims == f.shape(dataset));  // every dataset as large as the sidecar says
-  std::smatch s;
-  if (!std::regex_search(line, s, slab)) return {dims[0], product(dims), dataset};
-  const std::vector<hsize_t> selected = numbers(s[1]);
-  CHECK(std::stoull(s[2]) < dims[0]);   // a frame the table holds
-  CHECK(std::stoull(s[3]) == dims[1]);  // its whole row
-  CHECK(product(selected) == dims[1]);  // shaped into as many values
-  return {selected[0], product(selected), ""};
-}
-
-// Each uniform grid of the sidecar (its lines from `<Grid ... GridType="Uniform">` to `</Grid>`) is consistent with
-// the file: the topology's elements (a Mixed one's walked through its connectivity) use the geometry's points, and
-// each attribute has one value per element (Center="Cell") or point (Center="Node"). Returns the grids' names.
-std::vector<std::string> check_uniform_grids(const std::string& xdmf, const mc::H5File& f) {
-  std::vector<std::string> names;
-  std::istringstream lines(xdmf);
-  std::vector<std::string> grid;
-  for (std::string line; std::getline(lines, line);) {
-    if (line.find("GridType=\"Uniform\"") != std::string::npos)
-      grid = {line};
-    else if (!grid.empty() && line.find("</Grid>") == std::string::npos)
-      grid.push_back(line);
-    if (grid.empty() || line.find("</Grid>") == std::string::npos) continue;
-    CAPTURE(grid[0]);
-    names.push_back(grid[0].substr(grid[0].find("Name=\"") + 6, grid[0].find("\" ") - grid[0].find("Name=\"") - 6));
-    const auto find = [&](const std::string& tag) {
-      std::vector<std::string> found;
-      for (const auto& l : grid)
-        if (l.find("<" + tag) != std::string::npos) found.push_back(l);
-      return found;
-    };
-    REQUIRE(find("Topology").size() == 1);
-    REQUIRE(find("Geometry").size() == 1);
-    const std::string topology = find("Topology")[0];
-    const hsize_t elements =
-        numbers(std::regex_replace(topology, std::regex(R"re(.*NumberOfElements="([0-9]+)".*)re"), "$1"))[0];
-    const XdmfData points = read_data(find("Geometry")[0], f);
-    if (topology.find("Mixed") != std::string::npos) {
-      const XdmfData connectivity = read_data(topology, f);
-      const auto mixed = f.read_ints(connectivity.dataset);
-      hsize_t walked = 0;
-      std::size_t k = 0;
-      for (; k < mixed.size(); k += 2 + mixed[k + 1], ++walked) {
-        CHECK((mixed[k] == 3 || (mixed[k] == 2 && mixed[k + 1] == 2)));  // polygons; a 2D facet a polyline
-        for (std::int64_t i = 0; i < mixed[k + 1]; ++i) CHECK(static_cast<hsize_t>(mixed[k + 2 + i]) < points.rows);
-      }
-      CHECK(k == mixed.size());
-      CHECK(walked == elements);
-    } else {
-      CHECK(topology.find("Polyvertex") != std::string::npos);
-      CHECK(elements == points.rows);
-    }
-    for (const auto& attribute : find("Attribute")) {
-      CAPTURE(attribute);
-      const XdmfData a = read_data(attribute, f);
-      const bool cell = attribute.find("Center=\"Cell\"") != std::string::npos;
-      CHECK(a.rows == (cell ? elements : points.rows));
-    }
-    grid.clear();
-  }
-  return names;
-}
-
-}  // namespace
 
 TEST_CASE("rigid_cell_output_xdmf_sizes_are_those_of_the_hdf5_datasets") {
   const TempDir d;
