@@ -8,6 +8,24 @@
 
 namespace mc::rigid_cell {
 
+std::vector<BridgeSite<3>> bridge_sites(const std::vector<Fibre>& fibres, const std::vector<int>& family,
+                                        const std::vector<FibreCrossing>& crossings) {
+  std::vector<BridgeSite<3>> sites;
+  sites.reserve(crossings.size());
+  for (const FibreCrossing& c : crossings) {
+    const Fibre& f = fibres[c.fibre];
+    const Vec<3> u = (f.b - f.a).normalized();
+    BridgeSite<3> s;
+    s.fibre = c.fibre, s.family = family[c.fibre], s.contact = static_cast<std::size_t>(c.facet);
+    s.at = c.at, s.length = (f.b - f.a).norm(), s.a_on_cell_a = c.cosine > 0;
+    s.direction = c.cosine > 0 ? u : Vec<3>(-u);
+    s.theta = std::acos(std::min(1.0, std::abs(c.cosine)));
+    s.point = c.point;
+    sites.push_back(s);
+  }
+  return sites;
+}
+
 template <int D>
 FibreBridges<D>::FibreBridges(const Tessellation<D>& t, const CellAssembly<D>& model,
                               std::vector<FibreMaterial> materials, std::vector<BridgeSite<D>> sites)

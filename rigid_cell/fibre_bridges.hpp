@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "rigid_cell/cell_assembly.hpp"
+#include "rigid_cell/fibre_crossings.hpp"
 #include "rigid_cell/fibre_pullout.hpp"
 
 namespace mc::rigid_cell {
@@ -57,6 +58,11 @@ struct BridgeState {
   Vec<D> pull = Vec<D>::Zero();  // e: the unit vector of Δ, along which the fibre pulls
   double active = 0;        // 1 once its facet has begun to crack
 };
+
+// Each crossing (fibre_crossings.hpp) of the fibres, of the families `family` (per fibre), as a bridge site: the
+// fibre's direction turned from cell a's side to cell b's, its angle to the normal, which of its ends is on a's side.
+std::vector<BridgeSite<3>> bridge_sites(const std::vector<Fibre>& fibres, const std::vector<int>& family,
+                                        const std::vector<FibreCrossing>& crossings);
 
 template <int D>
 class FibreBridges {

@@ -177,8 +177,7 @@ void RigidCellSystem<D>::build_cells() {
 }
 
 // The fibres of each family, placed from their own random stream (the same seed, the same fibres, whatever the
-// cells), walked through the cells; each crossing of a contact facet a bridge site, with the fibre's direction
-// turned from cell a's side to cell b's.
+// cells), walked through the cells; each crossing of a contact facet a bridge site.
 template <int D>
 void RigidCellSystem<D>::build_fibres() {
   if (setup_.fibres.empty()) return;
@@ -206,20 +205,8 @@ void RigidCellSystem<D>::build_fibres() {
     } catch (const std::runtime_error& e) {
       throw InputError(std::string("[rigid_cell.fibres]: ") + e.what());
     }
-    std::vector<BridgeSite<3>> sites;
-    sites.reserve(crossings.size());
-    for (const FibreCrossing& c : crossings) {
-      const Fibre& f = fibres_[c.fibre];
-      const Vec<3> u = (f.b - f.a).normalized();
-      BridgeSite<3> s;
-      s.fibre = c.fibre, s.family = family_of_fibre_[c.fibre], s.contact = static_cast<std::size_t>(c.facet);
-      s.at = c.at, s.length = (f.b - f.a).norm(), s.a_on_cell_a = c.cosine > 0;
-      s.direction = c.cosine > 0 ? u : Vec<3>(-u);
-      s.theta = std::acos(std::min(1.0, std::abs(c.cosine)));
-      s.point = c.point;
-      sites.push_back(s);
-    }
-    bridges_ = std::make_unique<FibreBridges<3>>(tessellation_, *model_, std::move(materials), std::move(sites));
+    bridges_ = std::make_unique<FibreBridges<3>>(tessellation_, *model_, std::move(materials),
+                                                 bridge_sites(fibres_, family_of_fibre_, crossings));
     const auto crossed = std::chrono::steady_clock::now();
     fibre_seconds_[0] = std::chrono::duration<double>(placed - start).count();
     fibre_seconds_[1] = std::chrono::duration<double>(crossed - placed).count();
