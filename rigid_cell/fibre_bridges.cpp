@@ -1,12 +1,28 @@
 #include "rigid_cell/fibre_bridges.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "engine/errors.hpp"
 #include "rigid_cell/point_motion.hpp"
 
 namespace mc::rigid_cell {
+
+namespace {
+// Adds the wall time of its scope to a total: what the fibres cost a run (FibreBridges::seconds).
+class Charged {
+ public:
+  explicit Charged(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~Charged() { total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  Charged(const Charged&) = delete;
+  Charged& operator=(const Charged&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
+}  // namespace
 
 std::vector<BridgeSite<3>> bridge_sites(const std::vector<Fibre>& fibres, const std::vector<int>& family,
                                         const std::vector<FibreCrossing>& crossings) {
@@ -89,6 +105,7 @@ void FibreBridges<D>::embedments(std::size_t i, double spalled, double out[2]) c
 
 template <int D>
 double FibreBridges<D>::evaluate(const Eigen::VectorXd& u_cells, bool monotone) {
+  const Charged charged(seconds_);
   double change = 0, largest = 0;
   // Each crossing from its own converged state and its fibre's other crossings' converged ones: independent, so
   // spread over the threads with the same result for any count (the maxima are order-free).
@@ -129,6 +146,7 @@ double FibreBridges<D>::evaluate(const Eigen::VectorXd& u_cells, bool monotone) 
 
 template <int D>
 typename FibreBridges<D>::Element FibreBridges<D>::contact_stiffness(std::size_t j) const {
+  const Charged charged(seconds_);
   Element K = Element::Zero();
   for (std::size_t k = first_[j]; k < first_[j + 1]; ++k) {
     const std::size_t i = by_contact_[k];
@@ -141,6 +159,7 @@ typename FibreBridges<D>::Element FibreBridges<D>::contact_stiffness(std::size_t
 
 template <int D>
 void FibreBridges<D>::add_secant_forces(const Eigen::VectorXd& u_cells, Eigen::VectorXd& f) const {
+  const Charged charged(seconds_);
   for (std::size_t i = 0; i < sites_.size(); ++i) {
     const BridgeState<D>& t = trial_[i];
     if (t.secant == 0) continue;
@@ -152,6 +171,7 @@ void FibreBridges<D>::add_secant_forces(const Eigen::VectorXd& u_cells, Eigen::V
 
 template <int D>
 void FibreBridges<D>::add_forces(Eigen::VectorXd& f) const {
+  const Charged charged(seconds_);
   for (std::size_t i = 0; i < sites_.size(); ++i) {
     if (trial_[i].force == 0) continue;
     const Eigen::Matrix<double, 2 * kDofs, 1> fe = trial_[i].force * (jumps_[i].transpose() * trial_[i].pull);

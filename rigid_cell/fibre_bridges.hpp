@@ -109,6 +109,10 @@ class FibreBridges {
   std::vector<double> stiffness_key() const;
   void set_stiffness_key(const std::vector<double>& key, std::size_t from);
 
+  // The wall time spent so far evaluating the crossings, spreading their secants and adding their forces [s]: the
+  // fibres' share of a run (serial calls; `evaluate` is parallel inside).
+  double seconds() const { return seconds_; }
+
   // The converged states (a checkpoint's), and taking them back: throws InputError for another number of crossings.
   const std::vector<BridgeState<D>>& converged() const { return converged_; }
   void restore(std::vector<BridgeState<D>> states);
@@ -127,6 +131,7 @@ class FibreBridges {
   std::vector<std::size_t> fibre_first_;          // crossings of one fibre: [fibre_first_[k], fibre_first_[k + 1])
   std::vector<std::size_t> fibre_of_site_;        // the index k of a crossing's fibre range
   std::vector<BridgeState<D>> converged_, trial_;
+  mutable double seconds_ = 0;
 
   Eigen::Matrix<double, 2 * kDofs, 1> gather(std::size_t i, const Eigen::VectorXd& u_cells) const;
   void embedments(std::size_t i, double spalled, double out[2]) const;

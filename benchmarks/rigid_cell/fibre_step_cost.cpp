@@ -2,13 +2,16 @@
 // l_min 2.5 mm, f_t 3.8 MPa, G_t 20 J/m²; §6.1's PVA aligned with the pull, l_f 10 mm) held by 10 mm grips at its
 // ends, with 10³ to 10⁵ fibres. For each count: the placement and the crossing walk; the parts of a secant iteration
 // timed alone, every crossing taking part (the fibres' evaluation at an iterate, their secants spread into the
-// stiffness on top of the facets' refill, the factorisation and a solve); then the static solver in situ over the
-// first load steps of 5 µm (the first crack and the hardening after it): secant iterations, wall time per step and
-// per iteration, and the fibres' share of it (their parts' times per iteration over the wall time).
+// stiffness on top of the facets' refill, the factorisation and a solve); then the scene fibre_prism_tension_3d.toml
+// itself with that many fibres, stepped as a run steps it, over its first load steps of 5 µm (the first crack and
+// the hardening after it): secant iterations, cut steps, wall time per step and per iteration, and the fibres' share
+// of it (the time the system spent in its fibres, FibreBridges::seconds, over the steps' wall time).
 // Usage: fibre_step_cost [--fibres 1000,3000,10000,30000,100000] [--steps N]
 #include <Eigen/CholmodSupport>
 #include <algorithm>
 #include <chrono>
+#include <memory>
+#include <stdexcept>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -20,7 +23,11 @@
 #include "rigid_cell/free_stiffness.hpp"
 #include "rigid_cell/node_placement.hpp"
 #include "rigid_cell/plate_constraints.hpp"
+#include "rigid_cell/rigid_cell_system.hpp"
 #include "rigid_cell/static_solver.hpp"
+#include "scene/make_system.hpp"
+#include "scene/scene.hpp"
+#include "scene/toml_reader.hpp"
 
 using namespace mc;
 using namespace mc::rigid_cell;
@@ -83,9 +90,9 @@ struct Row {
   double place = 0, cross = 0;                           // s, once
   double evaluate = 0, refill = 0, refill_bare = 0;      // s, each part alone, every crossing taking part
   double factorise = 0, solve = 0;
-  int steps = 0, iterations = 0, factorisations = 0;
-  double wall = 0;
-  double fibre_share() const { return iterations * (evaluate + refill - refill_bare) / wall; }
+  int steps = 0, iterations = 0, cuts = 0;
+  double wall = 0, in_fibres = 0;  // s, in situ: the steps', and the fibres' part of them (FibreBridges::seconds)
+  double fibre_share() const { return in_fibres / wall; }
 };
 
 Row measure(const Prism& p, long fibres, int steps) {
@@ -117,7 +124,8 @@ Row measure(const Prism& p, long fibres, int steps) {
     Eigen::VectorXd q = Eigen::VectorXd::Zero(plates.reduced());
     q[pull] = 20e-6;
     const Eigen::VectorXd u_cells = plates.map() * q;  // the right grip's cells moved: every crossing there opens
-    r.evaluate = best_of(3, [&] { all.evaluate(u_cells); });
+    // Best of ten: the first calls pay for OpenMP's threads starting (measured up to 25 times the rest).
+    r.evaluate = best_of(10, [&] { all.evaluate(u_cells); });
     std::vector<int> is_free(plates.reduced(), 1);
     for (int d : prescribed) is_free[d] = 0;
     std::vector<Eigen::Triplet<double>> pick;
@@ -128,8 +136,8 @@ Row measure(const Prism& p, long fibres, int steps) {
     const SparseMatrix to_cells = plates.map() * to_free;
     const std::vector<double> damage(p.model.contacts(), 0.5);
     FreeStiffness<3> with(p.model, to_cells, &all), bare(p.model, to_cells);
-    r.refill = best_of(3, [&] { with(damage); });
-    r.refill_bare = best_of(3, [&] { bare(damage); });
+    r.refill = best_of(10, [&] { with(damage); });
+    r.refill_bare = best_of(10, [&] { bare(damage); });
     const SparseMatrix& K = with(damage);
     Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> cholesky;
     cholesky.analyzePattern(K);
@@ -138,27 +146,37 @@ Row measure(const Prism& p, long fibres, int steps) {
     r.solve = best_of(3, [&] { Eigen::VectorXd x = cholesky.solve(b); });
   }
 
-  // In situ: load steps of 5 µm on the right grip, as the scene fibre_prism_tension_3d.toml runs them.
-  StaticSolver<3> solver(p.model, plates, prescribed, false, &bridges);
-  Eigen::VectorXd u = Eigen::VectorXd::Zero(plates.reduced());
-  const Eigen::VectorXd f_ext = Eigen::VectorXd::Zero(plates.reduced());
-  std::vector<double> damage(p.model.contacts(), 0.0);
-  std::vector<FacetState> states(p.model.contacts());
-  StaticOptions options;
-  options.damage_tolerance = 1e-4;
+  // In situ: the scene itself, its volume fraction set to this count, stepped by the system a run steps (with its
+  // cuts of a step that does not converge and its snap-throughs).
+  const double fraction = static_cast<double>(fibres) * 0.25 * M_PI * 40e-6 * 40e-6 * 0.01 / kSize.prod();
+  const std::string file = std::string(MESOCRACK_SOURCE_DIR) + "/scenes/fibre_prism_tension_3d.toml";
+  const Scene scene = read_scene(
+      TomlDoc::load(file, {"rigid_cell.fibres[0].volume_fraction=" + std::to_string(fraction),
+                           "run.steps=" + std::to_string(steps)}),
+      file);
+  const std::unique_ptr<System> system = make_system(scene);
+  system->start();
+  const auto* cells = dynamic_cast<const RigidCellSystem<3>*>(system.get());
+  if (!cells || !cells->bridges()) throw std::logic_error(file + ": not a rigid-cell scene with fibres");
+  const double before = cells->bridges()->seconds();
+  const auto series = [&](const std::string& name) {
+    for (const Series& h : system->histories())
+      if (h.name == name) return h.sample;
+    throw std::logic_error("no history " + name);
+  };
+  const auto iterations = series("iterations"), cuts = series("step_cuts");
   for (int step = 1; step <= steps; ++step) {
-    u[pull] = kStep * step;
     t0 = Clock::now();
-    StaticResult s;
     try {
-      s = solver.solve(u, f_ext, damage, states, options);
+      system->step();
     } catch (const InstabilityError& e) {
       std::fprintf(stderr, "  %ld fibres: step %d stops the measurement: %s\n", fibres, step, e.what());
       break;
     }
     r.wall += seconds_since(t0);
-    r.steps += 1, r.iterations += s.iterations, r.factorisations += s.factorisations;
+    r.steps += 1, r.iterations += static_cast<int>(iterations()), r.cuts += static_cast<int>(cuts());
   }
+  r.in_fibres = cells->bridges()->seconds() - before;
   return r;
 }
 
@@ -178,13 +196,13 @@ int main(int argc, char** argv) {
                                                                        [](int p) { return p >= 0; })),
               steps, kStep * 1e6);
   std::printf("| fibres | crossings | facets bridged | place [ms] | cross [ms] | evaluate [ms] | refill +fibres / bare "
-              "[ms] | factorise [ms] | solve [ms] | steps | iterations | per step [s] | per iteration [ms] | fibres' "
-              "share |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+              "[ms] | factorise [ms] | solve [ms] | steps | iterations | cuts | per step [s] | per iteration [ms] | "
+              "fibres' share |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (long n : counts) {
     const Row r = measure(prism, n, steps);
-    std::printf("| %ld | %zu | %zu | %.1f | %.1f | %.2f | %.2f / %.2f | %.2f | %.2f | %d | %d | %.2f | %.1f | %.0f %% |\n",
+    std::printf("| %ld | %zu | %zu | %.1f | %.1f | %.2f | %.2f / %.2f | %.2f | %.2f | %d | %d | %d | %.2f | %.1f | %.0f %% |\n",
                 r.fibres, r.crossings, r.bridged, 1e3 * r.place, 1e3 * r.cross, 1e3 * r.evaluate, 1e3 * r.refill,
-                1e3 * r.refill_bare, 1e3 * r.factorise, 1e3 * r.solve, r.steps, r.iterations,
+                1e3 * r.refill_bare, 1e3 * r.factorise, 1e3 * r.solve, r.steps, r.iterations, r.cuts,
                 r.steps ? r.wall / r.steps : 0.0, r.iterations ? 1e3 * r.wall / r.iterations : 0.0,
                 r.iterations ? 100 * r.fibre_share() : 0.0);
     std::fflush(stdout);
