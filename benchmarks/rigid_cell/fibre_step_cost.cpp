@@ -115,15 +115,14 @@ Row measure(const Prism& p, long fibres, int steps) {
   const PlateConstraints<3> plates(p.nodes(), p.plate_of, p.references);
   std::vector<int> prescribed;
   for (int k = 0; k < 6; ++k) prescribed.push_back(plates.plate_dof(0, k)), prescribed.push_back(plates.plate_dof(1, k));
-  const int pull = plates.plate_dof(1, 0);
 
   // The parts alone, on a copy whose every crossing takes part (as once the prism has cracked throughout).
   {
     FibreBridges<3> all(p.t, p.model, {pva()}, bridge_sites(placed, family, crossings));
     all.commit(std::vector<double>(p.model.contacts(), 0.5));
-    Eigen::VectorXd q = Eigen::VectorXd::Zero(plates.reduced());
-    q[pull] = 20e-6;
-    const Eigen::VectorXd u_cells = plates.map() * q;  // the right grip's cells moved: every crossing there opens
+    // Every cell moved along x by 40 µm over the prism's length: every crossing opens by a micron or two, debonding.
+    Eigen::VectorXd u_cells = Eigen::VectorXd::Zero(6 * p.model.cells());
+    for (int c = 0; c < p.model.cells(); ++c) u_cells[6 * c] = 40e-6 / kSize.x() * p.t.cells[c].node.x();
     // Best of ten: the first calls pay for OpenMP's threads starting (measured up to 25 times the rest).
     r.evaluate = best_of(10, [&] { all.evaluate(u_cells); });
     std::vector<int> is_free(plates.reduced(), 1);
