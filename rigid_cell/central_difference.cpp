@@ -38,7 +38,10 @@ CentralDifference<D>::CentralDifference(const CellAssembly<D>& model, const Spar
 
 template <int D>
 Eigen::VectorXd CentralDifference<D>::intact_forces(const Eigen::VectorXd& u) const {
-  return map_.transpose() * model_.internal_forces(map_ * u, std::vector<double>(model_.contacts(), 0.0));
+  const Eigen::VectorXd u_cells = map_ * u;
+  Eigen::VectorXd f = model_.internal_forces(u_cells, std::vector<double>(model_.contacts(), 0.0));
+  if (bridges_) bridges_->add_stiffest_forces(u_cells, f);
+  return map_.transpose() * f;
 }
 
 // The largest eigenvalue ω² of K₀ x = ω² M x on the free degrees of freedom: x ← M⁻¹K₀x, normalised, until the

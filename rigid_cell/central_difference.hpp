@@ -32,7 +32,9 @@ class CentralDifference {
                     FibreBridges<D>* bridges = nullptr);
 
   // The highest circular frequency of the undamaged specimen on its free degrees of freedom [rad/s], by power
-  // iteration on M⁻¹K₀ (its Rayleigh quotient, a lower bound that converges to it from below).
+  // iteration on M⁻¹K₀ (its Rayleigh quotient, a lower bound that converges to it from below). With fibres, K₀
+  // holds every crossing at its stiffest as well (FibreBridges::add_stiffest_forces): damage lowers the facets'
+  // stiffness and the fibres' is never above that, so the step stays stable as the specimen cracks.
   double highest_frequency() const { return omega_max_; }
   // The largest stable step: (2/ω_max)(√(1 + ξ²) − ξ), ξ = ½(a_M/ω_max + a_K ω_max).
   double critical_timestep() const;
@@ -57,7 +59,7 @@ class CentralDifference {
   double mass_damping_, stiffness_damping_;
   double omega_max_ = 0;
 
-  Eigen::VectorXd intact_forces(const Eigen::VectorXd& u) const;  // K₀ u, reduced
+  Eigen::VectorXd intact_forces(const Eigen::VectorXd& u) const;  // K₀ u, reduced (with the fibres at their stiffest)
   double power_iteration() const;
 };
 

@@ -170,6 +170,16 @@ void FibreBridges<D>::add_secant_forces(const Eigen::VectorXd& u_cells, Eigen::V
 }
 
 template <int D>
+void FibreBridges<D>::add_stiffest_forces(const Eigen::VectorXd& u_cells, Eigen::VectorXd& f) const {
+  for (std::size_t i = 0; i < sites_.size(); ++i) {
+    const double k = bonded_stiffness(materials_[sites_[i].family]);
+    const Eigen::Matrix<double, 2 * kDofs, 1> fe = jumps_[i].transpose() * (k * (jumps_[i] * gather(i, u_cells)));
+    f.template segment<kDofs>(kDofs * cells_[i].first) += fe.template head<kDofs>();
+    f.template segment<kDofs>(kDofs * cells_[i].second) += fe.template tail<kDofs>();
+  }
+}
+
+template <int D>
 void FibreBridges<D>::add_forces(Eigen::VectorXd& f) const {
   const Charged charged(seconds_);
   for (std::size_t i = 0; i < sites_.size(); ++i) {

@@ -99,6 +99,10 @@ class FibreBridges {
   Element contact_stiffness(std::size_t j) const;
   // f += the secant forces Σ G_fᵀ k G_f q: what the stiffness above gives.
   void add_secant_forces(const Eigen::VectorXd& u_cells, Eigen::VectorXd& f) const;
+  // f += Σ G_fᵀ k_b G_f q with every crossing at its stiffest, the bonded fibre's k_b = E_f A_f/d_f: above the secant
+  // and the tangent of the law anywhere ((5.1)'s slope is largest at its start, 4·10⁴ N/m for §6.1's fibre against
+  // k_b 9.4·10⁵ N/m), so that the stiffness it gives bounds the fibres' at any state.
+  void add_stiffest_forces(const Eigen::VectorXd& u_cells, Eigen::VectorXd& f) const;
   // f += the crossings' forces of the last evaluation, Σ G_fᵀ F e.
   void add_forces(Eigen::VectorXd& f) const;
   // The force the bridges of a contact exert on its cell b (on a: its opposite) [N].

@@ -47,7 +47,6 @@ void RigidCellSystem<D>::build_explicit() {
   for (int dof : prescribed_) is_prescribed[dof] = true;
   explicit_ = std::make_unique<CentralDifference<D>>(*model_, plates_->map(), mass_, std::move(is_prescribed),
                                                      d.mass_damping, d.stiffness_damping, bridges_.get());
-  check_bridges_below_facets();
   const double critical = explicit_->critical_timestep();
   if (setup_.load_step == 0) {
     setup_.load_step = setup_.timestep_safety * critical;
@@ -211,30 +210,6 @@ double RigidCellSystem<D>::kinetic_energy() const {
   return setup_.dynamics ? 0.5 * v_.dot(mass_ * v_) : 0.0;
 }
 
-// The critical step is the undamaged specimen's; a bridge takes part once its facet cracks, and its secant is at
-// most the bonded fibre's stiffness (fibre_pullout.hpp). While the bridges of a facet stiffen it less than the facet
-// itself does intact, the cracked facet with them is below the intact one and the step stays stable.
-template <int D>
-void RigidCellSystem<D>::check_bridges_below_facets() const {
-  if (!bridges_) return;
-  std::vector<double> stiffness(model_->contacts(), 0.0);
-  for (std::size_t i = 0; i < bridges_->sites(); ++i)
-    stiffness[bridges_->site(i).contact] += bonded_stiffness(bridges_->material(i));
-  for (std::size_t c : bridges_->contacts()) {
-    const FacetParams& p = model_->params(c);
-    const double facet = p.E0 * tessellation_.facets[c].area / model_->length(c);
-    if (stiffness[c] <= facet) continue;
-    std::ostringstream m;
-    m << "explicit dynamics: the fibres across facet " << c << " (" << bridges_->contacts().size()
-      << " facets bridged) are stiffer together (" << stiffness[c] << " N/m) than the facet intact (" << facet
-      << " N/m): the critical step of the intact specimen would not hold once it cracks; use the Newmark scheme, "
-         "fewer or thinner fibres, or larger cells";
-    throw InputError(m.str());
-  }
-}
-
-template void RigidCellSystem<2>::check_bridges_below_facets() const;
-template void RigidCellSystem<3>::check_bridges_below_facets() const;
 template void RigidCellSystem<2>::build_dynamics();
 template void RigidCellSystem<2>::build_explicit();
 template void RigidCellSystem<2>::build_stress_wave();

@@ -256,7 +256,6 @@ class RigidCellSystem final : public System {
   void dynamic_step();
   void explicit_step();
   void build_explicit();
-  void check_bridges_below_facets() const;
   // The plates' held motion at t (on their held degrees of freedom; zero elsewhere): velocity × the smooth rise
   // (9.1) and its derivatives.
   KinematicState held_motion(double t) const;
