@@ -69,6 +69,7 @@ int run(const std::string& scene_file, std::string output, const std::vector<std
   if (ranks.size() > 1)
     std::fprintf(stderr, " (split across %d ranks: %s%s)", ranks.size(), r.balance.c_str(),
                  rebalance > 0 ? "" : ", --rebalance not given");
+  if (!r.cost.empty()) std::fprintf(stderr, " (%s)", r.cost.c_str());
   std::fputc('\n', stderr);
   return 0;
 }

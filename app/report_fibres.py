@@ -64,6 +64,10 @@ def draw_pattern(ax, run, frame):
 def draw_curves(ax_load, ax_count, run):
     """The scene's first x-y pair (load against displacement), and the fibre counts against the same x (or time)."""
     hist = run["history"]
+    if "time" not in hist:  # a generated specimen: no run, no histories
+        for ax in (ax_load, ax_count):
+            ax.text(0.5, 0.5, "no histories (a specimen not yet run)", ha="center", va="center", transform=ax.transAxes)
+        return
     pairs = [(x, y) for x, y in run["xy_plots"] if x in hist and y in hist]
     xs = hist[pairs[0][0]] if pairs else hist["time"]
     fx, ux = si_scale(xs["data"], xs["unit"])

@@ -143,6 +143,9 @@ class System {
   // A run split across processes: how many particles each owned when split and at the end, and how often the
   // regions were drawn afresh (for the closing line). "" for a run in one process. Every process calls it.
   virtual std::string balance_report() const { return ""; }
+  // What a measured part of the run cost of its `wall_seconds` (the rigid cells' fibres: their evaluation, secants and
+  // forces), for the closing line; "" when the system measures none.
+  virtual std::string cost_report(double /*wall_seconds*/) const { return ""; }
 };
 
 }  // namespace mc

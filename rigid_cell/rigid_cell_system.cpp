@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -498,6 +499,16 @@ CellFrame RigidCellSystem<D>::cell_frame() const {
     f.fibre_slip[k] = std::max({f.fibre_slip[k], s.bridge.sides.pullout[0], s.bridge.sides.pullout[1]});
   }
   return f;
+}
+
+template <int D>
+std::string RigidCellSystem<D>::cost_report(double wall_seconds) const {
+  if (!bridges_ || wall_seconds <= 0) return "";
+  std::ostringstream m;
+  m << std::fixed << std::setprecision(1) << "the fibres' " << bridges_->sites()
+    << (bridges_->sites() == 1 ? " crossing: " : " crossings: ")
+    << bridges_->seconds() << " s, " << std::setprecision(0) << 100 * bridges_->seconds() / wall_seconds << " % of it";
+  return m.str();
 }
 
 template <int D>

@@ -167,6 +167,7 @@ class RigidCellSystem final : public System {
   SpecimenData specimen() const override;
   void frame(std::vector<double>& x, std::vector<double>& v, std::vector<double>& force) const override;
   CellFrame cell_frame() const override;
+  std::string cost_report(double wall_seconds) const override;
   std::vector<std::string> crack_models() const override;
   std::size_t crack_count() const override { return cracks_.size(); }
   CrackRows cracks(std::size_t first) const override;

@@ -132,6 +132,7 @@ class Runner {
     r.time = system_->time();
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     r.balance = system_->balance_report();
+    r.cost = system_->cost_report(r.wall_seconds);
     return r;
   }
 
@@ -488,7 +489,9 @@ std::vector<std::pair<std::string, double>> generate_specimen(const Scene& scene
   const SpecimenData d = system->specimen();
   RunOutput out(output, scene.text, scene.file, d);  // complete under its name, or absent
   const std::vector<double> zero(d.x.size(), 0.0);
-  const CellFrame cells_at_rest{d.cells.corner, std::vector<double>(d.cells.contacts, 0.0)};
+  const std::vector<double> fibres_idle(d.fibres.family.size(), 0.0);  // FibreState::Idle, no force, no slip
+  const CellFrame cells_at_rest{d.cells.corner, std::vector<double>(d.cells.contacts, 0.0), fibres_idle, fibres_idle,
+                                fibres_idle};
   out.append_frame(0.0, 0, d.x, zero, zero, cells_at_rest);  // at rest: a scene loads it with kind = "output"
   out.set_status("finished", "generated specimen");
   out.publish();

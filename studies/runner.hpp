@@ -28,6 +28,7 @@ struct RunResult {
   std::int64_t steps = 0;
   double time = 0, wall_seconds = 0;
   std::string balance;  // a split run's System::balance_report
+  std::string cost;     // System::cost_report
 };
 
 // Throws InputError / IoError before anything runs; InstabilityError after recording it in the file.

@@ -1,7 +1,8 @@
 // What the output of a run with fibres holds of them (README, "Output": /specimen/fibres, /frames/fibre_*), read
 // back from a real `mesocrack` run of the §6.3 prism on coarse cells: each fibre a straight polyline of its placed
 // length through its crossings, the per-fibre states counted as the histories count them, no fibre carrying more
-// than its strength, the XDMF grid of the fibres as large as its datasets, and `report` drawing them.
+// than its strength, the XDMF grid of the fibres as large as its datasets, and `report` drawing them; a generated
+// specimen's fibres at rest, and the run's closing line saying what the fibres cost it.
 #include <Eigen/Core>
 
 #include "tests/common/cli_harness.hpp"
@@ -97,4 +98,24 @@ TEST_CASE("fibre_output_keeps_each_fibre_straight_through_its_crossings_and_its_
   CHECK_MESSAGE(contains(report.out, png.string()), report.out);
   REQUIRE(fs::exists(png));
   CHECK(slurp(png).substr(0, 8) == std::string("\x89PNG\r\n\x1a\n", 8));
+}
+
+TEST_CASE("generated_specimen_keeps_its_fibres_idle_and_a_run_says_what_its_fibres_cost") {
+  const TempDir d;
+  // `generate` writes the specimen at rest: its one fibre placed, its frame's state idle, no force, no slip.
+  const Result g = mesocrack({"generate", (kScenes / "fibre_pullout_two_sided_3d.toml").string(), "-o", "spec.h5"},
+                             d.dir);
+  REQUIRE_MESSAGE(g.code == 0, g.describe());
+  const mc::H5File f((d / "spec.h5").string(), mc::H5File::Mode::ReadOnly);
+  REQUIRE(f.read_ints("/specimen/fibres/crossings") == std::vector<std::int64_t>{1});
+  for (const char* t : {"/frames/fibre_state", "/frames/fibre_force", "/frames/fibre_slip"})
+    CHECK(last_row(f, t) == std::vector<double>{0.0});
+  // A run's closing line names the time its fibres took: a share of its wall time, between 0 and 100 %.
+  const Result r = mesocrack({"run", (kScenes / "fibre_pullout_two_sided_3d.toml").string(), "-o", "run.h5"}, d.dir);
+  REQUIRE_MESSAGE(r.code == 0, r.describe());
+  const auto at = r.err.find("(the fibres' 1 crossing: ");
+  REQUIRE_MESSAGE(at != std::string::npos, r.err);
+  const double share = std::stod(r.err.substr(r.err.find(", ", at) + 2));
+  CHECK(share >= 0);
+  CHECK(share <= 100);
 }
