@@ -11,7 +11,7 @@ from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.colors import Normalize  # noqa: E402
 
 from report_plots import save, si_scale, with_unit  # noqa: E402
-from report_specimen import CRACK_DAMAGE, DAMAGE_COLOURS, cell_picture  # noqa: E402
+from report_specimen import CRACK_DAMAGE, cell_picture, draw_cracked_facets, frame_axes  # noqa: E402
 
 # RigidCellSystem's FibreState: 0 idle, 1 bridging, 2 pulled out, 3 ruptured.
 BRIDGING, PULLED_OUT, RUPTURED = 1, 2, 3
@@ -39,19 +39,8 @@ def draw_pattern(ax, run, frame):
     lines = LineCollection(segments, cmap="Blues", norm=fnorm, linewidths=0.5, alpha=0.7)
     lines.set_array(force[shown])
     ax.add_collection(lines)
-    contact = which < c["contacts"]
-    damage = np.zeros(len(which))
-    damage[contact] = frame["damage"][which[contact]]
-    cracked = damage >= CRACK_DAMAGE
-    cracks = LineCollection(facets[cracked] * factor, cmap=DAMAGE_COLOURS, norm=Normalize(CRACK_DAMAGE, 1.0),
-                            linewidths=1.8)
-    cracks.set_array(damage[cracked])
-    ax.add_collection(cracks)
-    ax.set_xlim(lo[0] * factor, hi[0] * factor)
-    ax.set_ylim(lo[1] * factor, hi[1] * factor)
-    ax.set_aspect("equal")
-    ax.set_xlabel(f"x [{lunit}]")
-    ax.set_ylabel(f"y [{lunit}]")
+    draw_cracked_facets(ax, c, facets, which, frame, factor, 1.8)
+    frame_axes(ax, lo, hi, factor, lunit)
     drawn = f"{len(bridging)} bridging" + (f" (every {every}th drawn)" if every > 1 else "")
     said = (f"fibres: {drawn}, {int((state == PULLED_OUT).sum())} pulled out, {int((state == RUPTURED).sum())} "
             f"broken, of {len(state)}")

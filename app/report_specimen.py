@@ -294,6 +294,30 @@ def cell_picture(run):
     return outlines, facets, which, f"the cells' section at mid-thickness, z = {z * factor:.4g} {unit}"
 
 
+def draw_cracked_facets(ax, c, facets, which, frame, factor, width):
+    """The facets of the picture (`facets`, each facet `which`) whose damage in the frame reached CRACK_DAMAGE,
+    coloured by it, the most damaged on top. Returns which of the picture's facets those are."""
+    contact = which < c["contacts"]
+    damage = np.zeros(len(which))
+    damage[contact] = frame["damage"][which[contact]]
+    cracked = damage >= CRACK_DAMAGE
+    order = np.argsort(damage[cracked])
+    lines = LineCollection(facets[cracked][order] * factor, cmap=DAMAGE_COLOURS, norm=Normalize(CRACK_DAMAGE, 1.0),
+                           linewidths=width)
+    lines.set_array(damage[cracked][order])
+    ax.add_collection(lines)
+    return cracked
+
+
+def frame_axes(ax, lo, hi, factor, unit):
+    """The picture plane from lo to hi (x-y, in metres, shown in `unit` by `factor`), to scale."""
+    ax.set_xlim(lo[0] * factor, hi[0] * factor)
+    ax.set_ylim(lo[1] * factor, hi[1] * factor)
+    ax.set_aspect("equal")
+    ax.set_xlabel(f"x [{unit}]")
+    ax.set_ylabel(f"y [{unit}]")
+
+
 def plot_cells(run, stem, out_dir):
     """Rigid cells: the crack pattern, as the contact facets whose damage reached CRACK_DAMAGE coloured by their
     damage over the cells' outlines (faint), in the last frame and, beside it, the last frame by the peak of the load
@@ -308,22 +332,11 @@ def plot_cells(run, stem, out_dir):
     # Panels of the specimen's shape, some 6 inches tall and wide enough for their titles.
     width = np.clip(5.5 * (hi[0] - lo[0]) / max(hi[1] - lo[1], 1e-300), 3.0, 7.5)
     fig, axes = plt.subplots(1, panels, figsize=(1.3 + width * panels, 6.8), squeeze=False, layout="compressed")
-    contact = which < c["contacts"]
     norm = Normalize(CRACK_DAMAGE, 1.0)
     for ax, frame in zip(axes.ravel(), c["frames"]):
         ax.add_collection(LineCollection(outlines * factor, colors="0.8", linewidths=0.4))
-        damage = np.zeros(len(which))
-        damage[contact] = frame["damage"][which[contact]]
-        cracked = damage >= CRACK_DAMAGE
-        order = np.argsort(damage[cracked])  # the most damaged drawn last, on top
-        lines = LineCollection(facets[cracked][order] * factor, cmap=DAMAGE_COLOURS, norm=norm, linewidths=1.6)
-        lines.set_array(damage[cracked][order])
-        ax.add_collection(lines)
-        ax.set_xlim(lo[0] * factor, hi[0] * factor)
-        ax.set_ylim(lo[1] * factor, hi[1] * factor)
-        ax.set_aspect("equal")
-        ax.set_xlabel(f"x [{lunit}]")
-        ax.set_ylabel(f"y [{lunit}]")
+        cracked = draw_cracked_facets(ax, c, facets, which, frame, factor, 1.6)
+        frame_axes(ax, lo, hi, factor, lunit)
         tf, tu = si_scale([frame["time"]], "s")
         when = (f"t = {frame['time'] * tf:.4g} {tu}, step {frame['step']} "
                 f"(frame {frame['index'] + 1} of {frame['count']})")

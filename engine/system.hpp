@@ -56,7 +56,7 @@ struct FibreGeometry {
   bool empty() const { return family.empty(); }
 };
 
-// What a fibre does in a frame, its most advanced crossing's (FibreFrame::state).
+// What a fibre does in a frame, its most advanced crossing's (CellFrame::fibre_state).
 enum class FibreState { Idle = 0, Bridging = 1, PulledOut = 2, Ruptured = 3 };
 
 // One frame of the cells: their corners (C·D, as CellGeometry::corner) moved with them, and each contact facet's

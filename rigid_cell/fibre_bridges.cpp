@@ -157,26 +157,28 @@ typename FibreBridges<D>::Element FibreBridges<D>::contact_stiffness(std::size_t
   return K;
 }
 
+// f += Σ G_fᵀ k_i G_f q: each crossing as an isotropic spring k_i on the jump at its point.
 template <int D>
-void FibreBridges<D>::add_secant_forces(const Eigen::VectorXd& u_cells, Eigen::VectorXd& f) const {
-  const Charged charged(seconds_);
+template <typename Stiffness>
+void FibreBridges<D>::add_spring_forces(const Eigen::VectorXd& u_cells, Eigen::VectorXd& f, Stiffness k) const {
   for (std::size_t i = 0; i < sites_.size(); ++i) {
-    const BridgeState<D>& t = trial_[i];
-    if (t.secant == 0) continue;
-    const Eigen::Matrix<double, 2 * kDofs, 1> fe = jumps_[i].transpose() * (t.secant * (jumps_[i] * gather(i, u_cells)));
+    const double ki = k(i);
+    if (ki == 0) continue;
+    const Eigen::Matrix<double, 2 * kDofs, 1> fe = jumps_[i].transpose() * (ki * (jumps_[i] * gather(i, u_cells)));
     f.template segment<kDofs>(kDofs * cells_[i].first) += fe.template head<kDofs>();
     f.template segment<kDofs>(kDofs * cells_[i].second) += fe.template tail<kDofs>();
   }
 }
 
 template <int D>
+void FibreBridges<D>::add_secant_forces(const Eigen::VectorXd& u_cells, Eigen::VectorXd& f) const {
+  const Charged charged(seconds_);
+  add_spring_forces(u_cells, f, [&](std::size_t i) { return trial_[i].secant; });
+}
+
+template <int D>
 void FibreBridges<D>::add_stiffest_forces(const Eigen::VectorXd& u_cells, Eigen::VectorXd& f) const {
-  for (std::size_t i = 0; i < sites_.size(); ++i) {
-    const double k = bonded_stiffness(materials_[sites_[i].family]);
-    const Eigen::Matrix<double, 2 * kDofs, 1> fe = jumps_[i].transpose() * (k * (jumps_[i] * gather(i, u_cells)));
-    f.template segment<kDofs>(kDofs * cells_[i].first) += fe.template head<kDofs>();
-    f.template segment<kDofs>(kDofs * cells_[i].second) += fe.template tail<kDofs>();
-  }
+  add_spring_forces(u_cells, f, [&](std::size_t i) { return bonded_stiffness(materials_[sites_[i].family]); });
 }
 
 template <int D>

@@ -138,6 +138,8 @@ class FibreBridges {
   mutable double seconds_ = 0;
 
   Eigen::Matrix<double, 2 * kDofs, 1> gather(std::size_t i, const Eigen::VectorXd& u_cells) const;
+  template <typename Stiffness>
+  void add_spring_forces(const Eigen::VectorXd& u_cells, Eigen::VectorXd& f, Stiffness k) const;
   void embedments(std::size_t i, double spalled, double out[2]) const;
 };
 

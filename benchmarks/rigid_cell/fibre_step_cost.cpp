@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "benchmarks/options.hpp"
+#include "benchmarks/rigid_cell/timing.hpp"
 #include "engine/errors.hpp"
 #include "rigid_cell/fibre_bridges.hpp"
 #include "rigid_cell/fibre_crossings.hpp"
@@ -31,7 +32,9 @@
 
 using namespace mc;
 using namespace mc::rigid_cell;
-using Clock = std::chrono::steady_clock;
+using mc::bench::best_of;
+using mc::bench::Clock;
+using mc::bench::seconds_since;
 
 namespace {
 
@@ -43,19 +46,6 @@ FibreMaterial pva() {  // §6.1
   FibreMaterial f;
   f.modulus = 30e9, f.diameter = 40e-6, f.tensile_strength = 1000e6, f.friction_stress = 2e6, f.debonding_energy = 5;
   return f;
-}
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-template <typename F>
-double best_of(int repeats, F&& f) {
-  double best = 1e300;
-  for (int i = 0; i < repeats; ++i) {
-    const auto t0 = Clock::now();
-    f();
-    best = std::min(best, seconds_since(t0));
-  }
-  return best;
 }
 
 // The prism's cells, and its two grips as plates: the left held, the right pulled along x.
@@ -116,15 +106,14 @@ Row measure(const Prism& p, long fibres, int steps) {
   std::vector<int> prescribed;
   for (int k = 0; k < 6; ++k) prescribed.push_back(plates.plate_dof(0, k)), prescribed.push_back(plates.plate_dof(1, k));
 
-  // The parts alone, on a copy whose every crossing takes part (as once the prism has cracked throughout).
+  // The parts alone, every crossing taking part (as once the prism has cracked throughout).
   {
-    FibreBridges<3> all(p.t, p.model, {pva()}, bridge_sites(placed, family, crossings));
-    all.commit(std::vector<double>(p.model.contacts(), 0.5));
+    bridges.commit(std::vector<double>(p.model.contacts(), 0.5));
     // Every cell moved along x by 40 µm over the prism's length: every crossing opens by a micron or two, debonding.
     Eigen::VectorXd u_cells = Eigen::VectorXd::Zero(6 * p.model.cells());
     for (int c = 0; c < p.model.cells(); ++c) u_cells[6 * c] = 40e-6 / kSize.x() * p.t.cells[c].node.x();
     // Best of ten: the first calls pay for OpenMP's threads starting (measured up to 25 times the rest).
-    r.evaluate = best_of(10, [&] { all.evaluate(u_cells); });
+    r.evaluate = best_of(10, [&] { bridges.evaluate(u_cells); });
     std::vector<int> is_free(plates.reduced(), 1);
     for (int d : prescribed) is_free[d] = 0;
     std::vector<Eigen::Triplet<double>> pick;
@@ -134,7 +123,7 @@ Row measure(const Prism& p, long fibres, int steps) {
     to_free.setFromTriplets(pick.begin(), pick.end());
     const SparseMatrix to_cells = plates.map() * to_free;
     const std::vector<double> damage(p.model.contacts(), 0.5);
-    FreeStiffness<3> with(p.model, to_cells, &all), bare(p.model, to_cells);
+    FreeStiffness<3> with(p.model, to_cells, &bridges), bare(p.model, to_cells);
     r.refill = best_of(10, [&] { with(damage); });
     r.refill_bare = best_of(10, [&] { bare(damage); });
     const SparseMatrix& K = with(damage);

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "benchmarks/options.hpp"
+#include "benchmarks/rigid_cell/timing.hpp"
 #include "engine/errors.hpp"
 #include "rigid_cell/free_stiffness.hpp"
 #include "rigid_cell/newmark.hpp"
@@ -28,7 +29,9 @@
 
 using namespace mc;
 using namespace mc::rigid_cell;
-using Clock = std::chrono::steady_clock;
+using mc::bench::best_of;
+using mc::bench::Clock;
+using mc::bench::seconds_since;
 
 namespace {
 
@@ -36,20 +39,6 @@ const Vec<3> kSize(0.1, 0.1, 0.2);
 const FacetParams kConcrete{44e9, 0.237, 2.64e6, 9.93};  // Tab. 9.1
 // Random sequential nodes fill about half of the volume / l_min³ (measured: 0.48-0.53 on Květoň's discs).
 constexpr double kNodesPerVolume = 0.5;
-
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-// The best of `repeats` timings of f (a noisy machine makes single timings long, never short).
-template <typename F>
-double best_of(int repeats, F&& f) {
-  double best = 1e300;
-  for (int i = 0; i < repeats; ++i) {
-    const auto t0 = Clock::now();
-    f();
-    best = std::min(best, seconds_since(t0));
-  }
-  return best;
-}
 
 struct Row {
   int cells = 0, dofs = 0;
