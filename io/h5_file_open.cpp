@@ -39,11 +39,19 @@ Id crash_safe_writing() {
   return fapl;
 }
 
+// A reader does not take HDF5's file lock: a run's file is open for writing while it runs, and `summary` of it
+// would otherwise fail where `report` (h5py, locking off) reads it. What it reads is the last flush's.
+Id reading_beside_a_writer() {
+  Id fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  H5Pset_file_locking(fapl, false, true);
+  return fapl;
+}
+
 }  // namespace
 
 H5File::H5File(const std::string& path, Mode mode) : path_(path), writable_(mode != Mode::ReadOnly) {
   quiet_this_thread();
-  const Id fapl = mode == Mode::ReadOnly ? Id(H5Pcreate(H5P_FILE_ACCESS), H5Pclose) : crash_safe_writing();
+  const Id fapl = mode == Mode::ReadOnly ? reading_beside_a_writer() : crash_safe_writing();
   if (mode == Mode::Create) {
     const std::filesystem::path dir = std::filesystem::path(path).parent_path();
     if (!dir.empty() && !std::filesystem::is_directory(dir))

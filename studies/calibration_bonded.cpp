@@ -136,7 +136,7 @@ class Calibration {
     std::vector<std::string> outputs{options_.output, options_.output + ".tmp"};
     for (int it = 1; it <= options_.max_iterations; ++it)
       for (const auto& f : run_files(run_file(it))) outputs.push_back(f);
-    refuse_inputs_as_outputs(base_, outputs);
+    refuse_unsafe_outputs(base_, outputs);
     knobs_.ratio = entry_.contact().kn_ks_ratio;
     elastic_ = e_target();
     // The elastic runs stop at half the target's elastic strain at the peak in compression: far enough for the

@@ -74,7 +74,7 @@ class CpmCalibration {
     for (int it = 1; it <= options_.max_iterations; ++it)
       for (const char* suffix : {"", "_compression"})
         for (const auto& f : run_files(run_file(options_.output, it, suffix))) outputs.push_back(f);
-    refuse_inputs_as_outputs(base, outputs);
+    refuse_unsafe_outputs(base, outputs);
     if (nu_target()) set_ratio(cc::kt_kn_from_poisson(target_.poisson));  // the microplane relation's first guess
     elastic_ = e_target() || nu_target();
     // Loaded to about the strain of the full test's peak, the elastic run's secant window (25–50 % of its last

@@ -47,7 +47,7 @@ RealizationSet run_realizations(const std::string& scene_file, const std::vector
   const std::filesystem::path p(output);
   const std::string json = (p.parent_path() / (p.stem().string() + "_realizations.json")).string();
   outputs.insert(outputs.end(), {json, json + ".tmp"});
-  refuse_inputs_as_outputs(base, outputs);
+  refuse_unsafe_outputs(base, outputs);
   // Under mpirun each rank runs its share (Ranks::share) with its own threads: each run is the serial command's
   // run for its seed, so rank 0's statistics are the serial ones, bit for bit.
   const Ranks& ranks = Ranks::world();

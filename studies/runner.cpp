@@ -462,7 +462,38 @@ class Runner {
 
 }  // namespace
 
-void refuse_inputs_as_outputs(const Scene& scene, const std::vector<std::string>& outputs) {
+namespace {
+// What a file that is not a regular one is, in a message.
+std::string kind_of(std::filesystem::file_type t) {
+  using T = std::filesystem::file_type;
+  switch (t) {
+    case T::directory: return "a folder";
+    case T::character: return "a character device";
+    case T::block: return "a block device";
+    case T::fifo: return "a fifo";
+    case T::socket: return "a socket";
+    default: return "not a regular file";
+  }
+}
+
+// A run writes <output>.partial and renames it over <output> (run_output.hpp): only a regular file may be replaced
+// so; a rename over /dev/null as root turns the device into a file for every other program.
+void refuse_special_output(const std::string& out) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_status target = fs::status(out, ec);  // through links: a link to a device is the device
+  if (fs::exists(target) && !fs::is_regular_file(target))
+    throw IoError("output file " + out + " exists and is " + kind_of(target.type()) +
+                  ": a run replaces only a regular file (it writes beside it and renames over it); name a regular "
+                  "file or a new one");
+  const fs::path folder = fs::path(out).parent_path();
+  if (!folder.empty() && !fs::is_directory(folder, ec))
+    throw IoError("output file " + out + ": its folder " + folder.string() + " does not exist; create it first");
+}
+}  // namespace
+
+void refuse_unsafe_outputs(const Scene& scene, const std::vector<std::string>& outputs) {
+  for (const auto& out : outputs) refuse_special_output(out);
   std::vector<std::pair<std::string, std::string>> inputs{{scene.file, "the scene file"}};
   const auto kind = scene.specimen.kind;
   if (kind == SpecimenSpec::Kind::SphereList || kind == SpecimenSpec::Kind::Output)
@@ -479,12 +510,12 @@ void refuse_inputs_as_outputs(const Scene& scene, const std::vector<std::string>
 std::vector<std::string> run_files(const std::string& output) { return RunOutput::files_written(output); }
 
 RunResult run_scene(const Scene& scene, const RunOptions& options) {
-  refuse_inputs_as_outputs(scene, run_files(options.output));
+  refuse_unsafe_outputs(scene, run_files(options.output));
   return Runner(scene, options).run();
 }
 
 std::vector<std::pair<std::string, double>> generate_specimen(const Scene& scene, const std::string& output) {
-  refuse_inputs_as_outputs(scene, run_files(output));
+  refuse_unsafe_outputs(scene, run_files(output));
   const auto system = make_system(scene);  // the genesis happens here, before the file exists
   const SpecimenData d = system->specimen();
   RunOutput out(output, scene.text, scene.file, d);  // complete under its name, or absent

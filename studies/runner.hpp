@@ -34,9 +34,11 @@ struct RunResult {
 // Throws InputError / IoError before anything runs; InstabilityError after recording it in the file.
 RunResult run_scene(const Scene& scene, const RunOptions& options);
 
-// InputError, naming both, when one of `outputs` is the same file (by file-system identity, whatever the spelling
-// of its path) as an input of the scene: the scene file or the specimen file it loads (also when --set names it).
-void refuse_inputs_as_outputs(const Scene& scene, const std::vector<std::string>& outputs);
+// Before anything runs: InputError, naming both, when one of `outputs` is the same file (by file-system identity,
+// whatever the spelling of its path) as an input of the scene: the scene file or the specimen file it loads (also
+// when --set names it); IoError when one exists and is not a regular file (a device, a fifo, a socket, a folder, or a
+// link to one), which the rename of its partial file over it would replace, or when its folder does not exist.
+void refuse_unsafe_outputs(const Scene& scene, const std::vector<std::string>& outputs);
 // The files a run writing `output` creates or replaces (the file, its sidecars, temporaries).
 std::vector<std::string> run_files(const std::string& output);
 

@@ -1,7 +1,15 @@
 // Output files that lack what `summary` reads, or are no HDF5 at all, end `summary` and `report` with exit 3 naming
 // the file and the missing entry (never a crash); and an output that is an input of the run (the scene file, the
 // specimen file it loads, also through --set, or a file a sidecar would replace) is refused with exit 2 naming both,
-// leaving the input as it was.
+// leaving the input as it was; an output that exists and is not a regular file (a device, a fifo, a socket, a folder,
+// or a link to one), or lies in a folder that does not exist, is refused with exit 3 and left as it was.
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <cstring>
+
 #include "tests/common/cli_harness.hpp"
 
 namespace {
@@ -94,4 +102,75 @@ TEST_CASE("output_naming_an_input_of_the_run_is_refused_naming_both") {
   CHECK_MESSAGE(sidecar.code == 2, sidecar.describe());
   CHECK_MESSAGE(contains(sidecar.err, "run_history.csv"), sidecar.err);
   CHECK(!fs::exists(d / "run.h5"));
+}
+
+TEST_CASE("output_onto_a_device_fifo_socket_or_folder_is_refused_and_left_as_it_was") {
+  const TempDir d;
+  const std::string scene = (kScenes / "collision_2d.toml").string();
+  REQUIRE(mkfifo((d / "pipe").c_str(), 0600) == 0);
+  const int sock = socket(AF_UNIX, SOCK_STREAM, 0);
+  REQUIRE(sock >= 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  const std::string sock_path = (d / "sock").string();
+  REQUIRE(sock_path.size() < sizeof(addr.sun_path));
+  std::strcpy(addr.sun_path, sock_path.c_str());
+  REQUIRE(bind(sock, reinterpret_cast<const sockaddr*>(&addr), sizeof(addr)) == 0);
+  fs::create_directories(d / "folder");
+  // A link to /dev/null is the device as the run would see it; the rename of a partial file over the link replaces
+  // the link, not /dev/null, so the case can be tried as root without a private /dev.
+  fs::create_symlink("/dev/null", d / "null_link");
+  fs::create_symlink(d / "pipe", d / "pipe_link");
+  struct Case {
+    std::string output, kind;
+    fs::file_type type;  // what it must still be
+  };
+  const std::vector<Case> cases{{"pipe", "a fifo", fs::file_type::fifo},
+                                {"sock", "a socket", fs::file_type::socket},
+                                {"folder", "a folder", fs::file_type::directory},
+                                {"null_link", "a character device", fs::file_type::symlink},
+                                {"pipe_link", "a fifo", fs::file_type::symlink}};
+  for (const auto& c : cases) {
+    CAPTURE(c.output);
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"run", scene, "-o", c.output}, std::vector<std::string>{"generate", scene, "-o", c.output}}) {
+      const Result r = mesocrack(args, d.dir);
+      CHECK_MESSAGE(r.code == 3, r.describe());
+      CHECK_MESSAGE(contains(r.err, c.output), r.err);
+      CHECK_MESSAGE(contains(r.err, c.kind), r.err);
+      CHECK(fs::symlink_status(d / c.output).type() == c.type);
+      CHECK(!fs::exists(d / (c.output + ".partial")));
+      CHECK(!fs::exists(d / (c.output + ".xdmf")));
+    }
+  }
+  close(sock);
+  // A sidecar's name taken by a fifo: refused before the run, the fifo kept.
+  REQUIRE(mkfifo((d / "run_history.csv").c_str(), 0600) == 0);
+  const Result sidecar = mesocrack({"run", scene, "-o", "run.h5"}, d.dir);
+  CHECK_MESSAGE(sidecar.code == 3, sidecar.describe());
+  CHECK_MESSAGE(contains(sidecar.err, "run_history.csv"), sidecar.err);
+  CHECK(fs::is_fifo(d / "run_history.csv"));
+  CHECK(!fs::exists(d / "run.h5"));
+  // An output in a folder that does not exist: refused before the run (calibrate: before its packing).
+  const Result missing = mesocrack({"run", scene, "-o", "no/such/run.h5"}, d.dir);
+  CHECK_MESSAGE(missing.code == 3, missing.describe());
+  CHECK_MESSAGE(contains(missing.err, "no/such"), missing.err);
+  CHECK_MESSAGE(contains(missing.err, "does not exist"), missing.err);
+}
+
+TEST_CASE("summary_of_a_run_still_writing_its_file_reads_it_as_running") {
+  // A run of the 2D rigid-cell tension bar long enough to be caught mid-way; `summary` failed on HDF5's file lock
+  // (exit 3) where `report` reads the same file.
+  const TempDir d;
+  Child run({"run", (kScenes / "brazilian_2d.toml").string(), "-o", "live.h5", "--set", "run.steps=100000"}, d.dir);
+  const auto start = std::chrono::steady_clock::now();
+  while (!fs::exists(d / "live.h5") && !run.ended() && std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  REQUIRE_MESSAGE(fs::exists(d / "live.h5"), "the run never published its file");
+  REQUIRE_FALSE(run.ended());
+  const Result r = mesocrack({"summary", "live.h5"}, d.dir);
+  run.kill_now();
+  run.wait();
+  CHECK_MESSAGE(r.code == 0, r.describe());
+  CHECK_MESSAGE(contains(r.out, "\"status\": \"running\""), r.out);
 }
