@@ -94,7 +94,15 @@ class StaticSolver {
   void factorise_at(const std::vector<double>& state);
 
  private:
-  using Cholesky = Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower>;
+  // CHOLMOD's factor, and the number of values its analysis gave it room for (Eigen keeps the factor to itself): a
+  // supernodal factor holds the zeros inside its supernodes too (xsize, CHOLMOD's int), more than Common->lnz.
+  class Cholesky : public Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> {
+   public:
+    double values() const {
+      const cholmod_factor* f = m_cholmodFactor;
+      return f && f->is_super ? static_cast<double>(f->xsize) : const_cast<Cholesky*>(this)->cholmod().lnz;
+    }
+  };
   // The factor of an earlier stiffness as a preconditioner (Eigen's preconditioner interface).
   class FactorPreconditioner {
    public:
@@ -137,6 +145,7 @@ class StaticSolver {
   bool analysed_ = false;
   Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower, FactorPreconditioner> cg_;
 
+  static void refuse_unaffordable_factor(double values, Eigen::Index dofs);
   static void check_support(const CellAssembly<D>& model, const SparseMatrix& map, const std::vector<int>& prescribed,
                             bool inertia);
   void factorise(const SparseMatrix& Kff, const std::vector<double>& damage);

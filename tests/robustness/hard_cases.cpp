@@ -274,3 +274,29 @@ steps = 1
   CHECK_MESSAGE(contains(r.err, "1.77e+14 particles"), r.err);
   CHECK_FALSE(fs::exists(d / "big.h5"));
 }
+
+TEST_CASE("rigid cells too many for the machine or no room for a node are refused naming l_min before placing any") {
+  const TempDir d;
+  // A 70 mm disc of l_min 1 µm: random sequential addition saturates at about 0.62 nodes per l_min² (measured), so
+  // about 2.3·10⁹ cells, 14 TB at the least 6 kB a 2D cell needs; refused in well under a second.
+  const std::string disc = (kScenes / "brazilian_2d.toml").string();
+  const Result fine = mesocrack({"run", disc, "-o", "fine.h5", "--set", "specimen.l_min=1e-6"}, d.dir);
+  CHECK_MESSAGE(fine.code == 2, fine.describe());
+  CHECK_MESSAGE(contains(fine.err, "'specimen.l_min'"), fine.err);
+  CHECK_MESSAGE(contains(fine.err, "2.31e+09 cells"), fine.err);
+  CHECK_FALSE(fs::exists(d / "fine.h5"));
+  // The 3D prism of the fibre scenes at l_min 50 µm: 60 × 20 × 10 mm, about 5.6·10⁷ cells at 40 kB each.
+  const std::string prism = (kScenes / "fibre_prism_tension_3d.toml").string();
+  const Result fine3 = mesocrack({"run", prism, "-o", "fine3.h5", "--set", "specimen.l_min=5e-5"}, d.dir);
+  CHECK_MESSAGE(fine3.code == 2, fine3.describe());
+  CHECK_MESSAGE(contains(fine3.err, "'specimen.l_min'"), fine3.err);
+  CHECK_MESSAGE(contains(fine3.err, "cells"), fine3.err);
+  // l_min above the specimen's size: each node keeps l_min/2 from the surface, so none fits (it ended in an
+  // internal vector range error).
+  for (const auto& [scene, l] : {std::pair{disc, "0.08"}, std::pair{prism, "0.011"}}) {
+    const Result coarse = mesocrack({"run", scene, "-o", "coarse.h5", "--set", std::string("specimen.l_min=") + l}, d.dir);
+    CHECK_MESSAGE(coarse.code == 2, coarse.describe());
+    CHECK_MESSAGE(contains(coarse.err, "'specimen.l_min'"), coarse.err);
+    CHECK_MESSAGE(contains(coarse.err, "no room"), coarse.err);
+  }
+}
