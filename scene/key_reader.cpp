@@ -1,5 +1,6 @@
 #include "scene/key_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -127,7 +128,39 @@ void read_bound_keys(const Table& t, const KeyTable& keys, void* out) {
 const Key& KeyReader::key(std::string_view name, std::string_view when) const {
   const Key& k = keys_.at(name, when);
   note(k);
+  refuse_misspelling_of(k);
   return k;
+}
+
+namespace {
+// Levenshtein's distance: the fewest single-letter insertions, deletions and changes from a to b.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+}  // namespace
+
+// A required key that is absent while the table holds a key it does not declare spelt nearly so: the misspelling
+// is the error to name (reported as the right key missing, the user would look for the wrong thing), before the
+// table's unknown keys are checked at its end.
+void KeyReader::refuse_misspelling_of(const Key& k) const {
+  if (k.need != Need::Required || t_.has(str(k.name))) return;
+  for (const std::string& given : t_.keys()) {
+    if (keys_.find(given) || edit_distance(given, k.name) > 2) continue;
+    std::string allowed;
+    for (const Key& d : keys_.keys) allowed += (allowed.empty() ? "" : ", ") + str(d.name);
+    t_.fail(given, "no key of this table: a misspelling of '" + str(k.name) + "'? allowed here: " + allowed);
+  }
 }
 
 bool KeyReader::has(std::string_view name) const { return t_.has(str(key(name).name)); }

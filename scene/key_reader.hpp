@@ -72,6 +72,7 @@ class KeyReader {
   void finish() const { t_.finish(); }
 
  private:
+  void refuse_misspelling_of(const Key& k) const;
   std::optional<double> default_of(const Key& k) const;
   Table t_;
   const KeyTable& keys_;

@@ -98,6 +98,16 @@ TEST_CASE("rigid_cell_bad_input_names_the_plate_cell_or_step") {
        {"shape = \"disc\"",
         "shape = \"polygon\"\nvertices_x = [0, 0, \"70 mm\"]\nvertices_y = [0, \"70 mm\", 0]",
         {"vertices_y", "counter-clockwise"}},
+       // A corner given twice (refused as "cell 0 is unbounded"), and an outline through itself (it ran, its cells
+       // covering an area the outline does not have).
+       {"shape = \"disc\"",
+        "shape = \"polygon\"\nvertices_x = [0, \"70 mm\", \"70 mm\", \"70 mm\", 0]\n"
+        "vertices_y = [0, 0, \"70 mm\", \"70 mm\", \"70 mm\"]",
+        {"specimen.vertices_x", "vertices 2 and 3", "same point"}},
+       {"shape = \"disc\"",
+        "shape = \"polygon\"\nvertices_x = [0, \"70 mm\", \"70 mm\", \"40 mm\", \"40 mm\", 0]\n"
+        "vertices_y = [0, 0, \"70 mm\", \"70 mm\", \"-10 mm\", \"70 mm\"]",
+        {"specimen.vertices_x", "edge 0-1 meets edge 3-4", "crosses itself"}},
        {"[timestep]",
         "[[walls]]\nshape = \"plane\"\npoint = [0, 0]\nnormal = [0, 1]\nkn = 1e9\n\n[timestep]",
         {"'walls'", "rigid-cell scene"}},
@@ -135,4 +145,15 @@ TEST_CASE("rigid_cell_specimen_free_to_slide_stops_with_exit_4_at_a_singular_sti
   CHECK_MESSAGE(r.code == 4, r.describe());
   CHECK_MESSAGE(contains(r.err, "step 1 "), r.err);
   CHECK_MESSAGE(contains(r.err, "singular"), r.err);
+}
+
+TEST_CASE("rigid_cell_misspelt_required_key_is_named_as_the_misspelling_not_as_the_key_missing") {
+  // Each misspelling was reported as "missing key 'correlation_length'", the key the user had written.
+  const TempDir d;
+  check_edits_refused(d.dir, slurp(kScenes / "rigid_cell_tension_field_2d.toml"),
+                      {{"correlation_length = ", "corelation_length = ",
+                        {"rigid_cell.random_field.corelation_length", "misspelling of 'correlation_length'"}},
+                       {"l_min = ", "l_mn = ", {"specimen.l_mn", "misspelling of 'l_min'"}}});
+  check_edits_refused(d.dir, slurp(kScenes / "stress_wave_bar_2d.toml"),
+                      {{"pressure = ", "presure = ", {"rigid_cell.stress_wave.presure", "misspelling of 'pressure'"}}});
 }
