@@ -154,7 +154,7 @@ void check_spacing(const Scene& s, const Particles<D>& p, const SpecimenInfo& in
     const auto [i, j] = pr;
     const double d = (p.x[j] - p.x[i]).norm(), rmin = std::min(p.radius[i], p.radius[j]);
     const std::string both = "particles " + std::to_string(info.ids[i]) + " and " + std::to_string(info.ids[j]);
-    if (d <= 1e-9 * (p.radius[i] + p.radius[j]))
+    if (d <= 1e-9 * rmin)  // of the smaller: beside a huge particle a small one is inside it, not at its centre
       throw InputError(s.file + ": " + both + " of the specimen have the same centre; move one of them");
     const double overlap = p.radius[i] + p.radius[j] - d;
     if (overlap > 0.5 * rmin) {

@@ -69,6 +69,9 @@ TEST_CASE("bad_pullout_and_driven_group_keys_are_refused_naming_the_key") {
       {"fix = \"x y\"", "fix = \"y\"", {"groups[1].fix", "driven along x", "must be fixed"}},
       {"ramp_time = \"50 us\"", "ramp_time = \"-1 us\"", {"groups[1].ramp_time"}},
       {"bonded_to = \"40 mm\"", "bonded_to = \"60 mm\"", {"strain gauge", "sheet must cover"}},
+      // Reversed against the pull: the loaded end was taken at the far end, and it ran.
+      {"bonded_from = 0\nbonded_to = \"40 mm\"", "bonded_from = \"40 mm\"\nbonded_to = 0",
+       {"pullout.bonded_to", "the loaded end", "swap"}},
   };
   check_edits_refused(d.dir, slurp(kPull), edits);
 }

@@ -266,6 +266,9 @@ TEST_CASE("bad_bending_and_opening_control_keys_are_refused_naming_the_key") {
        "max_speed = \"500 mm/s\"\nretreat_speed = \"0 mm/s\"",
        {"walls[2].retreat_speed", "> 0"}},
       {"groups = \"mouth_left mouth_right\"", "groups = \"mouth_left\"", {"probes[0].groups", "two [[groups]]"}},
+      // A support 5 mm below the beam (its particles of 1 mm radius rest on y = 0): it gave exit 0 and a peak.
+      {"a = [\"138 mm\", 0]\nb = [\"142 mm\", 0]", "a = [\"138 mm\", \"-5 mm\"]\nb = [\"142 mm\", \"-5 mm\"]",
+       {"bending.supports", "wall 'right'", "must touch the beam"}},
   };
   check_edits_refused(d.dir, slurp(kBeam), edits);
 }

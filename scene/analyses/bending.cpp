@@ -129,10 +129,32 @@ void BendingAnalysis::add_histories(std::vector<Series>& out, const Observed<3>&
 // beam); the deflection is the loading point's displacement along that normal minus the mean of the supports'
 // (walls, or a yoke: three groups on the beam, free of the indentation at the load and the supports); the CMOD
 // is the opening probe's reading.
+// A support that touches no particle carries nothing, and the beam rests on the other alone or on none: the load
+// it reads is no bending test's. Refused when the gap from a support to the nearest particle's surface exceeds the
+// largest radius (a beam placed on its supports touches them, or lies within a particle's reach of them).
+template <int D>
+void check_supports_touch(const std::string& file, const std::array<int, 2>& supports,
+                          const std::vector<Wall<D>>& walls, const Particles<D>& p) {
+  double largest = 0;
+  for (int i = 0; i < p.size(); ++i) largest = std::max(largest, p.radius[i]);
+  for (const int s : supports) {
+    double gap = kInf;
+    for (int i = 0; i < p.size(); ++i) gap = std::min(gap, (p.x[i] - walls[s].closest(p.x[i])).norm() - p.radius[i]);
+    if (gap <= largest) continue;
+    std::ostringstream m;
+    m.precision(4);
+    m << file << ": key 'bending.supports': wall '" << walls[s].name << "' lies " << gap
+      << " m from the nearest particle's surface (more than the largest radius, " << largest
+      << " m): a support must touch the beam; move the wall or the specimen";
+    throw InputError(m.str());
+  }
+}
+
 template <int D>
 void BendingAnalysis::add(std::vector<Series>& out, const Observed<D>& o) const {
   const Particles<D>* p = o.bodies;
   const std::vector<Wall<D>>* walls = o.walls;
+  if (p && p->size() > 0) check_supports_touch<D>(scene_file, supports, *walls, *p);
   auto put = [&](std::string name, std::string unit, std::function<double()> f) {
     out.push_back({std::move(name), std::move(unit), p ? std::move(f) : nullptr});
   };

@@ -104,6 +104,11 @@ std::shared_ptr<const Analysis> read_pullout(const KeyReader& k, const Scene& s)
   a->bonded_from = k.number("bonded_from");
   a->bonded_to = k.number("bonded_to");
   if (a->bonded_length() <= 0) k.fail("bonded_to", "equals bonded_from: the bonded length must be positive");
+  // The loaded end is where the sheet leaves the bond: the pull moves it away from the far end.
+  if (a->pull[0] * (a->bonded_from - a->bonded_to) <= 0)
+    k.fail("bonded_to", "lies on the side the group '" + g.name + "' pulls towards (velocity x " +
+                            json_number(g.velocity[0]) + " m/s) from bonded_from = " + json_number(a->bonded_from) +
+                            " m: bonded_from is the loaded end, where the pull leaves the bond; swap the two");
   a->gauges = static_cast<int>(k.integer("gauges"));
   a->width = k.number("width");
   a->prism_width = k.number("prism_width");

@@ -153,3 +153,10 @@ TEST_CASE("coincident particle centres are refused at build time naming both ids
   check_names(refusal(edit(kScene2d, "x = [\"4.5 mm\", \"2 mm\"]", "x = [\"2 mm\", \"2 mm\"]")),
               {"particles 0 and 1", "same centre"});
 }
+
+TEST_CASE("a particle of a huge radius beside a small one is refused as the overlap it is, not as a shared centre") {
+  // 2.5 mm apart, one of them 1e300 m in radius: the small one lies deep inside it (it was "the same centre").
+  const std::string huge =
+      edit(kScene2d, "x = [\"4.5 mm\", \"2 mm\"]\nradius = \"1 mm\"", "x = [\"4.5 mm\", \"2 mm\"]\nradius = 1e300");
+  check_names(refusal(huge), {"particles 0 and 1", "overlap by"});
+}
