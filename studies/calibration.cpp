@@ -86,6 +86,24 @@ CalibrationResult calibrate(const std::string& scene_file, const std::vector<std
 
 namespace calibration {
 
+void RunCost::ran(double seconds, double k, double strain) {
+  if (first_ == 0) first_ = seconds;
+  last_ = seconds, k_ = k, strain_ = strain;
+}
+
+bool RunCost::beyond_bound(double k, double strain, const char* kind, std::FILE* log) const {
+  if (first_ == 0) return false;
+  const double predicted = last_ * std::sqrt(k / k_) * strain / strain_;
+  const double bound = std::max(kMostGrowth * first_, kLeastBoundSeconds);
+  if (predicted <= bound) return false;
+  std::fprintf(log,
+               "stopped: the next %s run would take about %.3g s (stiffness %.3g times, strain reach %.3g times the "
+               "last's), beyond %.3g s, %g times the first: the targets are likely beyond what this specimen and "
+               "model can give; check them, or start nearer to them\n",
+               kind, predicted, k / k_, strain / strain_, bound, kMostGrowth);
+  return true;
+}
+
 std::string run_file(const std::string& output, int iteration, const std::string& suffix) {
   const std::filesystem::path out(output);
   return (out.parent_path() / (out.stem().string() + "_it" + std::to_string(iteration) + suffix + ".h5")).string();

@@ -152,9 +152,14 @@ class Calibration {
   CalibrationResult run() {
     log_header();
     Knobs ran = knobs_;  // what the last run used: the calibrated scene gets these, never untested values
+    RunCost cost[2];     // of the elastic runs and of the full ones (to the peak: strain strength/modulus)
     for (int it = 1; it <= options_.max_iterations; ++it) {
+      RunCost& c = cost[elastic_ ? 0 : 1];
+      const double reach = elastic_ ? 1.0 : knobs_.strength / knobs_.modulus;
+      if (c.beyond_bound(knobs_.modulus, reach, elastic_ ? "elastic" : "full", log_)) break;
       ran = knobs_;
       const Trial t = trial(it);
+      c.ran(t.wall_seconds, knobs_.modulus, reach);
       const UniaxialResult& u = t.result;
       res_.iterations = it;
       const bool e_ok = elastic_ok(u);

@@ -86,9 +86,14 @@ class CpmCalibration {
     std::fprintf(log_, "%3s %-8s %9s %6s %9s %7s %10s | %7s %6s %9s %9s | %s\n", "it", "run", "k_N [GPa]", "kT/kN",
                  "eps0", "tan phi", "c_T0 [MPa]", "E [GPa]", "nu", "f_t [MPa]", "f_c [MPa]", "wall [s]");
     CpmKnobs ran = knobs_;  // what the last run used: the calibrated scene gets these, never untested values
+    RunCost cost[2];  // of the elastic runs and of the full ones (to the peak: strain ε_0)
     for (int it = 1; it <= options_.max_iterations; ++it) {
+      RunCost& c = cost[elastic_ ? 0 : 1];
+      const double reach = elastic_ ? 1.0 : knobs_.eps0;
+      if (c.beyond_bound(knobs_.kn, reach, elastic_ ? "elastic" : "full", log_)) break;
       ran = knobs_;
       const Measured m = elastic_ ? elastic_trial(it) : full_trial(it);
+      c.ran(m.wall, knobs_.kn, reach);
       log_line(it, m);
       res_.iterations = it;
       if (elastic_) {

@@ -14,6 +14,22 @@ namespace mc::calibration {
 
 inline double rel(double value, double target) { return std::abs(value / target - 1.0); }
 
+// A run costs its steps: the critical step falls as 1/√k (Tang 3.24), so a run to a strain ε takes ε √k times as
+// many (against another run of the same kind, at the same loading rate). A target the specimen cannot give drives
+// the stiffness without end (E = 1e20 Pa: the moduli × 3·10⁹, runs 5·10⁴ times as long); the procedures stop, not
+// converged (exit 5), once their next run of a kind would take 30 times the first (and over a minute).
+class RunCost {
+ public:
+  static constexpr double kMostGrowth = 30, kLeastBoundSeconds = 60;
+  // A run of this kind took `seconds` at stiffness scale k, loaded to strain scale ε (any consistent measures).
+  void ran(double seconds, double k, double strain);
+  // False before any run; else whether a run at (k, ε) would take beyond the bound, said on `log` if so.
+  bool beyond_bound(double k, double strain, const char* kind, std::FILE* log) const;
+
+ private:
+  double first_ = 0, last_ = 0, k_ = 0, strain_ = 0;
+};
+
 // Where the runs of a calibration writing the scene `output` go: <stem>_itK<suffix>.h5 beside it.
 std::string run_file(const std::string& output, int iteration, const std::string& suffix = "");
 

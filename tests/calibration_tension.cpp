@@ -157,3 +157,19 @@ TEST_CASE("calibrate_tension_refuses_targets_the_bond_model_cannot_reach") {
     CHECK(!fs::exists(d / "c_it1.h5"));
   }
 }
+
+// A target no bonded packing gives (E = 1e20 Pa, 3·10⁹ times the scene's moduli): its next run's steps would be
+// √(3·10⁹) ≈ 5·10⁴ times as many (the critical step falls as 1/√k); it ran for hours, unbounded by --max-iterations.
+// It stops after its first run, not converged (exit 5), saying what the next would cost; so does the CPM's.
+TEST_CASE("calibrate_stops_with_exit_5_when_a_target_would_make_its_next_run_beyond_bound") {
+  const TempDir d;
+  write_file(d / "parallel.toml", scene(kParallel));
+  const fs::path cpm = kScenes / "cpm_uniax_tension.toml";
+  for (const std::string file : {std::string("parallel.toml"), cpm.string()}) {
+    const Result r = mesocrack({"calibrate", file, "--target", "E=1e20Pa", "-o", "c.toml"}, d.dir);
+    CHECK_MESSAGE(r.code == 5, file, ": ", r.describe());
+    CHECK_MESSAGE(contains(r.err, "the next elastic run would take about"), file, ": ", r.err);
+    CHECK_MESSAGE(contains(r.err, "NOT converged after 1 iterations"), file, ": ", r.err);
+    CHECK_MESSAGE(r.seconds < 60, file, ": ", r.seconds, " s");
+  }
+}
