@@ -108,9 +108,11 @@ double FibreBridges<D>::evaluate(const Eigen::VectorXd& u_cells, bool monotone) 
   const Charged charged(seconds_);
   double change = 0, largest = 0;
   // Each crossing from its own converged state and its fibre's other crossings' converged ones: independent, so
-  // spread over the threads with the same result for any count (the maxima are order-free).
+  // spread over the threads with the same result for any count (the maxima are order-free). Nothing may throw out
+  // of the parallel loop (it would end the process): the first crossing whose opening is not finite is kept.
   const auto n = static_cast<std::ptrdiff_t>(sites_.size());
-#pragma omp parallel for schedule(dynamic, 256) reduction(max : change, largest)
+  std::ptrdiff_t not_finite = n;
+#pragma omp parallel for schedule(dynamic, 256) reduction(max : change, largest) reduction(min : not_finite)
   for (std::ptrdiff_t ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const BridgeSite<D>& s = sites_[i];
@@ -121,6 +123,10 @@ double FibreBridges<D>::evaluate(const Eigen::VectorXd& u_cells, bool monotone) 
       embedments(i, next.spalling, next.bridge.sides.embedment);
       const Vec<D> jump = jumps_[i] * gather(i, u_cells);
       const double length = jump.norm();
+      if (!std::isfinite(length)) {
+        not_finite = std::min(not_finite, ii);
+        continue;
+      }
       next.force = 0, next.secant = 0;
       const bool anchored = next.bridge.sides.embedment[0] > 0 && next.bridge.sides.embedment[1] > 0;
       if (length > 0 && anchored) {
@@ -140,6 +146,13 @@ double FibreBridges<D>::evaluate(const Eigen::VectorXd& u_cells, bool monotone) 
     change = std::max(change, std::abs(next.force - trial_[i].force));
     largest = std::max(largest, next.force);
     trial_[i] = next;
+  }
+  if (not_finite < n) {
+    const BridgeSite<D>& s = sites_[static_cast<std::size_t>(not_finite)];
+    throw InstabilityError("rigid cells: the crossing of fibre " + std::to_string(s.fibre) + " with facet " +
+                           std::to_string(s.contact) +
+                           " opens by a displacement that is not finite: the cells' motion diverged (a load step "
+                           "far too large for the specimen, or a plate driven without bound)");
   }
   return largest > 0 ? change / largest : 0.0;
 }
