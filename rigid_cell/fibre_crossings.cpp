@@ -23,14 +23,10 @@ int nearest_cell(const StaticNodeTree<3>& tree, const Vec<3>& x) {
 }  // namespace
 
 std::vector<FibreCrossing> fibre_crossings(const Tessellation<3>& t, const std::vector<Fibre>& fibres) {
-  // Each cell's facets that have a plane. A cell clipped by the specimen's surface near one of its edges or corners
-  // may keep surface facets of no area (10⁻²¹ m² and below, against 10⁻⁵ m² for a facet of a 5 mm cell), whose
-  // centroid and normal are round-off (a centroid 10¹² m away): left out, they bound nothing; taken, one of them
-  // sent a fibre's walk out of the specimen mid-way. Below 10⁻¹⁰ of the cell's size squared is no area at all.
+  // Each cell's facets (every one has an area and a plane: the tessellation keeps no face of no area).
   std::vector<std::vector<int>> facets_of(t.cells.size());
   for (std::size_t f = 0; f < t.facets.size(); ++f) {
     const auto a = static_cast<std::size_t>(t.facets[f].a);
-    if (!(t.facets[f].area > 1e-10 * std::pow(t.cells[a].mass.volume, 2.0 / 3.0))) continue;
     facets_of[a].push_back(static_cast<int>(f));
     if (t.facets[f].b >= 0) facets_of[static_cast<std::size_t>(t.facets[f].b)].push_back(static_cast<int>(f));
   }

@@ -21,6 +21,8 @@ using Delaunay = CGAL::Delaunay_triangulation_3<K, CGAL::Triangulation_data_stru
 
 // A tetrahedron below this fraction of its longest edge cubed is flat (an exact one is 0.118).
 constexpr double kFlat = 1e-9;
+// A face below this fraction of its nodes' distance squared has no area.
+constexpr double kNoArea = 1e-10;
 
 // Area and centroid of a plane polygon with normal n, by a fan from its first vertex.
 void area_and_centroid(Facet<3>& f) {
@@ -102,6 +104,10 @@ Tessellation<3> tessellate(const std::vector<Vec<3>>& nodes, const SpecimenShape
     facet.length = d.norm();
     facet.normal = d / facet.length;
     area_and_centroid(facet);
+    // A cell clipped near an edge or a corner of the specimen may keep a surface face of no area (10⁻²¹ m² and
+    // below, against 10⁻⁵ m² for a face of a 5 mm cell) whose centroid and normal are round-off (a centroid 10¹² m
+    // away): it bounds nothing, and one of them sent a fibre's walk through the cells out of the specimen mid-way.
+    if (facet.b < 0 && !(facet.area > kNoArea * facet.length * facet.length)) continue;
     (facet.b >= 0 ? t.facets : surface).push_back(std::move(facet));
   }
   finish(t, nodes, std::move(surface));
