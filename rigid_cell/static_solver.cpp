@@ -11,6 +11,7 @@
 #include <string>
 
 #include "engine/errors.hpp"
+#include "rigid_cell/factor_size.hpp"
 
 extern "C" void openblas_set_num_threads(int) __attribute__((weak));
 
@@ -69,10 +70,7 @@ StaticSolver<D>::StaticSolver(const CellAssembly<D>& model, const PlateConstrain
 }
 
 // CHOLMOD's analysis sizes the factor: 8 bytes a value, beside what the process holds already (the tessellation, the
-// stiffness). And Debian's CHOLMOD, on int indices, dies of SIGSEGV in a supernodal factorisation well below 2³¹
-// values: measured on 3D discs (70 × 30 mm), 1.31·10⁹ values (l_min 0.9 mm) factorised, 1.86·10⁹ (0.8 mm) crashed
-// with 4.8 of 24 GiB in use; the bound lies between.
-constexpr double kMostFactorValues = 1.5e9;
+// stiffness), and at most kMostFactorValues.
 
 template <int D>
 void StaticSolver<D>::refuse_unaffordable_factor(double values, Eigen::Index dofs) {

@@ -9,6 +9,7 @@
 
 #include <unistd.h>
 
+#include "rigid_cell/factor_size.hpp"
 #include "rigid_cell/facet_law.hpp"  // facet_law_keys: the facet law's table, beside its parameters
 #include "scene/scene_read_parts.hpp"
 
@@ -313,10 +314,13 @@ void check_cells_affordable(const KeyReader& k, const CellSpecimenSpec& c, int d
   const double per_cell = d == 2 ? kBytesPerCell2D : kBytesPerCell3D;
   const double need = cells * per_cell;
   const double have = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
-  if (need <= have) return;
+  const double values = d == 3 ? rigid_cell::least_factor_values_3d(cells) : 0;
+  if (need <= have && values <= rigid_cell::kMostFactorValues) return;
   m << "the specimen would hold about " << cells << " cells, which need at least " << need / (1 << 30) << " GiB ("
-    << per_cell / 1e3 << " kB each); this machine has " << have / (1 << 30)
-    << " GiB: use a larger l_min or a smaller specimen";
+    << per_cell / 1e3 << " kB each)";
+  if (d == 3) m << " and a stiffness factor of at least " << values << " values";
+  m << "; this machine has " << have / (1 << 30) << " GiB and its CHOLMOD takes at most "
+    << rigid_cell::kMostFactorValues << " values: use a larger l_min or a smaller specimen";
   k.fail("l_min", m.str());
 }
 
