@@ -7,12 +7,10 @@
 #include <system_error>
 #include <vector>
 
+#include "engine/dim.hpp"  // kInf
 #include "scene/text.hpp"
 
 namespace mc {
-namespace {
-constexpr double kInf = std::numeric_limits<double>::infinity();
-}  // namespace
 
 namespace detail {
 namespace {

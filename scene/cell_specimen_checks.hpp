@@ -1,0 +1,16 @@
+// The checks of a cell specimen's outline and size that need no cell (scene/rigid_cell_read.cpp reads the table):
+// a simple polygon, and room and memory for the cells random sequential addition would place. Internal to scene/.
+#pragma once
+#include <vector>
+
+#include "scene/key_reader.hpp"
+#include "scene/scene.hpp"
+
+namespace mc::scene_read {
+
+// No vertex twice, no edge crossing another; else fail naming vertices_x.
+void refuse_repeated_or_crossing(const KeyReader& k, const std::vector<double>& x, const std::vector<double>& y);
+// A specimen with no room for a node, or whose cells this machine cannot hold, fails naming l_min, with the estimate.
+void check_cells_affordable(const KeyReader& k, const CellSpecimenSpec& c, int d);
+
+}  // namespace mc::scene_read
