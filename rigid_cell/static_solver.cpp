@@ -1,16 +1,15 @@
 #include "rigid_cell/static_solver.hpp"
 
 #include <omp.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <queue>
 #include <sstream>
 #include <string>
 
 #include "engine/errors.hpp"
+#include "engine/machine_memory.hpp"
 #include "rigid_cell/factor_size.hpp"
 
 extern "C" void openblas_set_num_threads(int) __attribute__((weak));
@@ -71,17 +70,9 @@ StaticSolver<D>::StaticSolver(const CellAssembly<D>& model, const PlateConstrain
 
 // CHOLMOD's analysis sizes the factor: 8 bytes a value, beside what the process holds already (the tessellation, the
 // stiffness), and at most kMostFactorValues.
-
 template <int D>
 void StaticSolver<D>::refuse_unaffordable_factor(double values, Eigen::Index dofs) {
-  const double page = static_cast<double>(sysconf(_SC_PAGE_SIZE));
-  const double have = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * page;
-  double size = 0, resident = 0;
-  if (std::FILE* f = std::fopen("/proc/self/statm", "r")) {
-    if (std::fscanf(f, "%lf %lf", &size, &resident) != 2) resident = 0;
-    std::fclose(f);
-  }
-  const double held = resident * page, need = 8 * values;
+  const double have = physical_memory(), held = resident_memory(), need = 8 * values;
   if (held + need <= have && values <= kMostFactorValues) return;
   std::ostringstream m;
   m.precision(3);

@@ -98,9 +98,9 @@ class StaticSolver {
   // supernodal factor holds the zeros inside its supernodes too (xsize, CHOLMOD's int), more than Common->lnz.
   class Cholesky : public Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> {
    public:
-    double values() const {
+    double values() {
       const cholmod_factor* f = m_cholmodFactor;
-      return f && f->is_super ? static_cast<double>(f->xsize) : const_cast<Cholesky*>(this)->cholmod().lnz;
+      return f && f->is_super ? static_cast<double>(f->xsize) : cholmod().lnz;
     }
   };
   // The factor of an earlier stiffness as a preconditioner (Eigen's preconditioner interface).

@@ -6,8 +6,7 @@
 #include <sstream>
 #include <string>
 
-#include <unistd.h>
-
+#include "engine/machine_memory.hpp"
 #include "rigid_cell/factor_size.hpp"
 
 namespace mc::scene_read {
@@ -39,11 +38,11 @@ void refuse_repeated_or_crossing(const KeyReader& k, const std::vector<double>& 
     }
 }
 
+namespace {
+
 // Random sequential addition keeps a node at least l_min/2 inside the surface and l_min from every other; it
 // saturates (max_rejections 2000) at 0.60-0.77 nodes per l_min³ of that inner volume in 3D and 0.62 per l_min² in
 // 2D (measured: prisms of 370-18 543 cells, discs of 2 308-9 329), 0.6 taken as the least.
-namespace {
-
 constexpr double kNodesPerLminVolume = 0.6;
 // A run's memory per cell, at least (measured: the peak resident size of one static step, incremental between
 // sizes): 2D 7.1 kB (discs of 2 308 and 9 329 cells); 3D 48-61 kB (prisms of 1 871-18 543 cells, most of it the
@@ -90,7 +89,7 @@ void check_cells_affordable(const KeyReader& k, const CellSpecimenSpec& c, int d
   const double cells = kNodesPerLminVolume * inner / std::pow(c.l_min, d);
   const double per_cell = d == 2 ? kBytesPerCell2D : kBytesPerCell3D;
   const double need = cells * per_cell;
-  const double have = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  const double have = physical_memory();
   const double values = d == 3 ? rigid_cell::least_factor_values_3d(cells) : 0;
   if (need <= have && values <= rigid_cell::kMostFactorValues) return;
   m << "the specimen would hold about " << cells << " cells, which need at least " << need / (1 << 30) << " GiB ("

@@ -1,13 +1,12 @@
 #include "scene/specimen_build.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
 
 #include "engine/errors.hpp"
+#include "engine/machine_memory.hpp"
 #include "io/h5_file.hpp"
 #include "io/sphere_list.hpp"
 #include "preprocess/aggregate_placement.hpp"
@@ -178,7 +177,7 @@ void check_memory(const Scene& s) {
   const SpecimenSpec& sp = s.specimen;
   const double n = expected_particles<D>(sp);
   const double need = n * (D == 2 ? 820.0 : 1780.0);
-  const double have = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGE_SIZE));
+  const double have = physical_memory();
   if (!(need > have)) return;
   const std::string key = sp.kind == SpecimenSpec::Kind::Lattice   ? "specimen.radius"
                           : sp.kind == SpecimenSpec::Kind::Packing ? "specimen.radius_min"
