@@ -1,6 +1,5 @@
 #include "rigid_cell/fibre_crossings.hpp"
 
-#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -26,8 +25,7 @@ std::vector<FibreCrossing> fibre_crossings(const Tessellation<3>& t, const std::
   // Each cell's facets (every one has an area and a plane: the tessellation keeps no face of no area).
   std::vector<std::vector<int>> facets_of(t.cells.size());
   for (std::size_t f = 0; f < t.facets.size(); ++f) {
-    const auto a = static_cast<std::size_t>(t.facets[f].a);
-    facets_of[a].push_back(static_cast<int>(f));
+    facets_of[static_cast<std::size_t>(t.facets[f].a)].push_back(static_cast<int>(f));
     if (t.facets[f].b >= 0) facets_of[static_cast<std::size_t>(t.facets[f].b)].push_back(static_cast<int>(f));
   }
   std::vector<Vec<3>> nodes;

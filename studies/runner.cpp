@@ -460,9 +460,6 @@ class Runner {
   bool progress_shown_ = false;
 };
 
-}  // namespace
-
-namespace {
 // What a file that is not a regular one is, in a message.
 std::string kind_of(std::filesystem::file_type t) {
   using T = std::filesystem::file_type;

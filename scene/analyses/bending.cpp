@@ -125,10 +125,7 @@ void BendingAnalysis::check(const KeyReader& k, const Scene& s, const std::vecto
 void BendingAnalysis::add_histories(std::vector<Series>& out, const Observed<2>& o) const { add<2>(out, o); }
 void BendingAnalysis::add_histories(std::vector<Series>& out, const Observed<3>& o) const { add<3>(out, o); }
 
-// The load is what the beam pushes back on the loading wall, along the wall's normal (which points into the
-// beam); the deflection is the loading point's displacement along that normal minus the mean of the supports'
-// (walls, or a yoke: three groups on the beam, free of the indentation at the load and the supports); the CMOD
-// is the opening probe's reading.
+namespace {
 // A support that touches no particle carries nothing, and the beam rests on the other alone or on none: the load
 // it reads is no bending test's. Refused when the gap from a support to the nearest particle's surface exceeds the
 // largest radius (a beam placed on its supports touches them, or lies within a particle's reach of them).
@@ -149,7 +146,12 @@ void check_supports_touch(const std::string& file, const std::array<int, 2>& sup
     throw InputError(m.str());
   }
 }
+}  // namespace
 
+// The load is what the beam pushes back on the loading wall, along the wall's normal (which points into the
+// beam); the deflection is the loading point's displacement along that normal minus the mean of the supports'
+// (walls, or a yoke: three groups on the beam, free of the indentation at the load and the supports); the CMOD
+// is the opening probe's reading.
 template <int D>
 void BendingAnalysis::add(std::vector<Series>& out, const Observed<D>& o) const {
   const Particles<D>* p = o.bodies;
