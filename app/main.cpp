@@ -1,11 +1,13 @@
 // The `mesocrack` command: run a scene, summarise a run, draw its report.
-// Exit status: 0 success, 2 bad input, 3 file error, 4 unstable run, 5 calibration not converged, 1 anything else.
+// Exit status: 0 success, 2 bad input, 3 file error, 4 unstable run, 5 calibration not converged, 130 and 143 a run
+// that Ctrl-C or SIGTERM ended with a checkpoint (run --resume continues it), 1 anything else.
 #include <omp.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <charconv>
+#include <csignal>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -51,27 +53,34 @@ int run(const std::string& scene_file, std::string output, const std::vector<std
     output = resume;
   }
   if (output.empty()) throw mc::InputError("run: give the output file with -o OUT.h5");
+  if (scene_file.empty() && resume.empty())
+    throw mc::InputError("run: give the scene file (or --resume OUT.h5 to continue a run from its file)");
   if (threads > 0) omp_set_num_threads(threads);
   // Everything is read and validated before the output file is touched: bad input leaves no half-written file.
-  const mc::Scene scene = mc::read_scene(mc::TomlDoc::load(scene_file, sets), scene_file);
+  // `--resume OUT.h5` alone continues the scene the file stores (with any --set given now on top of it).
+  const mc::Scene scene = scene_file.empty() ? mc::stored_scene(output, sets)
+                                             : mc::read_scene(mc::TomlDoc::load(scene_file, sets), scene_file);
   mc::RunOptions opt;
   opt.output = output;
   opt.resume = !resume.empty();
   opt.imbalance_limit = rebalance;
+  opt.catch_interrupts = true;
   // Under mpirun the ranks run the one specimen split across them; rank 0 writes the output and reports.
   const mc::Ranks& ranks = mc::Ranks::world();
   const mc::RanksExchange exchange(ranks);
   if (ranks.size() > 1) opt.exchange = &exchange;
   const mc::RunResult r = mc::run_scene(scene, opt);
-  if (!ranks.root()) return 0;
-  std::fprintf(stderr, "%s after %lld steps, t = %.6g s, %.1f s wall time -> %s", r.status.c_str(),
+  if (!ranks.root()) return r.signal ? 128 + r.signal : 0;
+  const std::string status = r.signal ? r.status + " by " + (r.signal == SIGTERM ? "SIGTERM" : "SIGINT") : r.status;
+  std::fprintf(stderr, "%s after %lld steps, t = %.6g s, %.1f s wall time -> %s", status.c_str(),
                static_cast<long long>(r.steps), r.time, r.wall_seconds, output.c_str());
   if (ranks.size() > 1)
     std::fprintf(stderr, " (split across %d ranks: %s%s)", ranks.size(), r.balance.c_str(),
                  rebalance > 0 ? "" : ", --rebalance not given");
   if (!r.cost.empty()) std::fprintf(stderr, " (%s)", r.cost.c_str());
   std::fputc('\n', stderr);
-  return 0;
+  if (r.signal) std::fprintf(stderr, "continue it with: mesocrack run --resume %s\n", output.c_str());
+  return r.signal ? 128 + r.signal : 0;  // the shell's code for a program a signal ended: 130 Ctrl-C, 143 kill
 }
 
 // N packings of one scene (seeds seed … seed + N − 1): one output file each, and their statistics as JSON, printed
@@ -229,7 +238,7 @@ int main(int argc, char** argv) {
   double rebalance = 0;         // never
   std::string targets, compression;
   auto* run_cmd = app.add_subcommand("run", "run a scene");
-  run_cmd->add_option("scene", scene, "scene file (TOML)")->required();
+  run_cmd->add_option("scene", scene, "scene file (TOML); with --resume it may be left out (the file stores it)");
   run_cmd->add_option("-o,--output", output, "output file (HDF5)");
   run_cmd->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
   run_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(threads_check);

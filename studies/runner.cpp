@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <csignal>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,12 +17,16 @@
 #include "io/run_output.hpp"
 #include "scene/make_system.hpp"
 #include "scene/resume_check.hpp"
+#include "scene/toml_reader.hpp"
+#include "studies/interrupt.hpp"
 
 namespace mc {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+const std::string kInterrupted = "interrupted";
 
 // An archive as bytes and back: process 0 reads a checkpoint and the others receive it.
 Bytes archive_bytes(const Archive& a) {
@@ -92,6 +98,8 @@ struct StopState {
   StopSpec spec;
   int column;
   double peak = -kInf;
+  double value = kNaN, time = kNaN;            // its quantity in the newest row, and when
+  double seen_value = kNaN, seen_time = kNaN;  // the same at the previous progress line (its rate, for time left)
 };
 
 // Steps a system, records what its scene declares, writes the output file, checkpoints, and stops on the
@@ -112,11 +120,15 @@ class Runner {
 
   RunResult run() {
     start_or_resume();
+    if (opt_.catch_interrupts) catch_interrupts();
     const auto t0 = Clock::now();
     RunResult r;
     try {
       r.status = loop(t0);
-      finish(r.status);
+      if (r.status == kInterrupted)
+        interrupt();
+      else
+        finish(r.status);
     } catch (const InstabilityError& e) {
       end_with("unstable", e.what());
       throw;
@@ -133,6 +145,7 @@ class Runner {
     r.wall_seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     r.balance = system_->balance_report();
     r.cost = system_->cost_report(r.wall_seconds);
+    if (r.status == kInterrupted) r.signal = interrupt_signal();
     return r;
   }
 
@@ -147,6 +160,21 @@ class Runner {
     checkpoint();
     if (!writer_) return;
     out_->end_with_status(status == "finished" ? "finished" : "stopped", status);
+    out_->write_csv();
+    if (progress_shown_) std::fputc('\n', stderr);
+  }
+
+  // A run a signal asked to end: its rows and frames as they are (an extra row off the scene's cadence would make the
+  // resumed run differ from an uninterrupted one), and a checkpoint at the step it ended, which the resume starts
+  // from.
+  void interrupt() {
+    checkpoint();
+    if (!writer_) return;
+    std::ostringstream m;
+    m << "interrupted by " << (interrupt_signal() == SIGTERM ? "SIGTERM" : "SIGINT") << " at step "
+      << system_->step_count() << " (t = " << system_->time() << " s); `mesocrack run --resume " << opt_.output
+      << "` continues it";
+    out_->end_with_status("interrupted", m.str());
     out_->write_csv();
     if (progress_shown_) std::fputc('\n', stderr);
   }
@@ -201,6 +229,9 @@ class Runner {
       } else if (scene_.checkpoint_every > 0 && s % scene_.checkpoint_every == 0) {
         checkpoint(), last_checkpoint = last_flush = Clock::now();
       }
+      // After the step's rows and frames, so that the resume starts with the next step. A split run's processes
+      // hear the signal at different steps: they agree every 64 steps, as on checkpoints.
+      if (split_ ? (s & 63) == 0 && any(interrupt_signal() != 0) : interrupt_signal() != 0) return kInterrupted;
     }
   }
 
@@ -297,6 +328,9 @@ class Runner {
     if (frows > 0) last_frame_step_ = static_cast<std::int64_t>(last[1]);
     first_step_ = system_->step_count();
     if (!writer_) return;
+    if (opt_.progress)
+      std::fprintf(stderr, "resumed %s at step %lld, t = %.6g s\n", opt_.output.c_str(),
+                   static_cast<long long>(first_step_), system_->time());
     out_->resume_at(hrows, frows, crows);
     out_->create_histories(names, units);
     out_->set_status("running");
@@ -344,6 +378,7 @@ class Runner {
   }
 
   void check_stop(StopState& st, double v) {
+    st.value = v, st.time = system_->time();
     if (system_->time() < st.spec.after_time) return;
     // A post-peak stop follows the magnitude: a load may be a positive or a negative reaction.
     st.peak = std::max(st.peak, st.spec.kind == StopSpec::Kind::PostPeak ? std::abs(v) : v);
@@ -432,14 +467,41 @@ class Runner {
     if (!writer_ || !opt_.progress || !isatty(STDERR_FILENO)) return;
     const double el = std::chrono::duration<double>(now - t0).count();
     const double rate = (system_->step_count() - first_step_) / std::max(el, 1e-9);
-    double left = -1;
+    const double sim_rate = rate * system_->timestep();  // simulated seconds per wall second
+    double bound = -1;  // to the run's end (its steps or duration)
     if (scene_.steps > 0)
-      left = (scene_.steps - system_->step_count()) / std::max(rate, 1e-9);
-    else if (scene_.duration > 0 && system_->timestep() > 0)
-      left = (scene_.duration - system_->time()) / system_->timestep() / std::max(rate, 1e-9);
+      bound = (scene_.steps - system_->step_count()) / std::max(rate, 1e-9);
+    else if (scene_.duration > 0 && sim_rate > 0)
+      bound = (scene_.duration - system_->time()) / sim_rate;
     std::fprintf(stderr, "\rstep %lld  t = %.4g s  %.0f steps/s", static_cast<long long>(system_->step_count()),
                  system_->time(), rate);
-    if (left >= 0) std::fprintf(stderr, "  left %d:%02d:%02d", int(left / 3600), int(left / 60) % 60, int(left) % 60);
+    auto clock = [](double s) {
+      char b[32];
+      std::snprintf(b, sizeof b, "%d:%02d:%02d", int(s / 3600), int(s / 60) % 60, int(s) % 60);
+      return std::string(b);
+    };
+    if (stops_.empty()) {
+      if (bound >= 0) std::fprintf(stderr, "  left %s", clock(bound).c_str());
+    } else {
+      // A stop condition may end the run sooner: the run's end is then a bound, and a threshold the quantity moves
+      // toward is reached, at its rate since the last line, in `soon` (a post-peak stop cannot be foreseen).
+      double soon = kInf;
+      for (auto& st : stops_) {
+        const double dv = st.value - st.seen_value, dt = st.time - st.seen_time;
+        const auto kind = st.spec.kind;
+        if (dt > 0 && sim_rate > 0 && kind != StopSpec::Kind::PostPeak) {
+          const double target = kind == StopSpec::Kind::MagnitudeAbove ? std::copysign(st.spec.value, dv) : st.spec.value;
+          const double to_go = (target - st.value) / (dv / dt);  // simulated seconds; negative: moving away
+          if (to_go > 0 && std::isfinite(to_go)) soon = std::min(soon, std::max(to_go, st.spec.after_time - system_->time()) / sim_rate);
+        }
+        st.seen_value = st.value, st.seen_time = st.time;
+      }
+      if (std::isfinite(soon) && (bound < 0 || soon < bound))
+        std::fprintf(stderr, "  left ~%s", clock(soon).c_str());
+      else
+        std::fprintf(stderr, "  left unknown");
+      if (bound >= 0) std::fprintf(stderr, " (at most %s)", clock(bound).c_str());
+    }
     std::fprintf(stderr, "   ");
     progress_shown_ = true;
   }
@@ -502,6 +564,16 @@ void refuse_unsafe_outputs(const Scene& scene, const std::vector<std::string>& o
         throw InputError("output file " + out + " is " + in + ", " + what +
                          ": the run would overwrite its own input; name another output file");
     }
+}
+
+Scene stored_scene(const std::string& output, const std::vector<std::string>& overrides) {
+  const std::string text = RunOutput::stored_scene(output);
+  const std::string file = H5File(output, H5File::Mode::ReadOnly).attr_string("/", "scene_file");
+  try {
+    return read_scene(TomlDoc::parse_text(text, output + ":/scene", overrides), file);
+  } catch (const InputError& e) {
+    throw InputError(std::string(e.what()) + " (the scene " + output + " stores, first read from " + file + ")");
+  }
 }
 
 std::vector<std::string> run_files(const std::string& output) { return RunOutput::files_written(output); }

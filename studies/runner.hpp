@@ -15,6 +15,9 @@ struct RunOptions {
   std::string output;    // OUT.h5
   bool resume = false;   // continue `output` from its last checkpoint
   bool progress = true;  // progress line on stderr (only when it is a terminal)
+  // SIGINT and SIGTERM end the run with a checkpoint once its output file exists (studies/interrupt.hpp); before
+  // that they kill it as they would any program (nothing is lost: the file is not yet there).
+  bool catch_interrupts = false;
   // The processes of a launch that run one specimen split across them (more than one; World::split): each calls
   // run_scene alike, and process 0 writes the output. Null: this process runs the scene alone.
   const Exchange* exchange = nullptr;
@@ -24,12 +27,17 @@ struct RunOptions {
 };
 
 struct RunResult {
-  std::string status;  // "finished", "stopped: <condition>", "unstable: <message>"
+  std::string status;  // "finished", "stopped: <condition>", "interrupted" (studies/interrupt.hpp)
   std::int64_t steps = 0;
   double time = 0, wall_seconds = 0;
   std::string balance;  // a split run's System::balance_report
   std::string cost;     // System::cost_report
+  int signal = 0;       // the signal that interrupted the run, or 0
 };
+
+// The scene an output file stores (as it was run, with its --set overrides), with `overrides` applied on top; its
+// paths resolve from the folder of the scene file it was read from. IoError when the file is not a run's output.
+Scene stored_scene(const std::string& output, const std::vector<std::string>& overrides);
 
 // Throws InputError / IoError before anything runs; InstabilityError after recording it in the file.
 RunResult run_scene(const Scene& scene, const RunOptions& options);

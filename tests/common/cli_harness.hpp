@@ -199,8 +199,9 @@ class Child {
     if (r == pid_) reap(st);
     return pid_ <= 0;
   }
-  void kill_now() {
-    if (pid_ > 0) kill(pid_, SIGKILL);
+  void kill_now() { send(SIGKILL); }
+  void send(int sig) {
+    if (pid_ > 0) kill(pid_, sig);
   }
   // Waits for the end (killing the child after `limit`, which fails the test).
   Result wait(std::chrono::seconds limit = std::chrono::seconds(180)) {

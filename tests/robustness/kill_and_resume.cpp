@@ -120,3 +120,36 @@ TEST_CASE("kill_9_at_random_moments_then_resume_gives_the_uninterrupted_run_bit_
           " resumed to the uninterrupted run bit for bit (", finished_first, " of them had finished before the kill)");
   CHECK(resumed >= 4);
 }
+
+// Ctrl-C (SIGINT) or `kill` (SIGTERM) once the output exists: the run finishes its step, checkpoints, says so and
+// exits 128 + the signal, its file "interrupted"; `run --resume OUT.h5` alone (the scene and its --set read from the
+// file) then finishes it bit for bit like the uninterrupted run.
+TEST_CASE("ctrl_c_or_sigterm_checkpoint_the_run_and_resume_from_the_file_alone_gives_the_uninterrupted_run") {
+  const TempDir d;
+  const Result whole = mesocrack(bar("-o", "whole.h5"), d.dir);
+  REQUIRE_MESSAGE(whole.code == 0, whole.describe());
+  for (const int sig : {SIGINT, SIGTERM}) {
+    CAPTURE(sig);
+    const std::string out = "i" + std::to_string(sig) + ".h5";
+    {
+      Child run(bar("-o", out), d.dir);
+      // Once the file is published (before it, a signal kills as it would any program), a third into the run.
+      while (!fs::exists(d / out) && !run.ended()) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      std::this_thread::sleep_for(std::chrono::duration<double>(whole.seconds / 3));
+      run.send(sig);
+      const Result r = run.wait();
+      REQUIRE_MESSAGE(r.code == 128 + sig, r.describe());
+      CHECK(contains(r.err, "interrupted by " + std::string(sig == SIGINT ? "SIGINT" : "SIGTERM") + " after "));
+      CHECK(contains(r.err, "mesocrack run --resume " + out));
+    }
+    const Json s = summary_of(out, d.dir);
+    CHECK(s["status"].text == "interrupted");
+    CHECK(s["steps"].number > 0);
+    const Result rest = mesocrack({"run", "--resume", out, "--threads", "1"}, d.dir);
+    REQUIRE_MESSAGE(rest.code == 0, rest.describe());
+    CHECK(contains(rest.err, "resumed " + out + " at step "));
+    check_same_run(d / "whole.h5", d / out);
+    check_no_repeated_rows(d / out);
+    CHECK(slurp(d / "whole_history.csv") == slurp(d / (fs::path(out).stem().string() + "_history.csv")));
+  }
+}
