@@ -88,6 +88,8 @@ StoredRun read_stored_run(const std::string& output_file) {
   StoredRun r;
   const bool killed = killed_run(f);
   r.histories = read_histories(f, killed);
+  for (const auto& [name, y] : r.histories)
+    r.units[name] = f.has_attr("/history/" + name, "unit") ? f.attr_string("/history/" + name, "unit") : "";
   r.scene = read_stored_scene(f);
   r.cracks = read_cracks(f, r.scene.dimension, killed);
   for (const auto& s : r.scene.summaries)

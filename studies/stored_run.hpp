@@ -2,6 +2,7 @@
 // validated, its histories and its status. What `summary`, the realizations and the calibration read.
 #pragma once
 #include <cstdint>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +15,7 @@ namespace mc {
 struct StoredRun {
   Scene scene;
   Histories histories;
+  std::map<std::string, std::string> units;  // each history's SI unit ("1": none)
   std::vector<LoggedCrack> cracks;  // the crack log; empty without one
   std::string status, status_message;
   std::int64_t particles = 0;

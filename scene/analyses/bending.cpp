@@ -219,6 +219,7 @@ BendingResult BendingAnalysis::result(const Histories& h) const {
   if (n < 2) return r;
   const std::size_t peak = static_cast<std::size_t>(std::max_element(load.begin(), load.begin() + n) - load.begin());
   r.peak_load = load[peak];
+  r.peak_passed = passed_peak(load, peak, n);
   const std::vector<double>& time = series("time");
   if (peak < time.size()) r.peak_time = time[peak];
   r.cmod_at_peak = cmod[peak];
@@ -281,6 +282,8 @@ std::string BendingAnalysis::summary_json(const RunRecord& run) const {
   std::ostringstream o;
   o << "{\n    \"thickness\": " << json_number(thickness) << ",\n    \"span\": " << json_number(span)
     << ",\n    \"depth\": " << json_number(depth) << ",\n    \"ligament\": " << json_number(ligament)
+    << ",\n    \"peak_passed\": " << (r.peak_passed ? "true" : "false")
+    << ",\n    \"peak_passed_definition\": " << json_quote(kPeakPassedDefinition)
     << ",\n    \"peak_load\": " << json_number(r.peak_load * f)
     << ",\n    \"peak_load_simulated\": " << json_number(r.peak_load) << ",\n    \"load_definition\": "
     << json_quote(dimension == 2 ? "peak_load for the beam's thickness; _simulated per metre of the discs' thickness"
@@ -309,7 +312,24 @@ std::string BendingAnalysis::summary_json(const RunRecord& run) const {
       << ",\n    \"cracks_at_peak\": " << crack_counts_json(run.cracks, r.peak_time, phase_names)
       << ",\n    \"cracks_final\": " << crack_counts_json(run.cracks, kInf, phase_names);
   }
-  o << ",\n    \"energy\": " << energy_json(h, ligament_area(), "G_F_bonds", "ligament") << "\n  }";
+  o << ",\n    \"energy\": " << energy_json(h, ligament_area(), "G_F_bonds", "ligament");
+  o << ",\n    \"units\": "
+    << units_json({{"thickness", "m"},
+                   {"span", "m"},
+                   {"depth", "m"},
+                   {"ligament", "m"},
+                   {"peak_load", "N"},
+                   {"peak_load_simulated", "N"},
+                   {"cmod_at_peak", "m"},
+                   {"deflection_at_peak", "m"},
+                   {"stiffness", "N/m"},
+                   {"stiffness_simulated", "N/m"},
+                   {"G_F", "J/m^2"},
+                   {"work_of_fracture", "J"},
+                   {"self_weight_work", "J"},
+                   {"final_deflection", "m"},
+                   {"final_load_over_peak", "-"}})
+    << "\n  }";
   return o.str();
 }
 

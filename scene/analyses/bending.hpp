@@ -20,6 +20,7 @@ namespace mc {
 // unit thickness); BendingAnalysis::load_scale turns them into the reported thickness's.
 struct BendingResult {
   double peak_load = kNaN;           // [N]
+  bool peak_passed = false;          // the load fell past its peak (passed_peak): else peak_load is the largest so far
   double peak_time = kNaN;           // [s]
   double cmod_at_peak = kNaN;        // [m]
   double deflection_at_peak = kNaN;  // [m]

@@ -225,6 +225,8 @@ std::string PulloutAnalysis::summary_json(const RunRecord& run) const {
   std::ostringstream o;
   o << "{\n    \"width\": " << json_number(width) << ",\n    \"prism_width\": " << json_number(prism_width)
     << ",\n    \"beta_w\": " << json_number(beta_w()) << ",\n    \"bonded_length\": " << json_number(bonded_length())
+    << ",\n    \"peak_passed\": " << (passed_peak(*load, peak, load->size()) ? "true" : "false")
+    << ",\n    \"peak_passed_definition\": " << json_quote(kPeakPassedDefinition)
     << ",\n    \"capacity\": " << json_number(capacity * width)
     << ",\n    \"capacity_beta_w\": " << json_number(capacity * width * beta_w())
     << ",\n    \"capacity_simulated\": " << json_number(capacity)
@@ -276,7 +278,18 @@ std::string PulloutAnalysis::summary_json(const RunRecord& run) const {
            "breaks lie deeper than a third of the prism, else a thin concrete layer\"}";
     }
   }
-  o << ",\n    \"energy\": " << energy_json(h, bonded_length(), "G_bonds", "bonded") << "\n  }";
+  o << ",\n    \"energy\": " << energy_json(h, bonded_length(), "G_bonds", "bonded");
+  o << ",\n    \"units\": "
+    << units_json({{"width", "m"},
+                   {"prism_width", "m"},
+                   {"beta_w", "-"},
+                   {"bonded_length", "m"},
+                   {"capacity", "N"},
+                   {"capacity_beta_w", "N"},
+                   {"capacity_simulated", "N"},
+                   {"slip_at_capacity", "m"},
+                   {"final_load_over_capacity", "-"}})
+    << "\n  }";
   return o.str();
 }
 

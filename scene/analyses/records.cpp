@@ -10,6 +10,22 @@
 
 namespace mc {
 
+bool passed_peak(const std::vector<double>& y, std::size_t peak, std::size_t end) {
+  const double top = std::abs(y.at(peak));
+  for (std::size_t k = peak + 1; k < std::min(end, y.size()); ++k)
+    if (std::abs(y[k]) <= (1 - kPeakDrop) * top) return true;
+  return false;
+}
+
+std::string units_json(const std::vector<std::pair<std::string, std::string>>& units) {
+  std::ostringstream o;
+  o << "{";
+  for (std::size_t k = 0; k < units.size(); ++k)
+    o << (k ? ", " : "") << json_quote(units[k].first) << ": " << json_quote(units[k].second);
+  o << "}";
+  return o.str();
+}
+
 std::string pair_name(const std::vector<std::string>& names, int a, int b) {
   auto name = [&](int k) { return k >= 0 && k < int(names.size()) ? names[k] : "phase" + std::to_string(k); };
   return a <= b ? name(a) + "-" + name(b) : name(b) + "-" + name(a);

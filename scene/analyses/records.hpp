@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scene/analysis.hpp"
@@ -29,6 +30,19 @@ std::vector<int> named(const KeyReader& k, std::string_view key, std::size_t n, 
   }
   return out;
 }
+
+// Whether a load passed its peak: after its largest magnitude (row `peak`) some row of y[0, end) fell at least
+// kPeakDrop below it. Without that, a run that ended (or was interrupted) while its load still rose holds a largest
+// value so far, not a strength: every summary says which beside its peaks, strengths and capacities.
+constexpr double kPeakDrop = 0.05;
+bool passed_peak(const std::vector<double>& y, std::size_t peak, std::size_t end);
+constexpr const char* kPeakPassedDefinition =
+    "true when the load fell at least 5 % below its largest value after it; false: the run ended (or was "
+    "interrupted) before a peak, and the strength, capacity or peak read is only the largest value so far";
+
+// A summary block's "units" member: each of its numbers' SI unit ("-" for a ratio or a count, as in the histories),
+// in the order given.
+std::string units_json(const std::vector<std::pair<std::string, std::string>>& units);
 
 // "a-b" for a phase pair, in name order.
 std::string pair_name(const std::vector<std::string>& names, int a, int b);

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "engine/errors.hpp"
+#include "scene/analyses/records.hpp"
 #include "scene/json.hpp"
 #include "scene/scene.hpp"
 
@@ -282,6 +283,7 @@ UniaxialResult UniaxialAnalysis::result_from(const Histories& h, const std::stri
   for (std::size_t k = 0; k < n; ++k)
     if (s[k] > s[peak]) peak = k;
   r.ucs = s[peak];
+  r.peak_passed = passed_peak(s, peak, n);
   // The first pre-peak crossing of a stress level, interpolated: returns the fractional row.
   auto crossing = [&](double level) {
     for (std::size_t k = 1; k <= peak; ++k)
@@ -349,7 +351,9 @@ std::string UniaxialAnalysis::summary_json(const RunRecord& run) const {
   const UniaxialResult r = result(run.histories);
   if (!std::isfinite(r.ucs)) return "null";
   std::ostringstream o;
-  o << "{\n    \"loading\": " << (tension ? "\"tension\"" : "\"compression\"");
+  o << "{\n    \"loading\": " << (tension ? "\"tension\"" : "\"compression\"")
+    << ",\n    \"peak_passed\": " << (r.peak_passed ? "true" : "false")
+    << ",\n    \"peak_passed_definition\": " << json_quote(kPeakPassedDefinition);
   o << ",\n    \"E\": " << json_number(r.modulus)
     << ",\n    \"E_definition\": \"secant between 25 % and 50 % of the peak stress\""
     << ",\n    \"nu\": " << json_number(r.poisson);
@@ -381,7 +385,19 @@ std::string UniaxialAnalysis::summary_json(const RunRecord& run) const {
     << ",\n    \"cracks_counted\": " << (r.cracks_by_yield ? "\"first yields\"" : "\"breaks\"")
     << ",\n    \"cracks_at_peak\": " << json_number(r.cracks_at_peak)
     << ",\n    \"cracks_tensile\": " << json_number(r.cracks_tensile)
-    << ",\n    \"cracks_shear\": " << json_number(r.cracks_shear) << "\n  }";
+    << ",\n    \"cracks_shear\": " << json_number(r.cracks_shear);
+  std::vector<std::pair<std::string, std::string>> units{{"E", "Pa"}, {"nu", "-"}};
+  if (dimension == 2) units.insert(units.end(), {{"E_raw_2d", "Pa"}, {"nu_raw_2d", "-"}});
+  units.insert(units.end(), {{"E_platens", "Pa"}, {"E_inside", "Pa"}, {"nu_platens", "-"}, {"nu_inside", "-"},
+                             {"E_secant_0_50", "Pa"}, {"E_tangent_50", "Pa"}});
+  if (tension)
+    units.insert(units.end(), {{"f_t", "Pa"}, {"G_f", "J/m^2"}, {"gauge_length", "m"}, {"strain_at_0.2_f_t", "-"}});
+  else
+    units.insert(units.end(), {{"ucs", "Pa"}, {"f_c", "Pa"}});
+  units.insert(units.end(), {{"strain_at_peak", "-"}, {"crack_initiation_stress", "Pa"},
+                             {"crack_initiation_ratio", "-"}, {"cracks_at_peak", "-"}, {"cracks_tensile", "-"},
+                             {"cracks_shear", "-"}});
+  o << ",\n    \"units\": " << units_json(units) << "\n  }";
   return o.str();
 }
 

@@ -27,6 +27,7 @@ struct UniaxialResult {
   double modulus_platens = kNaN, modulus_inside = kNaN;
   double poisson_platens = kNaN, poisson_inside = kNaN;
   double ucs = kNaN;  // peak axial stress [Pa]: f_c, or in tension f_t
+  bool peak_passed = false;  // the stress fell past its peak (passed_peak): else ucs is the largest so far
   double strain_at_peak = kNaN;
   double initiation_stress = kNaN;  // when the cracks reach 1 % of their count at the peak [Pa]
   double cracks_at_peak = kNaN, cracks_tensile = kNaN, cracks_shear = kNaN;
