@@ -41,10 +41,22 @@ def with_unit(name, unit):
     return f"{name} [{unit}]" if unit else name
 
 
+SLICE_NOTE = "2D: forces, works and energies are those of a slice 1 m thick (per metre of thickness)"
+
+
+def note_slice(fig, run):
+    """A 2D run's forces and energies are its unit-thickness slice's: the figure says so under its plots (and in the
+    PNG's Description, which tests read)."""
+    if run["dimension"] == 2:
+        fig.text(0.995, 0.003, SLICE_NOTE, ha="right", va="bottom", fontsize=7, color="0.35")
+        fig.mc_note = SLICE_NOTE
+
+
 def save(fig, out_dir, stem, kind, dpi=120):
     path = os.path.join(out_dir, f"{stem}_{kind}.png")
+    note = getattr(fig, "mc_note", None)
     try:
-        fig.savefig(path, dpi=dpi)
+        fig.savefig(path, dpi=dpi, metadata={"Description": note} if note else None)
     except OSError as e:
         raise ReportError(f"cannot write {path}: {e.strerror or e}") from None
     finally:
@@ -123,6 +135,7 @@ def plot_history(run, stem, out_dir):
         if i + ncols >= len(groups):  # x label only under the last plot of each column
             ax.set_xlabel(tlabel)
     fig.suptitle(f"{stem}: histories ({run['scene_file'] or 'unknown scene'})")
+    note_slice(fig, run)
     return [save(fig, out_dir, stem, "history")]
 
 
@@ -148,6 +161,7 @@ def plot_xy(run, stem, out_dir):
         ax.set_title(f"{yn} vs {xn}", fontsize="medium")
         ax.grid(alpha=0.3)
     fig.suptitle(f"{stem}: x-y plots")
+    note_slice(fig, run)
     return [save(fig, out_dir, stem, "xy")]
 
 
@@ -179,4 +193,5 @@ def plot_energy(run, stem, out_dir):
     axes[0].grid(alpha=0.3)
     axes[-1].set_xlabel(tlabel)
     axes[0].set_title(f"{stem}: energy balance")
+    note_slice(fig, run)
     return [save(fig, out_dir, stem, "energy")]

@@ -198,6 +198,21 @@ def check_pngs(case, p, expected):
               f"size {os.path.getsize(path) if os.path.exists(path) else 'missing'}")
 
 
+def png_description(path):
+    """The PNG's Description text chunk (tEXt), or None."""
+    data = open(path, "rb").read()
+    at = 8
+    while at + 8 <= len(data):
+        size = int.from_bytes(data[at:at + 4], "big")
+        kind = data[at + 4:at + 8]
+        if kind == b"tEXt":
+            key, _, value = data[at + 8:at + 8 + size].partition(b"\0")
+            if key == b"Description":
+                return value.decode("latin-1")
+        at += 12 + size
+    return None
+
+
 def check_error(case, p, path, words):
     lines = p.stderr.strip().splitlines()
     check(f"{case}: exit 3 (a file error)", p.returncode == 3, f"exit {p.returncode}")
@@ -219,6 +234,9 @@ def main():
                    ["disc2d_history.png", "disc2d_xy.png", "disc2d_energy.png", "disc2d_specimen.png",
                     "disc2d_cracks.png"])
         check("2D: HDF5 file unchanged", (digest(f2), os.stat(f2).st_mtime_ns) == before)
+        for kind in ("history", "xy", "energy"):
+            note = png_description(os.path.join(d, f"disc2d_{kind}.png")) or ""
+            check(f"2D {kind} plot says its forces are per metre of thickness", "per metre of thickness" in note, note)
 
         f2n = os.path.join(d, "disc2d_noframes.h5")
         make_run(f2n, 2, 500, frames=0)
@@ -233,6 +251,7 @@ def main():
         check_pngs("3D with frames and cracks", run_report(f3),
                    ["sphere3d_history.png", "sphere3d_xy.png", "sphere3d_energy.png", "sphere3d_slice.png",
                     "sphere3d_cracks.png"])
+        check("3D history plot has no thickness note", png_description(os.path.join(d, "sphere3d_history.png")) is None)
 
         f3n = os.path.join(d, "sphere3d_bare.h5")
         make_run(f3n, 3, 1000, frames=0, history=False)
