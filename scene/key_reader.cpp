@@ -7,6 +7,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "scene/nearest_name.hpp"
+
 namespace mc {
 
 namespace {
@@ -132,23 +134,6 @@ const Key& KeyReader::key(std::string_view name, std::string_view when) const {
   return k;
 }
 
-namespace {
-// Levenshtein's distance: the fewest single-letter insertions, deletions and changes from a to b.
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-}  // namespace
 
 // A required key that is absent while the table holds a key it does not declare spelt nearly so: the misspelling
 // is the error to name (reported as the right key missing, the user would look for the wrong thing), before the

@@ -10,6 +10,7 @@
 #include "scene/analysis.hpp"
 #include "scene/histories.hpp"
 #include "scene/model_registry.hpp"
+#include "scene/scene_keys.hpp"
 #include "scene/scene_read_parts.hpp"
 
 namespace mc {
@@ -343,11 +344,32 @@ void check_names(const Table& root, const Scene& s, const std::vector<std::strin
 
 }  // namespace
 
+namespace {
+
+// A misspelt table ([[wall]] for [[walls]]) would be found only once the whole scene is read, after the tables that
+// name its entries have failed for want of them ("'load' is not the name of a wall"): it is named first.
+void refuse_misspelt_tables(const Table& root) {
+  std::vector<std::string> names;  // the keys and tables a scene's top level may hold
+  for (const Key& key : scene_keys().keys) names.emplace_back(key.name);
+  // The tables of the top level: those named without a dot, but for the models' own (their keys sit in
+  // [[contacts]] entries) and the rigid cells' facet law and specimen (in [[contacts]] and [specimen]).
+  std::vector<std::string_view> nested{rigid_cell::facet_law_keys().name, cell_specimen_keys().name};
+  for (const KeyTable* m : contact_model_keys()) nested.push_back(m->name);
+  for (const KeyTable* t : all_key_tables())
+    if (t != &scene_keys() && t->name.find('.') == std::string_view::npos &&
+        std::find(nested.begin(), nested.end(), t->name) == nested.end())
+      names.emplace_back(t->name);
+  root.refuse_misspellings(names);
+}
+
+}  // namespace
+
 Scene read_scene(const TomlDoc& doc, const std::string& file) {
   Scene s;
   s.file = file;
   s.text = doc.text();
   const Table root = doc.root();
+  refuse_misspelt_tables(root);
   const KeyReader k(root, scene_keys());
   s.dimension = static_cast<int>(k.integer("dimension"));
   s.seed = static_cast<std::uint64_t>(k.integer("seed"));

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "engine/errors.hpp"
+#include "scene/nearest_name.hpp"
 #include "scene/overrides.hpp"
 #include "scene/text.hpp"
 #include "scene/toml_document.hpp"
@@ -431,6 +432,15 @@ void Table::fail(const std::string& key, const std::string& what) const {
   f.bad(what);
 }
 
+namespace {
+// ": a misspelling of 'walls'?" when `given` is within two letters of a known name (one in a short name: 'y' is no
+// misspelling of 'x'), else "".
+std::string misspelling_of(const std::string& given, const std::vector<std::string>& known) {
+  const std::string near = nearest_name(given, known, std::min<std::size_t>(2, given.size() / 3));
+  return near.empty() ? "" : ": a misspelling of '" + near + "'?";
+}
+}  // namespace
+
 void Table::finish() const {
   const auto& visit = state_->visits[visit_];
   for (const auto& kv : visit.table->as_table()) {
@@ -438,7 +448,18 @@ void Table::finish() const {
     const Field f{*state_, join_key(visit.path, kv.first), &kv.second};
     const std::string allowed =
         visit.known.empty() ? "no keys are allowed here" : "allowed here: " + join_list(visit.known, ", ");
-    throw InputError(state_->file + ": unknown " + f.label() + "; " + allowed);
+    throw InputError(state_->file + ": unknown " + f.label() + misspelling_of(kv.first, visit.known) + "; " + allowed);
+  }
+}
+
+void Table::refuse_misspellings(const std::vector<std::string>& names) const {
+  const auto& visit = state_->visits[visit_];
+  for (const auto& kv : visit.table->as_table()) {
+    if (std::find(names.begin(), names.end(), kv.first) != names.end()) continue;
+    const std::string near = misspelling_of(kv.first, names);
+    if (near.empty()) continue;
+    const Field f{*state_, join_key(visit.path, kv.first), &kv.second};
+    throw InputError(state_->file + ": unknown " + f.label() + near + "; allowed here: " + join_list(names, ", "));
   }
 }
 

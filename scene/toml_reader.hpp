@@ -52,6 +52,9 @@ class Table {
   [[noreturn]] void fail(const std::string& key, const std::string& what) const;
   // Throws for the first key of this table (not recursing) that was never read or asked for.
   void finish() const;
+  // Before anything is read: throws, as finish() would, for the first key not among `names` and spelt within two
+  // letters of one of them (a misspelt table would otherwise fail later through what it broke).
+  void refuse_misspellings(const std::vector<std::string>& names) const;
 
  private:
   friend class TomlDoc;

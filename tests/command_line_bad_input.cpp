@@ -39,7 +39,7 @@ TEST_CASE_FIXTURE(BadInput, "bad_scene_keys_give_message_and_exit_2") {
   }
   SUBCASE("unknown table") {
     scene(base + "\n[physcs]\ngravity = [0, 0, -9.81]\n");
-    check_refused(d.dir, run, 2, {"scene.toml: ", "unknown key 'physcs'"});
+    check_refused(d.dir, run, 2, {"scene.toml: ", "unknown key 'physcs'", "a misspelling of 'physics'"});
   }
   SUBCASE("wrong type") {
     scene(edit(base, "x = [\"2.01 mm\", 0, 0]\nradius = \"1 mm\"", "x = [\"2.01 mm\", 0, 0]\nradius = true"));
@@ -253,3 +253,15 @@ TEST_CASE_FIXTURE(BadInput, "rigid_cell_scene_in_a_build_without_the_family_give
   }
 }
 #endif
+
+// A misspelt table was reported through what it broke ("'load' is not the name of one of the [[walls]]"), and a
+// misspelt optional key as unknown with the whole list: each is named as the misspelling, with the name meant.
+TEST_CASE("misspelt_table_or_key_is_named_as_the_misspelling_of_the_name_meant") {
+  const TempDir d;
+  check_edits_refused(d.dir, slurp(kScenes / "bending_small_2d.toml"),
+                      {{"[[probes]]", "[[probe]]", {"'probe'", "misspelling of 'probes'"}},
+                       {"[physics]", "[phisics]", {"'phisics'", "misspelling of 'physics'"}},
+                       {"duration = ", "duraton = ", {"'run.duraton'", "misspelling of 'duration'"}}});
+  check_edits_refused(d.dir, slurp(kScenes / "uniaxial_2d.toml"),
+                      {{"[[wall_strains]]", "[[wall_strain]]", {"'wall_strain'", "misspelling of 'wall_strains'"}}});
+}

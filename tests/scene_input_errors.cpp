@@ -110,7 +110,7 @@ TEST_CASE("scene input: unknown keys are errors that list what is allowed") {
   const auto e = doc("[material]\ndensity = 2600\n[outptu]\nevery = 10\n");
   e.root().table("material").number("density", Unit::Density, Range::positive());
   e.root().optional_table("output");
-  CHECK(error_of([&] { e.finish_all(); }) == "scenes/a.toml: unknown key 'outptu'; allowed here: material, output");
+  CHECK(error_of([&] { e.finish_all(); }) == "scenes/a.toml: unknown key 'outptu': a misspelling of 'output'?; allowed here: material, output");
 
   const auto set = doc("x = 1\n", {"y=2"});
   set.root().integer("x", Range::any());
@@ -118,7 +118,8 @@ TEST_CASE("scene input: unknown keys are errors that list what is allowed") {
 
   const auto w = doc("[[walls]]\nvelocity = 1\n[[walls]]\nveloctiy = 1\n");
   for (const auto& wall : w.root().tables("walls")) wall.number("velocity", Unit::Velocity, Range::any(), 0.0);
-  CHECK(error_of([&] { w.finish_all(); }) == "scenes/a.toml: unknown key 'walls[1].veloctiy'; allowed here: velocity");
+  CHECK(error_of([&] { w.finish_all(); }) ==
+        "scenes/a.toml: unknown key 'walls[1].veloctiy': a misspelling of 'velocity'?; allowed here: velocity");
 }
 
 TEST_CASE("scene input: a unit of the wrong kind lists the units allowed") {
