@@ -3,9 +3,13 @@ BUILD ?= build
 MINIMAL_BUILD ?= build-minimal
 JOBS  ?= $(shell nproc)
 
-.PHONY: setup build demo test test-minimal bench peers-bench clean
+.PHONY: setup setup-paraview build demo test test-minimal bench peers-bench clean
 setup:
 	@bash tools/setup.sh
+
+# ParaView with its Python (about 440 MB): the test of the XDMF sidecars runs with it (skipped without).
+setup-paraview:
+	@bash tools/setup.sh --paraview
 
 build: setup
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release >/dev/null

@@ -43,6 +43,56 @@ std::string join(const std::vector<std::string>& v) {
   for (const auto& x : v) s += (s.empty() ? "" : ",") + x;
   return s;
 }
+// The frame tables as XDMF readers take them. ParaView's Xdmf3 readers (what its "Open" picks) crash on a hyperslab of
+// a table written as XDMF 2 writes it, and its legacy XDMF reader cannot read the way XDMF 3 writes one; both read
+// a plain dataset. So each frame's row of each table is also a dataset of its own, /views/<name>/<frame>, a virtual
+// dataset of the row (no copy of its values): `rows` of `width` values, from value `first` of the row on, every
+// `step`-th. 2D vectors are two scalars (ParaView's vectors have three components).
+struct FrameView {
+  std::string name, table;
+  hsize_t rows, width, first, step;
+};
+
+std::vector<FrameView> frame_views(const H5File& f) {
+  const auto d = static_cast<hsize_t>(f.attr_int("/", "dimension"));
+  const hsize_t n = f.rows("/specimen/radius");
+  std::vector<FrameView> v{{"x", "/frames/x", n, d, 0, 1}};
+  for (const std::string q : {"v", "force"}) {
+    if (d == 3) {
+      v.push_back({q, "/frames/" + q, n, 3, 0, 1});
+    } else {
+      v.push_back({q + "_x", "/frames/" + q, n, 1, 0, 2});
+      v.push_back({q + "_y", "/frames/" + q, n, 1, 1, 2});
+    }
+  }
+  if (f.exists("/frames/cell_corner")) v.push_back({"cell_corner", "/frames/cell_corner", f.rows("/specimen/cells/corner"), d, 0, 1});
+  if (f.exists("/frames/damage")) v.push_back({"damage", "/frames/damage", f.shape("/frames/damage").at(1), 1, 0, 1});
+  if (f.exists("/frames/fibre_state"))
+    for (const char* q : {"fibre_state", "fibre_force", "fibre_slip"})
+      v.push_back({q, std::string("/frames/") + q, f.rows("/specimen/fibres/family"), 1, 0, 1});
+  return v;
+}
+
+std::string view_path(const std::string& name, hsize_t frame) { return "/views/" + name + "/" + std::to_string(frame); }
+
+// The views of frames [from, to), replacing any there are.
+void add_views(H5File& f, hsize_t from, hsize_t to) {
+  const std::vector<FrameView> views = frame_views(f);
+  for (hsize_t k = from; k < to; ++k)
+    for (const FrameView& v : views) {
+      const std::vector<hsize_t> dims = v.width > 1 ? std::vector<hsize_t>{v.rows, v.width} : std::vector<hsize_t>{v.rows};
+      f.create_row_view(view_path(v.name, k), v.table, k, dims, v.first, v.step);
+    }
+}
+
+// Removes the views of frames from `frames` on (those a resume drops).
+void drop_views_from(H5File& f, hsize_t frames) {
+  if (!f.exists("/views")) return;
+  for (const auto& name : f.list("/views"))
+    for (const auto& k : f.list("/views/" + name))
+      if (std::stoull(k) >= frames) f.remove("/views/" + name + "/" + k);
+}
+
 // Polygons [from, to) in XDMF's Mixed connectivity: each its type (3 polygon; 2 polyline, for a 2D facet's two
 // ends, or every one of them when they are `open` lines), its corner count, its corners.
 std::vector<std::int64_t> xdmf_mixed(const Polygons& p, std::size_t from, std::size_t to, bool open = false) {
@@ -77,6 +127,9 @@ void RunOutput::write_initial(const std::string& scene_text, const std::string& 
   file_.write("/specimen/radius", s.radius, {n});
   file_.write("/specimen/phase", s.phase, {n});
   file_.write("/specimen/id", s.id, {n});
+  std::vector<std::int64_t> vertex(n);  // each body a vertex of its own: XDMF's Polyvertex connectivity
+  for (hsize_t k = 0; k < n; ++k) vertex[k] = static_cast<std::int64_t>(k);
+  file_.write("/specimen/vertex", vertex, {n});
   file_.set_attr("/specimen", "phase_names", join(s.phase_names));
   for (const auto& [name, value] : s.facts) file_.set_attr("/specimen", name, value);
   // /specimen/outline_xy [M, 2], outline_start [K + 1]: polygon k is rows start[k]..start[k+1]
@@ -211,6 +264,8 @@ void RunOutput::append_frame(double time, std::int64_t step, const std::vector<d
     append_frame_row("/frames/fibre_force", cells.fibre_force);
     append_frame_row("/frames/fibre_slip", cells.fibre_slip);
   }
+  const hsize_t frame = file_.rows("/frames/time") - 1;
+  add_views(file_, frame, frame + 1);
   if (published_) write_xdmf();
 }
 
@@ -309,6 +364,8 @@ void RunOutput::resume_at(std::int64_t history_rows, std::int64_t frame_rows, st
     for (const auto& n : file_.list("/cracks")) file_.truncate_rows("/cracks/" + n, crack_rows);
   for (const auto& n : names_) file_.truncate_rows("/history/" + n, history_rows);
   for (const auto& n : file_.list("/frames")) file_.truncate_rows("/frames/" + n, frame_rows);
+  drop_views_from(file_, static_cast<hsize_t>(frame_rows));
+  add_views(file_, 0, static_cast<hsize_t>(frame_rows));  // also those a file of an older version lacks
   write_xdmf();
   flush();
 }
@@ -332,10 +389,13 @@ void RunOutput::rewrite_up_to(std::int64_t history_rows, std::int64_t frame_rows
         for (const auto& n : file_.list(g)) fresh.copy_rows(file_, g + "/" + n, rows);
       } else if (top == "checkpoint") {
         fresh.copy_object(file_, checkpoint);
+      } else if (top == "views") {
+        continue;  // made afresh below, for the frames kept
       } else {
         fresh.copy_object(file_, g);
       }
     }
+    add_views(fresh, 0, static_cast<hsize_t>(frame_rows));
     fresh.flush();
     fresh.rename(path);
   } catch (...) {
@@ -379,18 +439,6 @@ void RunOutput::write_csv() const {
 
 namespace {
 
-// Row f of the frame table `ds` [frames, rows·width] as an array of `rows` rows of `width` (1: a plain list).
-std::string frame_slab(const std::string& h5, const std::string& ds, hsize_t f, hsize_t frames, hsize_t rows,
-                       hsize_t width) {
-  std::ostringstream s;
-  s << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << rows;
-  if (width > 1) s << " " << width;
-  s << "\"><DataItem Dimensions=\"3 2\" Format=\"XML\">" << f << " 0 1 1 1 " << rows * width << "</DataItem>"
-    << "<DataItem Dimensions=\"" << frames << " " << rows * width
-    << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":" << ds << "</DataItem></DataItem>";
-  return s.str();
-}
-
 // A whole dataset of `size` values (and `width` per row, if more than 1).
 std::string dataset(const std::string& h5, const std::string& ds, hsize_t size, const char* type, int precision,
                     hsize_t width = 1) {
@@ -399,16 +447,6 @@ std::string dataset(const std::string& h5, const std::string& ds, hsize_t size, 
   if (width > 1) s << " " << width;
   s << "\" NumberType=\"" << type << "\" Precision=\"" << precision << "\" Format=\"HDF\">" << h5 << ":" << ds
     << "</DataItem>";
-  return s.str();
-}
-
-// A whole dataset of `size` values as a slab of itself. ParaView's XDMF reader keeps a grid whose topology comes
-// straight from a dataset to reuse in the next frame, and, when that grid's geometry is a frame's slab, says it
-// cannot; a topology given as a slab is read afresh each frame without that message.
-std::string whole_slab(const std::string& h5, const std::string& ds, hsize_t size, const char* type, int precision) {
-  std::ostringstream s;
-  s << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << size << "\"><DataItem Dimensions=\"3 1\" Format=\"XML\">0 1 "
-    << size << "</DataItem>" << dataset(h5, ds, size, type, precision) << "</DataItem>";
   return s.str();
 }
 
@@ -429,6 +467,10 @@ struct XdmfFrame {
   int d;
   hsize_t f, frames;
   double time;
+  // The frame's view `name` (frame_views): `rows` of `width` values.
+  std::string view(const std::string& name, hsize_t rows, hsize_t width = 1) const {
+    return dataset(h5, view_path(name, f), rows, "Float", 8, width);
+  }
   std::string geometry() const { return d == 2 ? "XY" : "XYZ"; }
   std::string head(const std::string& name) const {
     std::ostringstream s;
@@ -438,21 +480,36 @@ struct XdmfFrame {
   }
 };
 
-// The bodies (particles, or the cells' nodes) as points.
-std::string points_grid(const XdmfFrame& fr, const std::string& name, hsize_t n) {
+// The bodies (particles, or the cells' nodes) as points, each a vertex (a file of an older version lists no vertices:
+// points without cells), with the phases' names (the integers of `phase`, in order) as information.
+std::string points_grid(const XdmfFrame& fr, const std::string& name, hsize_t n, bool vertices,
+                        const std::string& phase_names) {
   std::ostringstream x;
-  x << fr.head(name) << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\"/>\n"
-    << "    <Geometry GeometryType=\"" << fr.geometry() << "\">"
-    << frame_slab(fr.h5, "/frames/x", fr.f, fr.frames, n, fr.d) << "</Geometry>\n"
+  std::string escaped;  // the names as an XML attribute's value
+  for (const char c : phase_names)
+    escaped += c == '&' ? "&amp;" : c == '<' ? "&lt;" : c == '>' ? "&gt;" : c == '"' ? "&quot;" : std::string(1, c);
+  x << fr.head(name) << "    <Information Name=\"phase_names\" Value=\"" << escaped << "\"/>\n";
+  if (vertices)
+    x << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\">"
+      << dataset(fr.h5, "/specimen/vertex", n, "Int", 8) << "</Topology>\n";
+  else
+    x << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\"/>\n";
+  x << "    <Geometry GeometryType=\"" << fr.geometry() << "\">" << fr.view("x", n, fr.d) << "</Geometry>\n"
     << "    <Attribute Name=\"radius\" AttributeType=\"Scalar\" Center=\"Node\">"
     << dataset(fr.h5, "/specimen/radius", n, "Float", 8) << "</Attribute>\n"
     << "    <Attribute Name=\"phase\" AttributeType=\"Scalar\" Center=\"Node\">"
-    << dataset(fr.h5, "/specimen/phase", n, "Int", 4) << "</Attribute>\n";
-  if (fr.d == 3) {  // ParaView vectors have three components; 2D vectors are shown as two scalars
-    x << "    <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">"
-      << frame_slab(fr.h5, "/frames/v", fr.f, fr.frames, n, 3) << "</Attribute>\n"
-      << "    <Attribute Name=\"force\" AttributeType=\"Vector\" Center=\"Node\">"
-      << frame_slab(fr.h5, "/frames/force", fr.f, fr.frames, n, 3) << "</Attribute>\n";
+    << dataset(fr.h5, "/specimen/phase", n, "Int", 4) << "</Attribute>\n"
+    << "    <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">"
+    << dataset(fr.h5, "/specimen/id", n, "Int", 8) << "</Attribute>\n";
+  // The out-of-balance force: the resultant of each body's contacts, gravity and damping, not a contact force.
+  for (const auto& [q, shown] : {std::pair{"v", "velocity"}, std::pair{"force", "out_of_balance_force"}}) {
+    if (fr.d == 3)
+      x << "    <Attribute Name=\"" << shown << "\" AttributeType=\"Vector\" Center=\"Node\">" << fr.view(q, n, 3)
+        << "</Attribute>\n";
+    else
+      for (const char* c : {"_x", "_y"})
+        x << "    <Attribute Name=\"" << shown << c << "\" AttributeType=\"Scalar\" Center=\"Node\">"
+          << fr.view(q + std::string(c), n) << "</Attribute>\n";
   }
   x << "   </Grid>\n";
   return x.str();
@@ -463,9 +520,9 @@ std::string cells_grid(const XdmfFrame& fr, const CellSizes& c) {
   const std::string g = "/specimen/cells/";
   std::ostringstream x;
   x << fr.head("cells") << "    <Topology TopologyType=\"Mixed\" NumberOfElements=\"" << c.faces << "\">"
-    << whole_slab(fr.h5, g + "xdmf_faces", c.faces_mixed, "Int", 8) << "</Topology>\n"
-    << "    <Geometry GeometryType=\"" << fr.geometry() << "\">"
-    << frame_slab(fr.h5, "/frames/cell_corner", fr.f, fr.frames, c.corners, fr.d) << "</Geometry>\n"
+    << dataset(fr.h5, g + "xdmf_faces", c.faces_mixed, "Int", 8) << "</Topology>\n"
+    << "    <Geometry GeometryType=\"" << fr.geometry() << "\">" << fr.view("cell_corner", c.corners, fr.d)
+    << "</Geometry>\n"
     << "    <Attribute Name=\"cell\" AttributeType=\"Scalar\" Center=\"Cell\">"
     << dataset(fr.h5, g + "face_cell", c.faces, "Int", 8) << "</Attribute>\n"
     << "    <Attribute Name=\"phase\" AttributeType=\"Scalar\" Center=\"Cell\">"
@@ -483,7 +540,7 @@ std::string facets_grid(const XdmfFrame& fr, const CellSizes& c) {
     << "    <Geometry GeometryType=\"" << fr.geometry() << "\">"
     << dataset(fr.h5, g + "corner", c.corners, "Float", 8, fr.d) << "</Geometry>\n"
     << "    <Attribute Name=\"damage\" AttributeType=\"Scalar\" Center=\"Cell\">"
-    << frame_slab(fr.h5, "/frames/damage", fr.f, fr.frames, c.contacts, 1) << "</Attribute>\n"
+    << fr.view("damage", c.contacts) << "</Attribute>\n"
     << "   </Grid>\n";
   return x.str();
 }
@@ -503,7 +560,7 @@ std::string fibres_grid(const XdmfFrame& fr, const H5File& f) {
       << dataset(fr.h5, g + a, n, "Int", 4) << "</Attribute>\n";
   for (const char* a : {"state", "force", "slip"})
     x << "    <Attribute Name=\"" << a << "\" AttributeType=\"Scalar\" Center=\"Cell\">"
-      << frame_slab(fr.h5, std::string("/frames/fibre_") + a, fr.f, fr.frames, n, 1) << "</Attribute>\n";
+      << fr.view(std::string("fibre_") + a, n) << "</Attribute>\n";
   x << "   </Grid>\n";
   return x.str();
 }
@@ -526,11 +583,14 @@ void RunOutput::write_xdmf() const {
     for (hsize_t f = 0; f < frames; ++f) x << grid(XdmfFrame{h5, d, f, frames, times[f]});
     x << "  </Grid>\n";
   };
+  const bool vertices = file_.exists("/specimen/vertex");
+  const std::string phases =
+      file_.has_attr("/specimen", "phase_names") ? file_.attr_string("/specimen", "phase_names") : "";
   if (!file_.exists("/frames/cell_corner")) {
-    collection("frames", [&](const XdmfFrame& fr) { return points_grid(fr, "frame", n); });
+    collection("frames", [&](const XdmfFrame& fr) { return points_grid(fr, "frame", n, vertices, phases); });
   } else {
     const CellSizes sizes = cell_sizes(file_);
-    collection("nodes", [&](const XdmfFrame& fr) { return points_grid(fr, "nodes", n); });
+    collection("nodes", [&](const XdmfFrame& fr) { return points_grid(fr, "nodes", n, vertices, phases); });
     collection("cells", [&](const XdmfFrame& fr) { return cells_grid(fr, sizes); });
     if (sizes.contacts > 0) collection("facets", [&](const XdmfFrame& fr) { return facets_grid(fr, sizes); });
     if (file_.exists("/frames/fibre_state"))

@@ -10,6 +10,11 @@ set -euo pipefail
 pkgs=(build-essential cmake libeigen3-dev libnanoflann-dev libhdf5-dev hdf5-tools doctest-dev
       libtoml11-dev libcli11-dev libomp-dev libcgal-dev libsuitesparse-dev libopenblas0-pthread
       libopenmpi-dev openmpi-bin libhdf5-openmpi-dev python3 python3-numpy python3-h5py python3-matplotlib)
+# --paraview: ParaView 5.11 with its Python (about 440 MB), which the test of the XDMF sidecars reads them with
+# (tests/paraview_opens_outputs.py, skipped without it) and xvfb for pictures rendered without a screen.
+if [ "${1:-}" = "--paraview" ]; then
+  pkgs+=(paraview python3-paraview xvfb xauth)
+fi
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -30,28 +30,19 @@ hsize_t product(const std::vector<hsize_t>& v) {
 // it gives, checked on the way against the datasets it names.
 struct XdmfData {
   hsize_t rows = 0, values = 0;
-  std::string dataset;  // the HDF5 dataset read whole (empty for a frame's slab)
+  std::string dataset;  // the HDF5 dataset read whole (a frame's row: its view, /views/<name>/<frame>)
 };
 
 XdmfData read_data(const std::string& line, const mc::H5File& f) {
   static const std::regex hdf(R"re(<DataItem Dimensions="([0-9 ]+)"[^>]*Format="HDF">[^:<]*:([^<]+)</DataItem>)re");
-  static const std::regex slab(
-      R"re(<DataItem ItemType="HyperSlab" Dimensions="([0-9 ]+)"><DataItem Dimensions="3 2" )re"
-      R"re(Format="XML">([0-9]+) 0 1 1 1 ([0-9]+)</DataItem>)re");
   std::smatch m;
   REQUIRE_MESSAGE(std::regex_search(line, m, hdf), line);
   const std::vector<hsize_t> dims = numbers(m[1]);
   const std::string dataset = m[2];
   CAPTURE(dataset);
   REQUIRE(f.exists(dataset));
-  CHECK(dims == f.shape(dataset));  // every dataset as large as the sidecar says
-  std::smatch s;
-  if (!std::regex_search(line, s, slab)) return {dims[0], product(dims), dataset};
-  const std::vector<hsize_t> selected = numbers(s[1]);
-  CHECK(std::stoull(s[2]) < dims[0]);   // a frame the table holds
-  CHECK(std::stoull(s[3]) == dims[1]);  // its whole row
-  CHECK(product(selected) == dims[1]);  // shaped into as many values
-  return {selected[0], product(selected), ""};
+  CHECK(dims == f.shape(dataset));  // every dataset as large as the sidecar says (a frame's view as its row's values)
+  return {dims[0], product(dims), dataset};
 }
 
 // Each uniform grid of the sidecar (its lines from `<Grid ... GridType="Uniform">` to `</Grid>`) is consistent with
