@@ -52,9 +52,10 @@ int run(const std::string& scene_file, std::string output, const std::vector<std
                            " must name the same file or be left out");
     output = resume;
   }
-  if (output.empty()) throw mc::InputError("run: give the output file with -o OUT.h5");
   if (scene_file.empty() && resume.empty())
-    throw mc::InputError("run: give the scene file (or --resume OUT.h5 to continue a run from its file)");
+    throw mc::InputError("run: the scene file is required, or --resume OUT.h5 alone to continue a run from its file "
+                         "(see mesocrack run --help)");
+  if (output.empty()) throw mc::InputError("run: give the output file with -o OUT.h5");
   if (threads > 0) omp_set_num_threads(threads);
   // Everything is read and validated before the output file is touched: bad input leaves no half-written file.
   // `--resume OUT.h5` alone continues the scene the file stores (with any --set given now on top of it).
@@ -125,9 +126,24 @@ int calibrate(const std::string& scene_file, const std::string& output, const st
   return r.converged ? 0 : 5;
 }
 
+// The plots mark what `summary` reads (E, the strength): its JSON goes to report.py in a temporary file. A file
+// summary cannot read (damaged, killed while flushing) is drawn without them.
 int report(const std::string& file) {
-  const std::string cmd = "/usr/bin/python3 " + shell_quote(report_script()) + " " + shell_quote(file);
+  std::string cmd = "/usr/bin/python3 " + shell_quote(report_script()) + " " + shell_quote(file);
+  char summary[] = "/tmp/mesocrack_summary_XXXXXX";
+  const int fd = mkstemp(summary);
+  bool written = false;
+  if (fd >= 0) {
+    try {
+      const std::string json = mc::summary_json(file);
+      written = write(fd, json.data(), json.size()) == static_cast<ssize_t>(json.size());
+    } catch (const std::exception&) {
+    }
+    close(fd);
+    if (written) cmd += " --summary " + shell_quote(summary);
+  }
   const int rc = std::system(cmd.c_str());
+  if (fd >= 0) unlink(summary);
   return WIFEXITED(rc) ? WEXITSTATUS(rc) : 1;
 }
 

@@ -17,6 +17,8 @@ The file is opened read-only and without HDF5 file locking, so a run that is
 still writing can be looked at.
 """
 import argparse
+import json
+import tomllib
 import os
 import sys
 from collections import OrderedDict
@@ -137,6 +139,26 @@ def read_run(f):
     return run
 
 
+def read_summary(path):
+    """The summary JSON `mesocrack report` passes (absent: the plots mark nothing from it)."""
+    if not path:
+        return {}
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return {}
+
+
+def uniaxial_pair(scene_text):
+    """(axial strain, stress) of the scene's [uniaxial], the pair its stress-strain plot shows; None without."""
+    try:
+        u = tomllib.loads(scene_text).get("uniaxial", {})
+    except tomllib.TOMLDecodeError:
+        return None
+    return (u["axial_strain"], u["stress"]) if "axial_strain" in u and "stress" in u else None
+
+
 def read_outlines(spec):
     """Aggregate outlines in the picture plane (2D; 3D: the mid-plane section), or []."""
     if "outline_xy" not in spec or "outline_start" not in spec:
@@ -226,6 +248,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description="PNG plots of a mesocrack run (HDF5 output file).")
     parser.add_argument("file", help="mesocrack output file (.h5)")
     parser.add_argument("--out-dir", help="directory for the PNGs (default: next to the file)")
+    parser.add_argument("--summary", help="the run's `mesocrack summary` JSON, for the values the plots mark")
     args = parser.parse_args(argv)
     try:
         with open_run(args.file) as f:
@@ -233,6 +256,8 @@ def main(argv=None):
                 run = read_run(f)
             except (OSError, KeyError, ValueError) as e:  # damaged or half-written file
                 raise ReportError(f"cannot read ({str(e).splitlines()[0] if str(e) else type(e).__name__})")
+        run["summary"] = read_summary(args.summary)
+        run["uniaxial_pair"] = uniaxial_pair(run["scene_text"])
         out_dir = args.out_dir or os.path.dirname(os.path.abspath(args.file))
         try:
             os.makedirs(out_dir, exist_ok=True)

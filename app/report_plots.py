@@ -45,10 +45,10 @@ SLICE_NOTE = "2D: forces, works and energies are those of a slice 1 m thick (per
 
 
 def note_slice(fig, run):
-    """A 2D run's forces and energies are its unit-thickness slice's: the figure says so under its plots (and in the
+    """A 2D run's forces and energies are its unit-thickness slice's: the figure says so in its top corner (and in the
     PNG's Description, which tests read)."""
     if run["dimension"] == 2:
-        fig.text(0.995, 0.003, SLICE_NOTE, ha="right", va="bottom", fontsize=7, color="0.35")
+        fig.text(0.003, 0.997, SLICE_NOTE, ha="left", va="top", fontsize=7, color="0.35")
         fig.mc_note = SLICE_NOTE
 
 
@@ -151,18 +151,48 @@ def plot_xy(run, stem, out_dir):
     if not pairs:
         return []
     fig, axes, _ = grid(len(pairs), width=4.8, height=3.8)
+    uniaxial = run.get("summary", {}).get("uniaxial") or {}
     for ax, (xn, yn) in zip(axes, pairs):
         xs, ys = hist[xn], hist[yn]
-        fx, ux = si_scale(xs["data"], xs["unit"])
-        fy, uy = si_scale(ys["data"], ys["unit"])
-        ax.plot(xs["data"] * fx, ys["data"] * fy, lw=1.3)
-        ax.set_xlabel(with_unit(xs["label"] or xn, ux))
-        ax.set_ylabel(with_unit(ys["label"] or yn, uy))
+        # A series that runs negative (a shortening strain, a compressive stress) is drawn as its magnitude's
+        # direction, −x, so that a compression curve reads left to right and upwards, as in the literature.
+        sx, sy = (-1.0 if leans_negative(s["data"]) else 1.0 for s in (xs, ys))
+        fx, ux = si_scale(sx * xs["data"], xs["unit"])
+        fy, uy = si_scale(sy * ys["data"], ys["unit"])
+        ax.plot(sx * xs["data"] * fx, sy * ys["data"] * fy, lw=1.3)
+        ax.set_xlabel(with_unit(("−" if sx < 0 else "") + (xs["label"] or xn), ux))
+        ax.set_ylabel(with_unit(("−" if sy < 0 else "") + (ys["label"] or yn), uy))
         ax.set_title(f"{yn} vs {xn}", fontsize="medium")
+        if (xn, yn) == run.get("uniaxial_pair") and uniaxial:
+            mark_uniaxial(ax, uniaxial, sx * xs["data"] * fx, sy * ys["data"] * fy, fx, fy, uy)
         ax.grid(alpha=0.3)
     fig.suptitle(f"{stem}: x-y plots")
     note_slice(fig, run)
     return [save(fig, out_dir, stem, "xy")]
+
+
+def leans_negative(y):
+    finite = y[np.isfinite(y)]
+    return finite.size > 0 and -finite.min() > finite.max()
+
+
+def mark_uniaxial(ax, u, x, y, fx, fy, uy):
+    """On the stress-strain curve drawn (x, y, scaled as shown): the strength where the curve peaks, and E as the line
+    of its secant (25–50 % of the peak) from the origin, as `summary` reads them. The curve's strain is the platens'
+    (E_platens); in 2D its slope is the disc assembly's own ratio, E_platens × E_raw_2d / E before the plane reading."""
+    strength, modulus = u.get("ucs", u.get("f_t")), u.get("E_platens")
+    if not all(isinstance(v, (int, float)) and np.isfinite(v) and v > 0 for v in (strength, modulus)):
+        return
+    k = int(np.nanargmax(y))
+    name = "UCS" if "ucs" in u else "f_t"
+    passed = u.get("peak_passed", True)
+    ax.plot([x[k]], [y[k]], "o", color="C3",
+            label=f"{name} {y[k]:.3g} {uy}" + ("" if passed else " (largest so far: no peak)"))
+    slope = modulus * (u["E_raw_2d"] / u["E"] if "E_raw_2d" in u and u.get("E") else 1.0)
+    top = 0.6 * y[k]
+    ax.plot([0, top / (slope * fy / fx)], [0, top], "--", color="C2", lw=1,
+            label=f"E {modulus / 1e9:.3g} GPa (secant 25–50 %)")
+    ax.legend(fontsize="small", loc="lower right")
 
 
 def plot_energy(run, stem, out_dir):

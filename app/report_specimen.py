@@ -1,4 +1,4 @@
-"""Pictures of a mesocrack specimen, for app/report.py: the particles by phase, by contact force and (2D) their
+"""Pictures of a mesocrack specimen, for app/report.py: the particles by phase, by out-of-balance force and (2D) their
 bonds by phase pair, and the crack log over them; a 3D specimen is shown by its section at mid-depth. Rigid cells:
 the crack pattern of their damaged facets."""
 import matplotlib
@@ -109,15 +109,16 @@ def draw_phases(ax, run, xy, r, phase, limits, factor):
 
 def draw_forces(fig, ax, xy, r, fmag, limits, factor):
     ffac, funit = si_scale(fmag, "N")
-    # Contact forces are heavy-tailed: clip the colour scale at the 99.5th percentile
-    # so the force chains show instead of a few hot spots on a dark background.
+    # Each particle's resultant (its contacts, gravity and damping: the out-of-balance force PFC users know), not a
+    # contact force. Heavy-tailed: the colour scale is clipped at the 99.5th percentile so that more than a few hot
+    # spots show.
     vmax = np.percentile(fmag, 99.5) * ffac if fmag.max() > 0 else 1.0
     coll = draw_discs(ax, xy, r, limits, factor, cmap="inferno")
     coll.set_array(fmag * ffac)
     coll.set_clim(0, vmax)
     fig.colorbar(coll, ax=ax, label=f"|F| [{funit}]", shrink=0.8,
                  extend="max" if fmag.max() * ffac > vmax else "neither")
-    ax.set_title("resultant contact force magnitude", fontsize="medium")
+    ax.set_title("out-of-balance force magnitude (each particle's resultant)", fontsize="medium")
 
 
 def draw_bond_phases(ax, xy, r, phase, names, factor):

@@ -201,7 +201,7 @@ TEST_CASE_FIXTURE(BadInput, "command_line_errors_of_every_subcommand_give_one_li
   }
   SUBCASE("unknown options, missing arguments and excluded pairs give CLI11's message") {
     check_command_refused(d, with(run_scene, {"--bogus"}), 2, {"not expected: --bogus"});
-    check_command_refused(d, {"run"}, 2, {"scene is required", "mesocrack run --help"});
+    check_command_refused(d, {"run"}, 2, {"scene file is required", "--resume OUT.h5 alone", "mesocrack run --help"});
     check_command_refused(d, {"run", "scene.toml", "-o"}, 2, {"--output"});
     check_command_refused(d, with(run_scene, {"--realizations", "2", "--resume", "out.h5"}), 2, {"excludes"});
     check_command_refused(d, {"generate"}, 2, {"scene is required"});

@@ -221,6 +221,33 @@ def check_error(case, p, path, words):
           repr(p.stderr))
 
 
+def check_compression_curve_reads_left_to_right_with_its_strength_and_modulus_marked():
+    """A uniaxial compression run's strain and stress are negative: the x-y plot draws their magnitudes (left to
+    right, upwards), marks the strength at the curve's peak and E's secant as `summary` reads them."""
+    sys.path.insert(0, os.path.join(os.path.dirname(REPORT)))
+    import report_plots
+    figures = []
+    report_plots.save = lambda fig, out_dir, stem, kind, dpi=120: figures.append(fig) or kind
+    strain = -np.linspace(0, 2e-3, 201)
+    stress = np.where(-strain < 1e-3, 30e9 * strain, -30e6 - 10e9 * (strain + 1e-3))  # peak 30 MPa at 1e-3
+    run = {"dimension": 3, "xy_plots": [("strain.axial", "wall.top.stress")],
+           "history": {"strain.axial": {"data": strain, "unit": "-", "label": None},
+                       "wall.top.stress": {"data": stress, "unit": "Pa", "label": None}},
+           "summary": {"uniaxial": {"ucs": 30e6, "E_platens": 30e9, "E": 30e9, "peak_passed": True}},
+           "uniaxial_pair": ("strain.axial", "wall.top.stress")}
+    report_plots.plot_xy(run, "c", ".")
+    ax = figures[0].axes[0]
+    curve = ax.lines[0].get_xydata()
+    check("compression curve: drawn as magnitudes, left to right and upwards",
+          curve[-1, 0] > 0 and curve[100, 1] > 0 and ax.get_xlabel().startswith("−"), ax.get_xlabel())
+    labels = [l.get_label() for l in ax.lines]
+    check("compression curve: UCS marked at the peak", "UCS 30 MPa" in labels and
+          tuple(ax.lines[1].get_xydata()[0]) == (1e-3, 30.0), str(labels))
+    slope = np.diff(ax.lines[2].get_ydata()) / np.diff(ax.lines[2].get_xdata())
+    check("compression curve: E's secant along the elastic curve (30 GPa in MPa per unit strain)",
+          abs(slope[0] - 30e3) < 1e-6 * 30e3, str(slope))
+
+
 def main():
     keep = os.environ.get("REPORT_PLOTS_KEEP")
     with tempfile.TemporaryDirectory() as tmp:
@@ -308,6 +335,8 @@ def main():
         with open(text, "w") as f:
             f.write("not hdf5\n")
         check_error("not an HDF5 file", run_report(text), text, ["HDF5"])
+
+    check_compression_curve_reads_left_to_right_with_its_strength_and_modulus_marked()
 
     failed = [r for r in results if not r[1]]
     for name, _, detail in failed:
