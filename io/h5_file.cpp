@@ -340,7 +340,7 @@ void H5File::create_table(const std::string& ds, hsize_t width, bool integer) {
 }
 
 void H5File::create_row_view(const std::string& view, const std::string& table, hsize_t row,
-                             const std::vector<hsize_t>& dims, hsize_t first, hsize_t step) {
+                             const std::vector<hsize_t>& dims) {
   change([&] {
     const File f{fid(), path_};
     const std::string what = "create view of " + table;
@@ -348,10 +348,10 @@ void H5File::create_row_view(const std::string& view, const std::string& table, 
     const std::vector<hsize_t> table_dims = shape(table);
     hsize_t count = 1;
     for (const hsize_t n : dims) count *= n;
-    if (table_dims.size() != 2 || row >= table_dims[0] || first + (count - 1) * step >= table_dims[1])
+    if (table_dims.size() != 2 || row >= table_dims[0] || count != table_dims[1])
       f.fail(what, view, "row " + std::to_string(row) + " does not hold " + std::to_string(count) + " values");
     const Id source = simple_space(table_dims);
-    const hsize_t start[2] = {row, first}, stride[2] = {1, step}, block_count[2] = {1, count};
+    const hsize_t start[2] = {row, 0}, stride[2] = {1, 1}, block_count[2] = {1, count};
     const Id view_space = simple_space(dims);
     const Id dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
     if (H5Sselect_hyperslab(source, H5S_SELECT_SET, start, stride, block_count, nullptr) < 0 ||

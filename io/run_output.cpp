@@ -46,42 +46,32 @@ std::string join(const std::vector<std::string>& v) {
 // The frame tables as XDMF readers take them. ParaView's Xdmf3 readers (what its "Open" picks) crash on a hyperslab of
 // a table written as XDMF 2 writes it, and its legacy XDMF reader cannot read the way XDMF 3 writes one; both read
 // a plain dataset. So each frame's row of each table is also a dataset of its own, /views/<name>/<frame>, a virtual
-// dataset of the row (no copy of its values): `rows` of `width` values, from value `first` of the row on, every
-// `step`-th. 2D vectors are two scalars (ParaView's vectors have three components).
+// dataset of the row (no copy of its values): `rows` of `width` values.
 struct FrameView {
-  std::string name, table;
-  hsize_t rows, width, first, step;
+  std::string name;
+  hsize_t rows, width;
 };
 
 std::vector<FrameView> frame_views(const H5File& f) {
   const auto d = static_cast<hsize_t>(f.attr_int("/", "dimension"));
   const hsize_t n = f.rows("/specimen/radius");
-  std::vector<FrameView> v{{"x", "/frames/x", n, d, 0, 1}};
-  for (const std::string q : {"v", "force"}) {
-    if (d == 3) {
-      v.push_back({q, "/frames/" + q, n, 3, 0, 1});
-    } else {
-      v.push_back({q + "_x", "/frames/" + q, n, 1, 0, 2});
-      v.push_back({q + "_y", "/frames/" + q, n, 1, 1, 2});
-    }
-  }
-  if (f.exists("/frames/cell_corner")) v.push_back({"cell_corner", "/frames/cell_corner", f.rows("/specimen/cells/corner"), d, 0, 1});
-  if (f.exists("/frames/damage")) v.push_back({"damage", "/frames/damage", f.shape("/frames/damage").at(1), 1, 0, 1});
+  std::vector<FrameView> v{{"x", n, d}, {"v", n, d}, {"force", n, d}};
+  if (f.exists("/frames/cell_corner")) v.push_back({"cell_corner", f.rows("/specimen/cells/corner"), d});
+  if (f.exists("/frames/damage")) v.push_back({"damage", f.shape("/frames/damage").at(1), 1});
   if (f.exists("/frames/fibre_state"))
-    for (const char* q : {"fibre_state", "fibre_force", "fibre_slip"})
-      v.push_back({q, std::string("/frames/") + q, f.rows("/specimen/fibres/family"), 1, 0, 1});
+    for (const char* q : {"fibre_state", "fibre_force", "fibre_slip"}) v.push_back({q, f.rows("/specimen/fibres/family"), 1});
   return v;
 }
 
 std::string view_path(const std::string& name, hsize_t frame) { return "/views/" + name + "/" + std::to_string(frame); }
 
-// The views of frames [from, to), replacing any there are.
+// The views of frames [from, to) that are not there yet (opening a view reads its mapping: not done twice).
 void add_views(H5File& f, hsize_t from, hsize_t to) {
   const std::vector<FrameView> views = frame_views(f);
   for (hsize_t k = from; k < to; ++k)
     for (const FrameView& v : views) {
       const std::vector<hsize_t> dims = v.width > 1 ? std::vector<hsize_t>{v.rows, v.width} : std::vector<hsize_t>{v.rows};
-      f.create_row_view(view_path(v.name, k), v.table, k, dims, v.first, v.step);
+      if (!f.exists(view_path(v.name, k))) f.create_row_view(view_path(v.name, k), "/frames/" + v.name, k, dims);
     }
 }
 
@@ -502,15 +492,10 @@ std::string points_grid(const XdmfFrame& fr, const std::string& name, hsize_t n,
     << "    <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">"
     << dataset(fr.h5, "/specimen/id", n, "Int", 8) << "</Attribute>\n";
   // The out-of-balance force: the resultant of each body's contacts, gravity and damping, not a contact force.
-  for (const auto& [q, shown] : {std::pair{"v", "velocity"}, std::pair{"force", "out_of_balance_force"}}) {
-    if (fr.d == 3)
-      x << "    <Attribute Name=\"" << shown << "\" AttributeType=\"Vector\" Center=\"Node\">" << fr.view(q, n, 3)
-        << "</Attribute>\n";
-    else
-      for (const char* c : {"_x", "_y"})
-        x << "    <Attribute Name=\"" << shown << c << "\" AttributeType=\"Scalar\" Center=\"Node\">"
-          << fr.view(q + std::string(c), n) << "</Attribute>\n";
-  }
+  // 2D vectors have two components, which every reader takes.
+  for (const auto& [q, shown] : {std::pair{"v", "velocity"}, std::pair{"force", "out_of_balance_force"}})
+    x << "    <Attribute Name=\"" << shown << "\" AttributeType=\"Vector\" Center=\"Node\">"
+      << fr.view(q, n, fr.d) << "</Attribute>\n";
   x << "   </Grid>\n";
   return x.str();
 }

@@ -97,7 +97,7 @@ def check_output(pvpython, script, h5, kinds):
         # Float 8 in the XDMF: ParaView reads the file's doubles, so they compare exactly.
         check(f"{case}: body 0 where the last frame has it", bodies["point0"][:d] == list(x_last[0]),
               f"{bodies['point0']} vs {x_last[0]}")
-        v = bodies["arrays"].get("velocity") or bodies["arrays"].get("velocity_x")
+        v = bodies["arrays"].get("velocity")
         check(f"{case}: body 0's velocity of the last frame", v is not None and v[0][0] == v_last[0][0],
               f"{v[0] if v else None} vs {v_last[0]}")
         for name in ("id", "phase", "radius"):
