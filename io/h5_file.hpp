@@ -81,7 +81,8 @@ class H5File {
   void create_table(const std::string& ds, hsize_t width, bool integer = false);
   // A view of one row of a double table as a dataset of its own, shaped `dims` (as many values as the row holds;
   // HDF5's virtual dataset in the same file, no copy). For readers that take whole datasets only.
-  void create_row_view(const std::string& view, const std::string& table, hsize_t row, const std::vector<hsize_t>& dims);
+  void create_row_view(const std::string& view, const std::string& table, hsize_t row,
+                       const std::vector<hsize_t>& dims);
   // nrows * width values, row-major; the value type must match the table's.
   void append_rows(const std::string& ds, const double* rows, hsize_t nrows);
   void append_rows(const std::string& ds, const std::int64_t* rows, hsize_t nrows);

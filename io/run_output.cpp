@@ -59,7 +59,8 @@ std::vector<FrameView> frame_views(const H5File& f) {
   if (f.exists("/frames/cell_corner")) v.push_back({"cell_corner", f.rows("/specimen/cells/corner"), d});
   if (f.exists("/frames/damage")) v.push_back({"damage", f.shape("/frames/damage").at(1), 1});
   if (f.exists("/frames/fibre_state"))
-    for (const char* q : {"fibre_state", "fibre_force", "fibre_slip"}) v.push_back({q, f.rows("/specimen/fibres/family"), 1});
+    for (const char* q : {"fibre_state", "fibre_force", "fibre_slip"})
+      v.push_back({q, f.rows("/specimen/fibres/family"), 1});
   return v;
 }
 
@@ -70,7 +71,7 @@ void add_views(H5File& f, hsize_t from, hsize_t to) {
   const std::vector<FrameView> views = frame_views(f);
   for (hsize_t k = from; k < to; ++k)
     for (const FrameView& v : views) {
-      const std::vector<hsize_t> dims = v.width > 1 ? std::vector<hsize_t>{v.rows, v.width} : std::vector<hsize_t>{v.rows};
+      const auto dims = v.width > 1 ? std::vector<hsize_t>{v.rows, v.width} : std::vector<hsize_t>{v.rows};
       if (!f.exists(view_path(v.name, k))) f.create_row_view(view_path(v.name, k), "/frames/" + v.name, k, dims);
     }
 }

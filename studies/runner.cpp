@@ -490,9 +490,11 @@ class Runner {
         const double dv = st.value - st.seen_value, dt = st.time - st.seen_time;
         const auto kind = st.spec.kind;
         if (dt > 0 && sim_rate > 0 && kind != StopSpec::Kind::PostPeak) {
-          const double target = kind == StopSpec::Kind::MagnitudeAbove ? std::copysign(st.spec.value, dv) : st.spec.value;
+          const double target =
+              kind == StopSpec::Kind::MagnitudeAbove ? std::copysign(st.spec.value, dv) : st.spec.value;
           const double to_go = (target - st.value) / (dv / dt);  // simulated seconds; negative: moving away
-          if (to_go > 0 && std::isfinite(to_go)) soon = std::min(soon, std::max(to_go, st.spec.after_time - system_->time()) / sim_rate);
+          if (to_go > 0 && std::isfinite(to_go))
+            soon = std::min(soon, std::max(to_go, st.spec.after_time - system_->time()) / sim_rate);
         }
         st.seen_value = st.value, st.seen_time = st.time;
       }

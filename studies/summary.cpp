@@ -67,7 +67,8 @@ std::string summary_json(const std::string& output_file) {
     << ",\n  \"status_message\": " << json_quote(run.status_message)
     // Finished or stopped by a condition: else the values below are those of a run cut short (interrupted,
     // unstable, failed, or still running).
-    << ",\n  \"complete\": " << (run.status == "finished" || run.status == "stopped" ? "true" : "false") << ",\n  \"particles\": " << run.particles
+    << ",\n  \"complete\": " << (run.status == "finished" || run.status == "stopped" ? "true" : "false")
+    << ",\n  \"particles\": " << run.particles
     << ",\n  \"steps\": " << json_number(h.at("step").empty() ? 0.0 : h.at("step").back())
     << ",\n  \"time\": " << json_number(t.empty() ? 0.0 : t.back()) << ",\n  \"history_rows\": " << t.size()
     << ",\n  \"density_scaling\": " << json_number(scene.density_scaling);  // 1: off; else the inertia was scaled by it
@@ -125,7 +126,10 @@ std::string summary_json(const std::string& output_file) {
   }
   o << "},\n    \"final\": {";
   first = true;
-  for (const auto& [name, unit] : run.units) o << (first ? "" : ", ") << json_quote(name) << ": " << json_quote(unit), first = false;
+  for (const auto& [name, unit] : run.units) {
+    o << (first ? "" : ", ") << json_quote(name) << ": " << json_quote(unit);
+    first = false;
+  }
   o << "},\n    \"analyses\": \"in each analysis block's own units member\"}\n}\n";
   return o.str();
 }

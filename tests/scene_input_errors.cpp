@@ -110,7 +110,8 @@ TEST_CASE("scene input: unknown keys are errors that list what is allowed") {
   const auto e = doc("[material]\ndensity = 2600\n[outptu]\nevery = 10\n");
   e.root().table("material").number("density", Unit::Density, Range::positive());
   e.root().optional_table("output");
-  CHECK(error_of([&] { e.finish_all(); }) == "scenes/a.toml: unknown key 'outptu': a misspelling of 'output'?; allowed here: material, output");
+  CHECK(error_of([&] { e.finish_all(); }) ==
+        "scenes/a.toml: unknown key 'outptu': a misspelling of 'output'?; allowed here: material, output");
 
   const auto set = doc("x = 1\n", {"y=2"});
   set.root().integer("x", Range::any());

@@ -172,7 +172,8 @@ TEST_CASE("scene input: tables of many keys keep their order, find every key and
   const auto partly = doc(text);
   for (int k = 0; k < 100; ++k)
     if (k != 77) partly.root().integer("k" + std::to_string(k), Range::any());
-  CHECK(contains(error_of([&] { partly.finish_all(); }), "unknown key 'k77': a misspelling of 'k7'?; allowed here: k0, k1, k2"));
+  CHECK(contains(error_of([&] { partly.finish_all(); }),
+                 "unknown key 'k77': a misspelling of 'k7'?; allowed here: k0, k1, k2"));
 }
 
 TEST_CASE("scene input: reading is linear in the keys of a table and in the entries of an array of tables") {

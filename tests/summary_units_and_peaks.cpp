@@ -72,7 +72,8 @@ TEST_CASE("summary_marks_a_peak_only_where_the_load_fell_after_it_and_gives_ever
     const mc::Scene s = mc::read_scene(mc::TomlDoc::load(file), file);
     const auto* u = s.analysis<mc::UniaxialAnalysis>();
     REQUIRE(u);
-    std::vector<std::string> others{u->axial_strain, "uniaxial.inside_strain", "cracks.tensile", "cracks.shear", "time"};
+    std::vector<std::string> others{u->axial_strain, "uniaxial.inside_strain", "cracks.tensile", "cracks.shear",
+                                    "time"};
     others.insert(others.end(), u->lateral_strain.begin(), u->lateral_strain.end());
     check_peak("uniaxial_2d.toml", {u->stress}, others, "ucs", kTop);
   }
