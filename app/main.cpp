@@ -44,6 +44,17 @@ std::string shell_quote(const std::string& s) {
   return o + "'";
 }
 
+// What reading the scene found suspicious but allowed, on stderr (rank 0 of an MPI launch).
+void warn_about(const mc::Scene& scene) {
+  if (!mc::Ranks::world().root()) return;
+  for (const auto& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+}
+
+// The same for a scene a command reads again for each of its runs (calibrate, realizations): once, before them.
+void warn_about(const std::string& scene_file, const std::vector<std::string>& sets) {
+  warn_about(mc::read_scene(mc::TomlDoc::load(scene_file, sets), scene_file));
+}
+
 int run(const std::string& scene_file, std::string output, const std::vector<std::string>& sets, int threads,
         const std::string& resume, double rebalance) {
   if (!resume.empty()) {
@@ -61,6 +72,7 @@ int run(const std::string& scene_file, std::string output, const std::vector<std
   // `--resume OUT.h5` alone continues the scene the file stores (with any --set given now on top of it).
   const mc::Scene scene = scene_file.empty() ? mc::stored_scene(output, sets)
                                              : mc::read_scene(mc::TomlDoc::load(scene_file, sets), scene_file);
+  warn_about(scene);
   mc::RunOptions opt;
   opt.output = output;
   opt.resume = !resume.empty();
@@ -91,6 +103,7 @@ int realizations(const std::string& scene_file, const std::string& output, const
   if (output.empty())
     throw mc::InputError("run --realizations: give the output file with -o OUT.h5 (realization k writes OUT_rk.h5)");
   if (threads > 0) omp_set_num_threads(threads);
+  warn_about(scene_file, sets);
   const mc::RealizationSet set = mc::run_realizations(scene_file, sets, n, output, stderr);
   if (!mc::Ranks::world().root()) return 0;  // another rank of an MPI launch: rank 0 writes the statistics
   const std::string json = mc::realizations_json(set);
@@ -109,6 +122,7 @@ int calibrate(const std::string& scene_file, const std::string& output, const st
               const std::string& compression) {
   if (threads > 0) omp_set_num_threads(threads);
   const mc::CalibrationTarget target = mc::parse_targets(targets);
+  warn_about(scene_file, sets);
   mc::CalibrationOptions opt;
   opt.output = output;
   opt.tolerance = tolerance;
@@ -152,6 +166,7 @@ int generate(const std::string& scene_file, const std::string& output, const std
   if (output.empty()) throw mc::InputError("generate: give the specimen file with -o SPECIMEN.h5");
   if (threads > 0) omp_set_num_threads(threads);
   const mc::Scene scene = mc::read_scene(mc::TomlDoc::load(scene_file, sets), scene_file);
+  warn_about(scene);
   for (const auto& [name, value] : mc::generate_specimen(scene, output))
     std::fprintf(stderr, "%s = %.6g\n", name.c_str(), value);
   std::fprintf(stderr, "specimen -> %s\n", output.c_str());
@@ -202,6 +217,8 @@ constexpr int kAnyCount = std::numeric_limits<int>::max();
 
 // ---------------------------------------------------------------- errors of the command line itself
 
+constexpr const char* kSetHelp =
+    "override a scene value: key.path=value (repeatable); a number without a unit is SI (walls[0].rate=\"5 mm/s\")";
 constexpr const char* kCommands = "run, generate, calibrate, summary, report, keys";
 
 // A first word that is no subcommand: CLI11 would only say that a subcommand is required.
@@ -256,7 +273,7 @@ int main(int argc, char** argv) {
   auto* run_cmd = app.add_subcommand("run", "run a scene");
   run_cmd->add_option("scene", scene, "scene file (TOML); with --resume it may be left out (the file stores it)");
   run_cmd->add_option("-o,--output", output, "output file (HDF5)");
-  run_cmd->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
+  run_cmd->add_option("--set", sets, kSetHelp);
   run_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(threads_check);
   run_cmd->add_option("--resume", resume, "continue this output file from its last checkpoint");
   run_cmd
@@ -295,12 +312,12 @@ int main(int argc, char** argv) {
       ->check(finite_number(1e-4, 0.5, "the relative tolerance on each target"));
   calibrate_cmd->add_option("--max-iterations", max_iterations, "give up after this many runs (default 12)")
       ->check(whole_number(1, 100, "the most calibration runs"));
-  calibrate_cmd->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
+  calibrate_cmd->add_option("--set", sets, kSetHelp);
   calibrate_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(threads_check);
   auto* generate_cmd = app.add_subcommand("generate", "build a scene's specimen (e.g. a dense packing) and save it");
   generate_cmd->add_option("scene", scene, "scene file (TOML)")->required();
   generate_cmd->add_option("-o,--output", output, "specimen file (HDF5; scenes load it with kind = \"output\")");
-  generate_cmd->add_option("--set", sets, "override a scene value: key.path=value (repeatable)");
+  generate_cmd->add_option("--set", sets, kSetHelp);
   generate_cmd->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(threads_check);
   auto* summary_cmd = app.add_subcommand("summary", "print the key results of a run as JSON");
   summary_cmd->add_option("output", target, "output file (HDF5)")->required();

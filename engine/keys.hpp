@@ -37,12 +37,22 @@ enum class Unit {
   EnergyPerArea,  // J/m2 = N/m: fracture energies
 };
 
-// The allowed interval of a number, in SI. Bounds are inclusive unless marked open.
+// The allowed interval of a number, in SI. Bounds are inclusive unless marked open. Beside it, the interval of the
+// values a key usually takes (usual_lo = usual_hi = 0: the usual values of its unit kind, scene/units.cpp): a number
+// written without a unit far outside it is more likely a unit left out than meant (scene/ warns about it).
 struct Range {
   double lo = -std::numeric_limits<double>::infinity();
   double hi = std::numeric_limits<double>::infinity();
   bool lo_open = false;
   bool hi_open = false;
+  double usual_lo = 0, usual_hi = 0;
+
+  // This range with the key's usual values [lo, hi].
+  constexpr Range usually(double usual_low, double usual_high) const {
+    Range r = *this;
+    r.usual_lo = usual_low, r.usual_hi = usual_high;
+    return r;
+  }
 
   static constexpr Range any() { return {}; }
   static constexpr Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }  // 0 < v

@@ -67,6 +67,17 @@ struct CellFrame {
   std::vector<double> fibre_state, fibre_force, fibre_slip;
 };
 
+// The contacts between particles in one frame (README, "Output file", /contacts): each pair that touches or holds a
+// bond, its two bodies' rows, its normal force (positive in compression) and the magnitude of its shear force [N],
+// whether a bond holds it, and the branch vector x_B − x_A [m], D per contact. `recorded` is false when the scene
+// keeps no contacts in its frames.
+struct ContactFrame {
+  bool recorded = false;
+  std::vector<std::int64_t> pair, bonded;  // pair: 2 per contact
+  std::vector<double> normal_force, shear_force, branch;
+  std::size_t size() const { return normal_force.size(); }
+};
+
 // The specimen as built, as the output file keeps it (README, "Output file").
 struct SpecimenData {
   int dimension;
@@ -130,6 +141,9 @@ class System {
   // A specimen of cells (SpecimenData::cells): where its cells' corners are and the damage of its contact facets,
   // for the same frame. Nothing for a specimen of particles.
   virtual CellFrame cell_frame() const { return {}; }
+  // The contacts for the same frame, when the scene keeps them (else not `recorded`). A split world's processes call
+  // it together, and process 0 gets them all.
+  virtual ContactFrame contact_frame() const { return {}; }
 
   // The crack log: the models that write to it (empty: the scene keeps no log), how many entries it has, and its
   // entries from `first` on.

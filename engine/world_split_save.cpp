@@ -1,6 +1,6 @@
 // What leaves a split world whole: its checkpoint, the whole world's state gathered into process 0's archive, and
-// per-particle values gathered for frames. Each particle comes from its owner and each pair from the owner of its
-// particle A (every pair is held there), so process 0 sees the whole world's lists in its order.
+// per-particle values and contacts gathered for frames. Each particle comes from its owner and each pair from the
+// owner of its particle A (every pair is held there), so process 0 sees the whole world's lists in its order.
 #include <algorithm>
 #include <tuple>
 #include <utility>
@@ -167,8 +167,42 @@ void World<D>::save_split(Archive& a) const {
   write_archive(a, whole, x_at_rebuild, std::move(set_bytes), contact_f);
 }
 
+template <int D>
+std::vector<ContactRow<D>> World<D>::gather_contacts() const {
+  const Slots<D>& s = kept();
+  const auto& x = particles.x;
+  std::vector<ContactRow<D>> rows;
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    const auto& pairs = sets[k]->pairs();
+    for (std::size_t c = 0; c < pairs.size(); ++c) {
+      const auto [a, b] = pairs[c];
+      const Vec<D>& f = s.pair_force[pair_offset_[k] + c];
+      const bool bonded = sets[k]->persistent(c);
+      if (particles.is_ghost(a) || (!bonded && f.squaredNorm() == 0)) continue;
+      rows.push_back({static_cast<std::int64_t>(k), global_index(a), global_index(b), f, Vec<D>(x[b] - x[a]),
+                      bonded ? 1 : 0});
+    }
+  }
+  if (!split_) return rows;
+  const Exchange& ex = *split_->exchange;
+  std::vector<Bytes> out(ex.size());
+  for (const ContactRow<D>& r : rows) put_bytes(out[0], r);
+  const std::vector<Bytes> in = ex.all_to_all(out);
+  rows.clear();
+  if (ex.rank() != 0) return rows;
+  for (const Bytes& b : in)
+    for (std::size_t at = 0; at < b.size();) rows.push_back(take_bytes<ContactRow<D>>(b, at));
+  // The lists' order: set by set, pairs sorted by A then B (held particles keep their whole-world order).
+  std::sort(rows.begin(), rows.end(), [](const ContactRow<D>& p, const ContactRow<D>& q) {
+    return std::tie(p.set, p.a, p.b) < std::tie(q.set, q.a, q.b);
+  });
+  return rows;
+}
+
 template std::vector<std::vector<Vec<2>>> World<2>::gather_whole(const std::vector<const std::vector<Vec<2>>*>&) const;
 template std::vector<std::vector<Vec<3>>> World<3>::gather_whole(const std::vector<const std::vector<Vec<3>>*>&) const;
+template std::vector<ContactRow<2>> World<2>::gather_contacts() const;
+template std::vector<ContactRow<3>> World<3>::gather_contacts() const;
 template void World<2>::save_split(Archive&) const;
 template void World<3>::save_split(Archive&) const;
 

@@ -339,26 +339,32 @@ void H5File::create_table(const std::string& ds, hsize_t width, bool integer) {
   });
 }
 
-void H5File::create_row_view(const std::string& view, const std::string& table, hsize_t row,
-                             const std::vector<hsize_t>& dims) {
+void H5File::create_rows_view(const std::string& view, const std::string& table, hsize_t first, hsize_t rows,
+                              const std::vector<hsize_t>& dims) {
   change([&] {
     const File f{fid(), path_};
     const std::string what = "create view of " + table;
     clear_for_dataset(f, view, what);
-    const std::vector<hsize_t> table_dims = shape(table);
+    const Id source_set = open_dataset(f, table, what);
+    const Id type(H5Dget_type(source_set), H5Tclose);
+    const std::vector<hsize_t> table_dims = dataset_dims(source_set);
+    const hsize_t width = table_dims.size() == 2 ? table_dims[1] : 1;
     hsize_t count = 1;
     for (const hsize_t n : dims) count *= n;
-    if (table_dims.size() != 2 || row >= table_dims[0] || count != table_dims[1])
-      f.fail(what, view, "row " + std::to_string(row) + " does not hold " + std::to_string(count) + " values");
+    if (table_dims.empty() || table_dims.size() > 2 || rows == 0 || first + rows > table_dims[0] ||
+        count != rows * width)
+      f.fail(what, view,
+             "rows " + std::to_string(first) + " to " + std::to_string(first + rows) + " do not hold " +
+                 std::to_string(count) + " values");
     const Id source = simple_space(table_dims);
-    const hsize_t start[2] = {row, 0}, stride[2] = {1, 1}, block_count[2] = {1, count};
+    const hsize_t start[2] = {first, 0}, stride[2] = {1, 1}, block_count[2] = {rows, width};
     const Id view_space = simple_space(dims);
     const Id dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
     if (H5Sselect_hyperslab(source, H5S_SELECT_SET, start, stride, block_count, nullptr) < 0 ||
         H5Pset_virtual(dcpl, view_space, ".", table.c_str(), source) < 0)
       f.fail(what, view, hdf5_reason());
     const Id lcpl = parents_created();
-    Id d(H5Dcreate2(f.id, view.c_str(), H5T_IEEE_F64LE, view_space, lcpl, dcpl, H5P_DEFAULT), H5Dclose);
+    Id d(H5Dcreate2(f.id, view.c_str(), type, view_space, lcpl, dcpl, H5P_DEFAULT), H5Dclose);
     if (!d.ok() || d.close() < 0) f.fail(what, view, hdf5_reason());
   });
 }

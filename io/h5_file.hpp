@@ -79,10 +79,11 @@ class H5File {
   // Extendible tables: rows of `width` doubles or int64s growing along the first dimension (width 0: a 1-D
   // dataset). Chunks hold about 64 KiB. create_table replaces an existing dataset at that path.
   void create_table(const std::string& ds, hsize_t width, bool integer = false);
-  // A view of one row of a double table as a dataset of its own, shaped `dims` (as many values as the row holds;
-  // HDF5's virtual dataset in the same file, no copy). For readers that take whole datasets only.
-  void create_row_view(const std::string& view, const std::string& table, hsize_t row,
-                       const std::vector<hsize_t>& dims);
+  // A view of `rows` rows of a table from row `first` on as a dataset of its own, of the table's type, shaped `dims`
+  // (as many values as the rows hold; HDF5's virtual dataset in the same file, no copy). For readers that take
+  // whole datasets only.
+  void create_rows_view(const std::string& view, const std::string& table, hsize_t first, hsize_t rows,
+                        const std::vector<hsize_t>& dims);
   // nrows * width values, row-major; the value type must match the table's.
   void append_rows(const std::string& ds, const double* rows, hsize_t nrows);
   void append_rows(const std::string& ds, const std::int64_t* rows, hsize_t nrows);

@@ -66,14 +66,57 @@ std::vector<FrameView> frame_views(const H5File& f) {
 
 std::string view_path(const std::string& name, hsize_t frame) { return "/views/" + name + "/" + std::to_string(frame); }
 
+// The contacts' tables (README.md, "Output", /contacts): per contact its pair, forces, bond and branch vector; per
+// frame the first row of its contacts and how many.
+struct ContactTable {
+  const char* name;
+  bool integer;
+  const char* unit;
+  bool vector;  // D per contact (pair: 2)
+};
+constexpr ContactTable kContactTables[] = {{"pair", true, "1", true},           {"normal_force", false, "N", false},
+                                           {"shear_force", false, "N", false},  {"bonded", true, "1", false},
+                                           {"branch", false, "m", true}};
+
+hsize_t contact_width(const ContactTable& t, hsize_t d) {
+  return !t.vector ? 0 : t.name == std::string("pair") ? 2 : d;
+}
+
+// The rows of /contacts that frames [0, frames) hold, as the file says (frames' first row and count).
+hsize_t contact_rows(const H5File& f, hsize_t frames) {
+  if (frames == 0) return 0;
+  const auto first = f.read_leading_ints("/contacts/frame_first");
+  const auto count = f.read_leading_ints("/contacts/frame_count");
+  return static_cast<hsize_t>(first.at(frames - 1) + count.at(frames - 1));
+}
+
+// The views of frames [from, to) of the contacts' tables, /views/contact_<name>/<frame> (none for a frame without
+// contacts).
+void add_contact_views(H5File& f, hsize_t from, hsize_t to) {
+  if (!f.exists("/contacts/frame_first")) return;
+  const auto d = static_cast<hsize_t>(f.attr_int("/", "dimension"));
+  const auto first = f.read_ints("/contacts/frame_first"), count = f.read_ints("/contacts/frame_count");
+  for (hsize_t k = from; k < to; ++k) {
+    const auto n = static_cast<hsize_t>(count.at(k));
+    if (n == 0) continue;
+    for (const ContactTable& t : kContactTables) {
+      const std::string view = view_path(std::string("contact_") + t.name, k);
+      const hsize_t w = contact_width(t, d);
+      const auto dims = w > 0 ? std::vector<hsize_t>{n, w} : std::vector<hsize_t>{n};
+      if (!f.exists(view)) f.create_rows_view(view, std::string("/contacts/") + t.name, first.at(k), n, dims);
+    }
+  }
+}
+
 // The views of frames [from, to) that are not there yet (opening a view reads its mapping: not done twice).
 void add_views(H5File& f, hsize_t from, hsize_t to) {
   const std::vector<FrameView> views = frame_views(f);
   for (hsize_t k = from; k < to; ++k)
     for (const FrameView& v : views) {
       const auto dims = v.width > 1 ? std::vector<hsize_t>{v.rows, v.width} : std::vector<hsize_t>{v.rows};
-      if (!f.exists(view_path(v.name, k))) f.create_row_view(view_path(v.name, k), "/frames/" + v.name, k, dims);
+      if (!f.exists(view_path(v.name, k))) f.create_rows_view(view_path(v.name, k), "/frames/" + v.name, k, 1, dims);
     }
+  add_contact_views(f, from, to);
 }
 
 // Removes the views of frames from `frames` on (those a resume drops).
@@ -242,7 +285,8 @@ std::int64_t RunOutput::history_rows() const {
 }
 
 void RunOutput::append_frame(double time, std::int64_t step, const std::vector<double>& x, const std::vector<double>& v,
-                             const std::vector<double>& force, const CellFrame& cells) {
+                             const std::vector<double>& force, const CellFrame& cells, const ContactFrame& contacts) {
+  if (contacts.recorded) append_contacts(contacts);
   file_.append_rows("/frames/time", &time, 1);
   file_.append_rows("/frames/step", &step, 1);
   append_frame_row("/frames/x", x);
@@ -258,6 +302,35 @@ void RunOutput::append_frame(double time, std::int64_t step, const std::vector<d
   const hsize_t frame = file_.rows("/frames/time") - 1;
   add_views(file_, frame, frame + 1);
   if (published_) write_xdmf();
+}
+
+void RunOutput::append_contacts(const ContactFrame& c) {
+  const auto d = static_cast<hsize_t>(file_.attr_int("/", "dimension"));
+  if (!file_.exists("/contacts/frame_first")) {
+    for (const ContactTable& t : kContactTables) {
+      const std::string ds = std::string("/contacts/") + t.name;
+      file_.create_table(ds, contact_width(t, d), t.integer);
+      file_.set_attr(ds, "unit", std::string(t.unit));
+    }
+    file_.create_table("/contacts/frame_first", 0, true);
+    file_.create_table("/contacts/frame_count", 0, true);
+    // Frames already written (a resumed file of an older version) hold no contacts.
+    const std::vector<std::int64_t> none(file_.rows("/frames/time"), 0);
+    file_.append_rows("/contacts/frame_first", none.data(), none.size());
+    file_.append_rows("/contacts/frame_count", none.data(), none.size());
+  }
+  const auto n = static_cast<hsize_t>(c.size());
+  if (c.pair.size() != 2 * n || c.bonded.size() != n || c.shear_force.size() != n || c.branch.size() != d * n)
+    throw std::invalid_argument(file_.path() + ":/contacts: a frame's contact columns differ in length");
+  const auto first = static_cast<std::int64_t>(file_.rows("/contacts/pair")), count = static_cast<std::int64_t>(n);
+  file_.append_rows("/contacts/frame_first", &first, 1);
+  file_.append_rows("/contacts/frame_count", &count, 1);
+  if (n == 0) return;
+  file_.append_rows("/contacts/pair", c.pair.data(), n);
+  file_.append_rows("/contacts/normal_force", c.normal_force.data(), n);
+  file_.append_rows("/contacts/shear_force", c.shear_force.data(), n);
+  file_.append_rows("/contacts/bonded", c.bonded.data(), n);
+  file_.append_rows("/contacts/branch", c.branch.data(), n);
 }
 
 void RunOutput::append_frame_row(const std::string& ds, const std::vector<double>& row) {
@@ -355,6 +428,11 @@ void RunOutput::resume_at(std::int64_t history_rows, std::int64_t frame_rows, st
     for (const auto& n : file_.list("/cracks")) file_.truncate_rows("/cracks/" + n, crack_rows);
   for (const auto& n : names_) file_.truncate_rows("/history/" + n, history_rows);
   for (const auto& n : file_.list("/frames")) file_.truncate_rows("/frames/" + n, frame_rows);
+  if (file_.exists("/contacts/frame_first")) {
+    const hsize_t rows = contact_rows(file_, static_cast<hsize_t>(frame_rows));
+    for (const auto& n : file_.list("/contacts"))
+      file_.truncate_rows("/contacts/" + n, n.rfind("frame_", 0) == 0 ? static_cast<hsize_t>(frame_rows) : rows);
+  }
   drop_views_from(file_, static_cast<hsize_t>(frame_rows));
   add_views(file_, 0, static_cast<hsize_t>(frame_rows));  // also those a file of an older version lacks
   write_xdmf();
@@ -371,13 +449,18 @@ void RunOutput::rewrite_up_to(std::int64_t history_rows, std::int64_t frame_rows
     fresh.copy_attrs(file_, "/");
     for (const auto& top : file_.list("/")) {
       const std::string g = "/" + top;
-      if (top == "history" || top == "frames" || top == "cracks") {
+      if (top == "history" || top == "frames" || top == "cracks" || top == "contacts") {
         const auto rows = static_cast<hsize_t>(top == "history"  ? history_rows
                                                : top == "frames" ? frame_rows
                                                                  : crack_rows);
+        const hsize_t contacts = top == "contacts" ? contact_rows(file_, static_cast<hsize_t>(frame_rows)) : 0;
         fresh.create_group(g);
         fresh.copy_attrs(file_, g);
-        for (const auto& n : file_.list(g)) fresh.copy_rows(file_, g + "/" + n, rows);
+        for (const auto& n : file_.list(g))
+          fresh.copy_rows(file_, g + "/" + n,
+                          top != "contacts"           ? rows
+                          : n.rfind("frame_", 0) == 0 ? static_cast<hsize_t>(frame_rows)
+                                                      : contacts);
       } else if (top == "checkpoint") {
         fresh.copy_object(file_, checkpoint);
       } else if (top == "views") {
@@ -501,6 +584,25 @@ std::string points_grid(const XdmfFrame& fr, const std::string& name, hsize_t n,
   return x.str();
 }
 
+// The frame's contacts between particles as lines between their centres, by normal force (positive in compression),
+// shear force, bond and branch vector: ParaView's force chains (a Tube filter scaled by the normal force).
+std::string contacts_grid(const XdmfFrame& fr, hsize_t n, hsize_t contacts) {
+  std::ostringstream x;
+  x << fr.head("contacts") << "    <Topology TopologyType=\"Polyline\" NumberOfElements=\"" << contacts
+    << "\" NodesPerElement=\"2\">" << dataset(fr.h5, view_path("contact_pair", fr.f), contacts, "Int", 8, 2)
+    << "</Topology>\n"
+    << "    <Geometry GeometryType=\"" << fr.geometry() << "\">" << fr.view("x", n, fr.d) << "</Geometry>\n";
+  for (const char* a : {"normal_force", "shear_force"})
+    x << "    <Attribute Name=\"" << a << "\" AttributeType=\"Scalar\" Center=\"Cell\">"
+      << fr.view(std::string("contact_") + a, contacts) << "</Attribute>\n";
+  x << "    <Attribute Name=\"bonded\" AttributeType=\"Scalar\" Center=\"Cell\">"
+    << dataset(fr.h5, view_path("contact_bonded", fr.f), contacts, "Int", 8) << "</Attribute>\n"
+    << "    <Attribute Name=\"branch\" AttributeType=\"Vector\" Center=\"Cell\">"
+    << fr.view("contact_branch", contacts, fr.d) << "</Attribute>\n"
+    << "   </Grid>\n";
+  return x.str();
+}
+
 // The cells' surfaces where the frame's corners are, by cell and phase.
 std::string cells_grid(const XdmfFrame& fr, const CellSizes& c) {
   const std::string g = "/specimen/cells/";
@@ -553,9 +655,10 @@ std::string fibres_grid(const XdmfFrame& fr, const H5File& f) {
 
 }  // namespace
 
-// One temporal collection of a grid per frame: the particles as points; or three, the cells' nodes as points, the
-// cells and the contact facets, which ParaView shows as the blocks "nodes", "cells" and "facets", and a fourth of
-// the fibres ("fibres") when the specimen has them.
+// One temporal collection of a grid per frame: the particles as points, and their contacts as lines ("contacts")
+// when the frames record them; or three, the cells' nodes as points, the cells and the contact facets, which
+// ParaView shows as the blocks "nodes", "cells" and "facets", and a fourth of the fibres ("fibres") when the
+// specimen has them.
 void RunOutput::write_xdmf() const {
   const int d = static_cast<int>(file_.attr_int("/", "dimension"));
   const auto n = file_.rows("/specimen/radius");
@@ -564,23 +667,34 @@ void RunOutput::write_xdmf() const {
   const std::string h5 = std::filesystem::path(file_.path()).filename().string();
   std::ostringstream x;
   x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n";
-  const auto collection = [&](const std::string& name, const auto& grid) {
+  // `shown(f)`: frame f has a grid of this collection (a frame without contacts has none of them).
+  const auto collection = [&](const std::string& name, const auto& grid, const auto& shown) {
     x << "  <Grid Name=\"" << name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-    for (hsize_t f = 0; f < frames; ++f) x << grid(XdmfFrame{h5, d, f, frames, times[f]});
+    for (hsize_t f = 0; f < frames; ++f)
+      if (shown(f)) x << grid(XdmfFrame{h5, d, f, frames, times[f]});
     x << "  </Grid>\n";
   };
+  const auto every = [](hsize_t) { return true; };
   const bool vertices = file_.exists("/specimen/vertex");
   const std::string phases =
       file_.has_attr("/specimen", "phase_names") ? file_.attr_string("/specimen", "phase_names") : "";
   if (!file_.exists("/frames/cell_corner")) {
-    collection("frames", [&](const XdmfFrame& fr) { return points_grid(fr, "frame", n, vertices, phases); });
+    collection("frames", [&](const XdmfFrame& fr) { return points_grid(fr, "frame", n, vertices, phases); }, every);
+    if (file_.exists("/contacts/frame_count")) {
+      const auto count = file_.read_ints("/contacts/frame_count");
+      const auto has = [&](hsize_t f) { return f < count.size() && count[f] > 0; };
+      collection(
+          "contacts",
+          [&](const XdmfFrame& fr) { return contacts_grid(fr, n, static_cast<hsize_t>(count[fr.f])); }, has);
+    }
   } else {
     const CellSizes sizes = cell_sizes(file_);
-    collection("nodes", [&](const XdmfFrame& fr) { return points_grid(fr, "nodes", n, vertices, phases); });
-    collection("cells", [&](const XdmfFrame& fr) { return cells_grid(fr, sizes); });
-    if (sizes.contacts > 0) collection("facets", [&](const XdmfFrame& fr) { return facets_grid(fr, sizes); });
+    collection("nodes", [&](const XdmfFrame& fr) { return points_grid(fr, "nodes", n, vertices, phases); }, every);
+    collection("cells", [&](const XdmfFrame& fr) { return cells_grid(fr, sizes); }, every);
+    if (sizes.contacts > 0)
+      collection("facets", [&](const XdmfFrame& fr) { return facets_grid(fr, sizes); }, every);
     if (file_.exists("/frames/fibre_state"))
-      collection("fibres", [&](const XdmfFrame& fr) { return fibres_grid(fr, file_); });
+      collection("fibres", [&](const XdmfFrame& fr) { return fibres_grid(fr, file_); }, every);
   }
   x << " </Domain>\n</Xdmf>\n";
   write_atomically(stem_path(file_.path(), ".xdmf"), x.str());

@@ -44,8 +44,9 @@ class RunOutput {
   std::int64_t history_rows() const;
   // `cells`: the frame of a specimen of cells (SpecimenData::cells), nothing for particles. std::invalid_argument
   // when a frame's sizes are not the file's.
+  // `contacts`: the frame's contacts between particles, when recorded (/contacts).
   void append_frame(double time, std::int64_t step, const std::vector<double>& x, const std::vector<double>& v,
-                    const std::vector<double>& force, const CellFrame& cells = {});
+                    const std::vector<double>& force, const CellFrame& cells = {}, const ContactFrame& contacts = {});
   std::int64_t frame_rows() const;
 
   // The crack log: one row per bond break or first yield (layout in README.md, "Output").
@@ -79,6 +80,7 @@ class RunOutput {
   void write_cells(const SpecimenData& s);
   void write_fibres(const FibreGeometry& g);
   void append_frame_row(const std::string& ds, const std::vector<double>& row);
+  void append_contacts(const ContactFrame& contacts);
   void write_xdmf() const;
   std::string newest_checkpoint() const;  // the complete slot of the highest step
   void rewrite_up_to(std::int64_t history_rows, std::int64_t frame_rows,

@@ -68,8 +68,8 @@ const KeyTable& walls_keys() {
            .doc = "how fast it may back off", .shown_default = "max_speed"},
           {.name = "probe", .type = KeyType::Text, .need = Need::Required, .when = kOpening,
            .doc = "the opening probe ([[probes]] kind = \"opening\") it drives"},
-          {.name = "rate", .unit = Unit::Velocity, .range = Range::positive(), .need = Need::Required,
-           .when = kOpening, .doc = "the rate the probe opens at, reached over ramp_time"},
+          {.name = "rate", .unit = Unit::Velocity, .range = Range::positive().usually(1e-9, 0.05),
+           .need = Need::Required, .when = kOpening, .doc = "the rate the probe opens at, reached over ramp_time"},
           {.name = "area", .unit = Unit::Length, .range = Range::positive(), .when = "2D",
            .doc = "the loaded area of the wall's stress history and servo [m, per unit thickness]: e.g. the "
                   "specimen's width under a longer platen",

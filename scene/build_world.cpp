@@ -272,9 +272,11 @@ World<D> build_world(const Scene& s, SpecimenInfo& info) {
   add_gauges<D>(s, w, info);
   set_physics<D>(s, w);
   set_domain<D>(s, w, info);
-  // Stress and coordination read every contact of a region: only then are the pairs' forces kept.
+  // Stress and coordination read every contact of a region, and frames may record the contacts: only then are the
+  // pairs' forces kept.
   for (const RegionSpec& r : s.regions)
     if (r.stress || r.coordination) w.keep_contact_forces();
+  if (s.frame_contacts) w.keep_contact_forces();
   return w;
 }
 

@@ -177,6 +177,26 @@ void ExplicitSystem<D>::frame(std::vector<double>& x, std::vector<double>& v, st
     for (int k = 0; k < D; ++k) x.push_back(xs[i][k]), v.push_back(vs[i][k]), f.push_back(fs[i][k]);
 }
 
+// Each contact's force on B split along the branch vector n = (x_B − x_A)/|x_B − x_A|: F·n > 0 pushes B away from A
+// (compression), and the rest is the shear force.
+template <int D>
+ContactFrame ExplicitSystem<D>::contact_frame() const {
+  ContactFrame c;
+  if (!scene_.frame_contacts) return c;
+  c.recorded = true;
+  for (const ContactRow<D>& r : world_.gather_contacts()) {
+    const double length = r.branch.norm();
+    const double normal = length > 0 ? r.force.dot(r.branch) / length : 0.0;
+    const Vec<D> shear = length > 0 ? Vec<D>(r.force - normal * r.branch / length) : r.force;
+    c.pair.insert(c.pair.end(), {r.a, r.b});
+    c.bonded.push_back(r.bonded);
+    c.normal_force.push_back(normal);
+    c.shear_force.push_back(shear.norm());
+    c.branch.insert(c.branch.end(), r.branch.data(), r.branch.data() + D);
+  }
+  return c;
+}
+
 template <int D>
 std::vector<std::string> ExplicitSystem<D>::crack_models() const {
   std::vector<std::string> models;

@@ -31,6 +31,7 @@ class ExplicitSystem final : public System {
   void before_row() override;
   SpecimenData specimen() const override;
   void frame(std::vector<double>& x, std::vector<double>& v, std::vector<double>& force) const override;
+  ContactFrame contact_frame() const override;
   std::vector<std::string> crack_models() const override;
   std::size_t crack_count() const override { return world_.cracks.size(); }
   CrackRows cracks(std::size_t first) const override;

@@ -104,6 +104,9 @@ void read_fibres(const std::vector<Table>& tables, double longest, Scene& s) {
       const std::string o = k.choice("orientation", "isotropic");
       using O = FibreFamilySpec::Orientation;
       f.orientation = o == "aligned" ? O::Aligned : o == "preferential" ? O::Preferential : O::Isotropic;
+      if (f.orientation == O::Isotropic && k.has("direction"))
+        k.fail("direction", "isotropic fibres have no axis: a direction applies to orientation = \"aligned\" or "
+                            "\"preferential\" (remove it, or change the orientation)");
       if (f.orientation != O::Isotropic) {
         f.direction = k.numbers("direction", 3);
         if (f.direction[0] == 0 && f.direction[1] == 0 && f.direction[2] == 0)

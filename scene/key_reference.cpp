@@ -39,7 +39,9 @@ std::string value_of(const Key& k) {
   const std::string unit = detail::si_unit(k.unit);
   const std::string in = unit.empty() ? "" : " [" + unit + "]";
   const bool ranged = k.range.lo > -kInf || k.range.hi < kInf;
-  const std::string range = ranged ? "; " + describe(k.range) : "";
+  std::string range = ranged ? "; " + describe(k.range) : "";
+  if (k.range.usual_lo != 0 || k.range.usual_hi != 0)
+    range += "; usually " + detail::format_number(k.range.usual_lo) + " to " + detail::format_number(k.range.usual_hi);
   switch (k.words.empty() ? k.type : KeyType::Word) {
     case KeyType::Real:
       return (k.unit == Unit::Angle ? "angle" : "number") + in + range;
@@ -156,6 +158,8 @@ std::string key_table_text(const std::string& name) {
       o << "  " << r.key << "\n      " << r.value << "; default: " << r.fallback << "\n      " << r.doc << "\n";
     const std::string alt = alternatives_of(*t);
     if (!alt.empty()) o << "\n" << alt;
+    o << "\nA number with a unit (\"30 GPa\", \"5 mm/s\") is converted to SI; one without is SI, and warned "
+         "about when it lies more than 100 times outside the usual values of its key or kind (docs/keys.md).\n";
     const std::string example = example_of(*t);
     if (!example.empty()) o << "\nExample:\n" << example;
     return o.str();
@@ -168,7 +172,11 @@ std::string key_reference_markdown() {
   o << "# Scene keys\n\n"
     << "Every key a scene file may hold, table by table, as the key tables in the code declare them (this page is "
        "written by `mesocrack keys --markdown`; `mesocrack keys TABLE` prints one table). Numbers are SI; a number "
-       "may also be a string with a unit of the key's kind (`\"30 GPa\"`, `\"5 mm/s\"`, `\"45 deg\"`). A key "
+       "may also be a string with a unit of the key's kind (`\"30 GPa\"`, `\"5 mm/s\"`, `\"45 deg\"`). A number "
+       "written without a unit is read as SI, with a warning when it lies more than 100 times outside the usual "
+       "values of its key (stated below as \"usually\") or of its kind (a length 1 µm to 1 m, a pressure 10 kPa to "
+       "100 GPa, a velocity 10 nm/s to 100 m/s, a density 300 to 20 000 kg/m3, a force 1 mN to 10 MN, a time 1 ns "
+       "to 1 000 s, a fracture energy 1 to 10 000 J/m2; an angle: beyond a turn). A key "
        "given on the command line (`--set table.key=value`, `--set contacts[0].friction=0.3`) is read as if it "
        "were in the file. Unknown keys are errors.\n\n";
   for (const KeyTable* t : all_key_tables()) {

@@ -285,8 +285,11 @@ struct Scene {
   std::optional<RigidCellSpec> rigid_cell;                // present: the scene runs on the rigid-cell family
   std::vector<std::shared_ptr<const Analysis>> analyses;  // [uniaxial] … (scene/analysis.hpp), in registry order
   std::string xy_plots;                                   // "x:y;x2:y2" drawn by report
+  std::vector<std::string> warnings;                      // TomlDoc::warnings of the file read
 
   std::int64_t history_every = 100, frame_every = 0, checkpoint_every = 0, guard_every = 100;
+  std::int64_t frames = 50;    // frames over the run when frame_every is 0 (studies/runner.cpp: frame_cadence)
+  bool frame_contacts = true;  // each frame's contacts between particles (/contacts)
 
   // The index in World::gauges of the opening probe named `name` (one gauge per opening probe, in the order
   // of [[probes]]), or −1 when no opening probe has that name.

@@ -232,7 +232,18 @@ const KeyTable& output_keys() {
                                    .doc = "steps between history rows"}),
           bound(&P::frame_every, {.name = "frame_every",
                                  .range = Range::closed(0, 1e12),
-                                 .doc = "steps between frames; 0: only the first and last"}),
+                                 .doc = "steps between frames; 0: `frames` frames spread over the run"}),
+          bound(&P::frames, {.name = "frames",
+                            .range = Range::closed(2, 1e6),
+                            .doc = "with frame_every = 0: frames spread evenly over the run's steps or duration "
+                                   "(in steps of the timestep at its start), and at least one every 20 history rows "
+                                   "where a stop condition may end it sooner; never more than 1 GiB of frames over "
+                                   "its steps or duration; 2: only the first and the last"}),
+          bound(&P::frame_contacts,
+               {.name = "contacts",
+                .doc = "each frame's contacts between particles (/contacts: the pair, its normal and shear force, "
+                       "bond and branch vector; what ParaView and report draw as force chains); the force pass "
+                       "then keeps each pair's force, 24 bytes per pair (2D: 16). No effect on rigid cells"}),
           bound(&P::checkpoint_every, {.name = "checkpoint_every",
                                       .range = Range::closed(0, 1e12),
                                       .doc = "steps between checkpoints; 0: every 60 s of wall time"}),
@@ -395,6 +406,7 @@ Scene read_scene(const TomlDoc& doc, const std::string& file) {
   check_names(root, s, histories);
   check_analyses(root, s, histories);
   doc.finish_all();
+  s.warnings = doc.warnings();
   return s;
 }
 

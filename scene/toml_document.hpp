@@ -112,6 +112,7 @@ struct TomlState {
   std::vector<std::string> set_paths;                     // full key paths given by --set, to say so in messages
   std::deque<Visit> visits;                               // a deque: Table::path() hands out references into it
   std::unordered_map<std::string, std::size_t> visit_of;  // path -> its entry in visits
+  mutable std::vector<std::string> warnings;               // values read that look like a mistake (read_number)
 
   std::size_t visit(const std::string& path, const Value& table) {
     const auto [it, added] = visit_of.emplace(path, visits.size());

@@ -107,6 +107,9 @@ double read_number(const Field& f, Unit u, const Range& r) {
   }
   if (!std::isfinite(x)) f.bad(expected_finite_number(u));
   if (!r.contains(x)) f.out_of_range(r, u, x);
+  if (!v.is_string())
+    if (const std::string why = detail::unusual_bare_number(x, u, r); !why.empty())
+      f.st.warnings.push_back(f.st.file + ": " + f.label() + " = " + show(v) + " " + why);
   return x;
 }
 
@@ -485,6 +488,13 @@ TomlDoc TomlDoc::parse_text(const std::string& text, const std::string& name,
 Table TomlDoc::root() const { return Table(state_, 0); }
 
 const std::string& TomlDoc::text() const { return state_->text; }
+
+std::vector<std::string> TomlDoc::warnings() const {
+  std::vector<std::string> w;
+  for (const auto& m : state_->warnings)
+    if (std::find(w.begin(), w.end(), m) == w.end()) w.push_back(m);  // a key read twice is warned about once
+  return w;
+}
 
 void TomlDoc::finish_all() const {
   for (std::size_t i = 0; i < state_->visits.size(); ++i) Table(state_, i).finish();

@@ -82,6 +82,9 @@ class TomlDoc {
   // The exact input: the file text itself, or, with overrides, the document re-serialised (with a comment
   // listing the overrides). Stored in the output file; it re-parses to the same values.
   const std::string& text() const;
+  // What reading the document found suspicious but allowed (a number without a unit far from its key's usual
+  // values), one line each, in the order read.
+  std::vector<std::string> warnings() const;
   // Every value with its full key path, in file order; entries of [[table]] lists by index ("walls[1].kn").
   // For comparing two scenes key by key.
   std::vector<TomlLeaf> leaves() const;

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string_view>
 #include <system_error>
+#include <tuple>
 #include <vector>
 
 #include "engine/dim.hpp"  // kInf
@@ -191,8 +192,59 @@ std::string expected_finite_number(Unit u) { return "expected a finite number" +
 
 }  // namespace detail
 
+namespace detail {
+namespace {
+
+// The values numbers of a kind usually take in a meso-scale model of concrete (SI), and a unit a user who meant
+// other than SI would likely have written.
+struct Usual {
+  Unit kind;
+  double lo, hi;
+  std::string_view instead;
+};
+constexpr Usual kUsual[] = {
+    {Unit::Length, 1e-6, 1.0, "mm"},          // a particle of microns to a specimen of a metre
+    {Unit::Time, 1e-9, 1e3, "ms"},            // a timestep to a long creep of loading
+    {Unit::Mass, 1e-12, 1e3, "g"},            //
+    {Unit::Force, 1e-3, 1e7, "kN"},           //
+    {Unit::Moment, 1e-6, 1e5, "kN m"},        //
+    {Unit::Pressure, 1e4, 1e11, "MPa"},       // a confinement of kPa to an aggregate's modulus
+    {Unit::Density, 300.0, 2e4, "g/cm3"},     // foamed concrete to steel fibres
+    {Unit::Velocity, 1e-8, 100.0, "mm/s"},    // a creeping platen to an impact
+    {Unit::Acceleration, 0.1, 1e3, "m/s2"},   //
+    {Unit::Stiffness, 1.0, 1e13, "kN/m"},     //
+    {Unit::Energy, 1e-9, 1e4, "mJ"},          //
+    {Unit::Angle, 0.0, 2 * std::numbers::pi, "deg"},  // any bare angle beyond a turn: degrees meant
+    {Unit::Rate, 1e-6, 1e4, "1/s"},           //
+    {Unit::Frequency, 1e-3, 1e9, "kHz"},      //
+    {Unit::EnergyPerArea, 1.0, 1e4, "J/m2"},  // a mortar's fracture energy to an FRP bond's
+};
+
+}  // namespace
+
+std::string unusual_bare_number(double x, Unit u, const Range& r) {
+  const Usual* usual = nullptr;
+  for (const Usual& k : kUsual)
+    if (k.kind == u) usual = &k;
+  if (!usual || x == 0) return "";
+  const bool declared = r.usual_lo != 0 || r.usual_hi != 0;
+  const double lo = declared ? r.usual_lo : usual->lo, hi = declared ? r.usual_hi : usual->hi;
+  const double factor = u == Unit::Angle ? 1.0 : 100.0;  // Angle: a turn is the bound itself
+  const double m = std::abs(x);
+  if (m >= lo / factor && m <= hi * factor) return "";
+  const std::string why = u == Unit::Angle ? "more than a turn"
+                          : m > hi         ? "more than 100 times the usual"
+                                           : "less than 1/100 of the usual";
+  return "has no unit, so it is read as " + format_number(x) + " " + si_unit(u) + " (SI), " + why +
+         (u == Unit::Angle ? "" : " values " + format_number(lo) + " to " + format_number(hi) + " " + si_unit(u)) +
+         "; if another unit was meant, write it (e.g. \"" + format_number(x) + " " + std::string(usual->instead) +
+         "\")";
+}
+
+}  // namespace detail
+
 std::string describe(const Range& r, const std::string& unit) {
-  const auto [lo, hi, lo_open, hi_open] = r;
+  const auto [lo, hi, lo_open, hi_open] = std::tuple{r.lo, r.hi, r.lo_open, r.hi_open};
   const auto bound = [&](double x) { return detail::format_number(x) + (unit.empty() ? "" : " " + unit); };
   const bool has_lo = lo > -kInf;
   const bool has_hi = hi < kInf;

@@ -26,6 +26,10 @@ struct Quantity {
 // converts to infinity, for the caller to reject as non-finite.
 Quantity quantity(const std::string& text, Unit u);
 
+// What a warning says of the number x of kind u written without a unit, when it lies more than 100 times outside the
+// usual values of its key (Range::usually) or of its kind (a bare angle: beyond a turn); "" when it does not.
+std::string unusual_bare_number(double x, Unit u, const Range& r);
+
 // The shortest text that reads back as x: 0.1, 3e+10.
 std::string format_number(double x);
 

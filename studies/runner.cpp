@@ -215,7 +215,7 @@ class Runner {
       const std::int64_t s = system_->step_count();
       if (s % scene_.guard_every == 0) system_->check_stability();
       if (s % scene_.history_every == 0) record();
-      if (scene_.frame_every > 0 && s % scene_.frame_every == 0) frame();
+      if (frame_every_ > 0 && s % frame_every_ == 0) frame();
       if ((s & 63) == 0) {
         const auto now = Clock::now();
         // A checkpoint by the wall clock: when process 0's says so (the processes save together).
@@ -270,8 +270,55 @@ class Runner {
     }
     record();
     frame();
+    set_frame_cadence(false);
     checkpoint();
     if (writer_) out_->publish();
+  }
+
+  // The steps between frames: the scene's frame_every, or `frames` spread over what is left of the run (sized by the
+  // frames' size from the last one written), or as the file says where a resume goes on with the same `frames`. A
+  // split run's processes take process 0's. Stored in the file as /frames' attributes `every` and `frames`.
+  void set_frame_cadence(bool resumed) {
+    double every = 0;
+    if (writer_) {
+      H5File& f = out_->file();
+      const bool stored = resumed && f.has_attr("/frames", "every") && f.has_attr("/frames", "frames") &&
+                          f.attr_int("/frames", "frames") == scene_.frames;
+      every = scene_.frame_every > 0 ? static_cast<double>(scene_.frame_every)
+              : stored               ? static_cast<double>(f.attr_int("/frames", "every"))
+                                     : static_cast<double>(spread_frames());
+    }
+    if (split_) {
+      std::vector<double> v{every};
+      split_->max(v);
+      every = v[0];
+    }
+    frame_every_ = static_cast<std::int64_t>(every);
+    if (!writer_) return;
+    out_->file().set_attr("/frames", "every", frame_every_);
+    out_->file().set_attr("/frames", "frames", scene_.frames);
+  }
+
+  // Steps between `frames` frames over the rest of the run, in steps of the current timestep (0: the first and
+  // last only). A stop condition may end the run long before its steps or duration (a post-peak stop cannot be
+  // foreseen): then also a frame at least every 20 history rows. Never more frames over the run's steps or duration
+  // than 1 GiB holds.
+  std::int64_t spread_frames() const {
+    if (scene_.frames <= 2) return 0;
+    double left = -1;  // steps to the run's end; −1: no end but its stop conditions
+    if (scene_.steps > 0) left = static_cast<double>(scene_.steps - system_->step_count());
+    if (scene_.duration > 0 && system_->timestep() > 0) {
+      const double by_time = (scene_.duration - system_->time()) / system_->timestep();
+      left = left < 0 ? by_time : std::min(left, by_time);
+    }
+    const double by_rows = 20.0 * static_cast<double>(scene_.history_every);
+    if (left < 0) return static_cast<std::int64_t>(by_rows);
+    left = std::max(left, 1.0);
+    constexpr double kFrameBudget = 1024.0 * 1024.0 * 1024.0;  // bytes
+    const double affordable = std::max(2.0, std::floor(kFrameBudget / std::max(frame_bytes_, 1.0)));
+    double every = std::ceil(left / static_cast<double>(scene_.frames - 1));
+    if (!stops_.empty()) every = std::min(every, by_rows);
+    return static_cast<std::int64_t>(std::max(every, std::ceil(left / (affordable - 1))));
   }
 
   // An error message about the partial file, naming the output file the user gave instead.
@@ -325,12 +372,16 @@ class Runner {
     if (hrows > 0) last_record_step_ = static_cast<std::int64_t>(last[0]);
     if (frows > 0) last_frame_step_ = static_cast<std::int64_t>(last[1]);
     first_step_ = system_->step_count();
-    if (!writer_) return;
+    if (!writer_) {
+      set_frame_cadence(true);
+      return;
+    }
     if (opt_.progress)
       std::fprintf(stderr, "resumed %s at step %lld, t = %.6g s\n", opt_.output.c_str(),
                    static_cast<long long>(first_step_), system_->time());
     out_->resume_at(hrows, frows, crows);
     out_->create_histories(names, units);
+    set_frame_cadence(true);
     out_->set_status("running");
     out_->flush();
   }
@@ -416,6 +467,7 @@ class Runner {
     std::vector<double> x, v, f;
     system_->frame(x, v, f);
     const CellFrame cells = system_->cell_frame();
+    const ContactFrame contacts = system_->contact_frame();
     const int d = system_->dimension();
     std::string why;
     if (writer_) {
@@ -424,13 +476,17 @@ class Runner {
       if (why.empty()) why = non_finite("force", f, d, "particle", "/specimen");
       if (why.empty()) why = non_finite("position", cells.corner, d, "cell corner", "/specimen/cells/corner");
       if (why.empty()) why = non_finite("damage", cells.damage, 1, "contact facet", "/specimen/cells/facet_a");
+      if (why.empty()) why = non_finite("normal force", contacts.normal_force, 1, "contact", "this frame's contacts");
     }
     if (any(!why.empty()))
       throw InstabilityError(writer_ ? why
                                      : "unstable at step " + std::to_string(system_->step_count()) +
                                            ": process 0 found the frame non-finite (its message is in the output)");
     if (!writer_) return;
-    out_->append_frame(system_->time(), system_->step_count(), x, v, f, cells);
+    frame_bytes_ = 8.0 * static_cast<double>(x.size() + v.size() + f.size() + cells.corner.size() +
+                                             cells.damage.size() + 3 * cells.fibre_state.size() +
+                                             (4 + system_->dimension()) * contacts.size());
+    out_->append_frame(system_->time(), system_->step_count(), x, v, f, cells, contacts);
     out_->flush();
   }
 
@@ -519,6 +575,8 @@ class Runner {
   bool crack_log_ = false;
   std::size_t cracks_written_ = 0;                             // entries of the crack log already in the file
   std::int64_t last_record_step_ = -1, last_frame_step_ = -1;  // step of the newest history row and frame
+  std::int64_t frame_every_ = 0;                               // steps between frames (set_frame_cadence)
+  double frame_bytes_ = 0;                                     // the newest frame's size in the file
   bool progress_shown_ = false;
 };
 

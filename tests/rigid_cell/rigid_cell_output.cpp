@@ -178,7 +178,7 @@ TEST_CASE("rigid_cell_output_xdmf_sizes_are_those_of_the_hdf5_datasets") {
     const std::vector<std::string> names = check_uniform_grids(xdmf, f);
     // A collection in time of each: the nodes, the cells, the contact facets; a grid in each per frame.
     const hsize_t frames = f.rows("/frames/time");
-    CHECK(frames == 2);  // step 0 and the last
+    CHECK(frames >= 2);  // step 0, the last, and the default cadence's between them
     const std::vector<std::string> kinds{"nodes", "cells", "facets"};
     REQUIRE(names.size() == kinds.size() * frames);
     for (std::size_t k = 0; k < names.size(); ++k) CHECK(names[k] == kinds[k / frames] + std::to_string(k % frames));
