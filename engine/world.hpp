@@ -48,7 +48,7 @@ struct TimestepControl {
 template <int D>
 struct ContactRow {
   std::int64_t set, a, b;  // its contact set, and its particles A < B in whole-world indices
-  Vec<D> force, branch;    // the force on B [N]; x_B − x_A [m]
+  Vec<D> force, branch;    // the force on B [N]; x_B − x_A [m] where the force pass found them, before the motion
   std::int64_t bonded;     // 1: a persistent pair (an intact bond), else 0
 };
 
@@ -167,7 +167,8 @@ class World {
   // whole world's order from their owners; the other processes get nothing. A whole world returns them as given.
   std::vector<std::vector<Vec<D>>> gather_whole(const std::vector<const std::vector<Vec<D>>*>& held) const;
   // Every ball pair that touched or held a bond in the last force pass (kept forces only), set by set in the lists'
-  // order: its particles in whole-world indices, its force on B and B's centre less A's. A split world's are gathered
+  // order: its particles in whole-world indices, its force on B and B's centre less A's where that pass found them
+  // (before the step's motion). A split world's are gathered
   // on process 0 from their A's owners (the others get none): its processes call it together.
   std::vector<ContactRow<D>> gather_contacts() const;
 

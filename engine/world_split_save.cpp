@@ -179,8 +179,9 @@ std::vector<ContactRow<D>> World<D>::gather_contacts() const {
       const Vec<D>& f = s.pair_force[pair_offset_[k] + c];
       const bool bonded = sets[k]->persistent(c);
       if (particles.is_ghost(a) || (!bonded && f.squaredNorm() == 0)) continue;
-      rows.push_back({static_cast<std::int64_t>(k), global_index(a), global_index(b), f, Vec<D>(x[b] - x[a]),
-                      bonded ? 1 : 0});
+      // The force pass ran at the positions before the step's motion, x − v Δt (Tang (3.20)): the branch there.
+      const Vec<D> branch = (x[b] - x[a]) - (particles.v[b] - particles.v[a]) * dt;
+      rows.push_back({static_cast<std::int64_t>(k), global_index(a), global_index(b), f, branch, bonded ? 1 : 0});
     }
   }
   if (!split_) return rows;

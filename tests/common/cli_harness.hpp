@@ -445,6 +445,18 @@ void check_same_run(const fs::path& a, const fs::path& b) {
     CHECK_MESSAGE(da == db, ds);
     CHECK_MESSAGE(same_bits(xa, xb), ds, ": first difference at value ", first_difference(xa, xb));
   }
+  // The frames' contacts, every table.
+  REQUIRE(fa.exists("/contacts") == fb.exists("/contacts"));
+  if (fa.exists("/contacts")) {
+    REQUIRE(fa.list("/contacts") == fb.list("/contacts"));
+    for (const auto& name : fa.list("/contacts")) {
+      const std::string ds = "/contacts/" + name;
+      std::vector<hsize_t> da, db;
+      const auto xa = fa.read_doubles(ds, &da), xb = fb.read_doubles(ds, &db);
+      CHECK_MESSAGE(da == db, ds);
+      CHECK_MESSAGE(same_bits(xa, xb), ds, ": first difference at value ", first_difference(xa, xb));
+    }
+  }
   // The last frame: the final positions.
   std::vector<hsize_t> dims;
   const auto xa = fa.read_doubles("/frames/x", &dims);
