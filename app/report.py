@@ -132,7 +132,11 @@ def read_run(f):
                                 "step": int(frames["step"][k]) if "step" in frames else None,
                                 "x": np.asarray(frames["x"][k], dtype=float).reshape(-1, D),
                                 "force": (np.asarray(frames["force"][k], dtype=float).reshape(-1, D)
-                                          if "force" in frames else None)}
+                                          if "force" in frames else None),
+                                "cell_corner": (np.asarray(frames["cell_corner"][k], dtype=float).reshape(-1, D)
+                                                if "cell_corner" in frames and frames["cell_corner"].shape[0] > k
+                                                else None),
+                                "contacts": read_contacts(f, k, D)}
                 break
             except OSError:
                 continue
@@ -181,19 +185,22 @@ def load_peak(run):
 
 def read_cells(f, run):
     """A specimen of rigid cells (None for particles): its corners, its facets and the cells' faces as polygons over
-    them (README, "Output", /specimen/cells), and the contact facets' damage in the last frame and, when the scene
-    plots a load that peaked before it, in the last frame by the peak."""
+    them (README, "Output", /specimen/cells), and, when frames hold the facets' damage, the contact facets' damage in
+    the last frame and, when the scene plots a load that peaked before it, in the last frame by the peak."""
     g, frames = f.get("specimen/cells"), f.get("frames")
-    if not isinstance(g, h5py.Group) or not isinstance(frames, h5py.Group) or "damage" not in frames:
+    if not isinstance(g, h5py.Group):
         return None
     D = run["dimension"]
-    F = min(frames[k].shape[0] for k in ("time", "step", "damage"))
-    if F == 0:
-        return None
     cells = {"corner": np.asarray(g["corner"], dtype=float).reshape(-1, D),
              "contacts": int(g.attrs["contacts"]), "frames": []}
-    for k in ("facet_start", "facet_corner", "face_start", "face_corner"):
-        cells[k] = np.asarray(g[k], dtype=np.int64)
+    for k in ("facet_start", "facet_corner", "face_start", "face_corner", "face_cell", "facet_a", "facet_b"):
+        if k in g:
+            cells[k] = np.asarray(g[k], dtype=np.int64)
+    if not isinstance(frames, h5py.Group) or not all(k in frames for k in ("time", "step", "damage")):
+        return cells
+    F = min(frames[k].shape[0] for k in ("time", "step", "damage"))
+    if F == 0:
+        return cells
     times = np.asarray(frames["time"][:F], dtype=float)
     picks = [(F - 1, None)]
     peak = load_peak(run)
@@ -218,9 +225,36 @@ def read_cells(f, run):
     return cells
 
 
+def read_contacts(f, k, D):
+    """Frame k's contacts between bodies (README, "Output", /contacts), or None: rows frame_first[k] on, frame_count[k]
+    of them (without frame_count: up to the next frame's first row, the last frame's to the end of the tables)."""
+    g = f.get("contacts")
+    names = ("pair", "normal_force", "shear_force", "bonded", "branch")
+    if not isinstance(g, h5py.Group) or "frame_first" not in g or not all(n in g for n in names):
+        return None
+    first = g["frame_first"]
+    if k >= first.shape[0]:
+        return None
+    rows = min(g[n].shape[0] for n in names)
+    a = int(first[k])
+    if "frame_count" in g and k < g["frame_count"].shape[0]:
+        b = a + int(g["frame_count"][k])
+    else:
+        b = int(first[k + 1]) if k + 1 < first.shape[0] else rows
+    a, b = max(0, min(a, rows)), max(0, min(b, rows))
+    b = max(a, b)
+    return {"pair": np.asarray(g["pair"][a:b], dtype=np.int64).reshape(-1, 2),
+            "normal_force": np.asarray(g["normal_force"][a:b], dtype=float),
+            "shear_force": np.asarray(g["shear_force"][a:b], dtype=float),
+            "bonded": np.asarray(g["bonded"][a:b], dtype=np.int64),
+            "branch": np.asarray(g["branch"][a:b], dtype=float).reshape(-1, D),
+            "unit": text(g["normal_force"].attrs.get("unit", "N"))}
+
+
 def read_cracks(f, D, spec):
     """The crack log (None without one): positions, normals, mode (1 tensile, 2 shear), kind (0 break,
-    1 first yield), phase pair, time, and the crack's length in the plane (2·min(R_a, R_b))."""
+    1 first yield), phase pair, time, the two bodies' rows of the specimen (-1 for an id it does not hold) and the
+    crack's length in the plane (2·min(R_a, R_b))."""
     g = f.get("cracks")
     if not isinstance(g, h5py.Group) or "position" not in g:
         return None
@@ -232,12 +266,18 @@ def read_cracks(f, D, spec):
          "mode": np.asarray(t["mode"][:n], dtype=int), "kind": np.asarray(t["kind"][:n], dtype=int),
          "phase_a": np.asarray(t["phase_a"][:n], dtype=int), "phase_b": np.asarray(t["phase_b"][:n], dtype=int),
          "time": np.asarray(t["time"][:n], dtype=float),
-         "size": np.zeros(n)}
+         "size": np.zeros(n), "row_a": np.full(n, -1), "row_b": np.full(n, -1)}
     if spec is not None and "id" in f["specimen"]:
         ids = np.asarray(f["specimen"]["id"], dtype=np.int64)
         order = np.argsort(ids)
-        radius_of = lambda q: spec["radius"][order[np.searchsorted(ids, q, sorter=order)]]
-        c["size"] = 2 * np.minimum(radius_of(np.asarray(t["id_a"][:n])), radius_of(np.asarray(t["id_b"][:n])))
+
+        def row_of(q):  # the specimen's row of each id, -1 for an id it does not hold
+            at = np.minimum(np.searchsorted(ids, q, sorter=order), len(ids) - 1)
+            return np.where(ids[order[at]] == q, order[at], -1) if len(ids) else np.full(len(q), -1)
+
+        c["row_a"], c["row_b"] = (row_of(np.asarray(t[k][:n], dtype=np.int64)) for k in ("id_a", "id_b"))
+        known = (c["row_a"] >= 0) & (c["row_b"] >= 0)
+        c["size"][known] = 2 * np.minimum(spec["radius"][c["row_a"][known]], spec["radius"][c["row_b"][known]])
     return c
 
 

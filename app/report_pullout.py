@@ -1,8 +1,7 @@
 """Pictures of a single-shear pull test ([pullout], Tang ch. 8), for app/report.py: the load-slip curve, the FRP's
-strain profiles at the scene's load levels (Fig. 8.8) and the cracks at 31, 60, 90 and 100 % of the capacity and
-at the end (Fig. 8.12). The [pullout] keys (sheet width, bonded length, load levels) are read from the scene the
-run stored."""
-import re
+strain profiles at the scene's load levels (Fig. 8.8; without them, at the end of the run) and the cracks, breaks and
+first yields, at 31, 60, 90 and 100 % of the capacity and at the end (Fig. 8.12). The [pullout] keys (sheet width,
+bonded length, load levels) are read from the scene the run stored."""
 import sys
 import tomllib
 
@@ -14,27 +13,11 @@ import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
-from report_plots import save  # noqa: E402
+from report_plots import UNITS, save, si  # noqa: E402
 from report_specimen import MODE_COLOURS, crack_segments, draw_discs  # noqa: E402
 
-# The units a [pullout] length, force or modulus may carry (scene/units.cpp has them all; these are the ones of
-# these keys), in SI.
-UNITS = {"m": 1, "cm": 1e-2, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "N": 1, "kN": 1e3, "MN": 1e6,
-         "Pa": 1, "kPa": 1e3, "MPa": 1e6, "GPa": 1e9}
 FRACTIONS = (0.31, 0.6, 0.9, 1.0)  # of the capacity: Tang §8.2.3
-
-
-def si(value):
-    """A scene value ("50 mm", 0.05) in SI, or None when it is not one of UNITS."""
-    if isinstance(value, (int, float)):
-        return float(value)
-    m = re.fullmatch(r"\s*([-+0-9.eE]+)\s*(\S*)\s*", str(value))
-    if not m or m.group(2) not in UNITS | {"": 1}:
-        return None
-    try:
-        return float(m.group(1)) * UNITS.get(m.group(2), 1)
-    except ValueError:
-        return None
+YIELD_COLOUR = "tab:orange"  # first yields, beside MODE_COLOURS' breaks
 
 
 def pullout_keys(run):
@@ -86,13 +69,16 @@ def plot_pullout(run, stem, out_dir):
     a1.set_ylabel(f"load for b_f = {b * 1e3:g} mm [kN]")
     a1.legend(fontsize="small")
     ep_tp = keys["frp_modulus"] * keys["frp_thickness"]
-    for k, level in enumerate(keys["load_levels"]):
-        row = first_reaching(load, peak, level)
+    # The profiles at the scene's load levels on the way to the capacity; without load levels, the profile at the
+    # end of the run (an elastic pull's steady state, scenes/pull_elastic_2d.toml).
+    rows = [(first_reaching(load, peak, level), f"{level * 1e-3:g} kN") for level in keys["load_levels"]]
+    if not keys["load_levels"]:
+        rows = [(len(load) - 1, f"{load[-1] * 1e-3:.3g} kN, end of the run")]
+    for k, (row, label) in enumerate(rows):
         if row is None or not gauges:
             continue
         colour = f"C{k}"
-        a2.plot(positions * 1e3, [g[row] * 1e6 for _, g in gauges], "o-", ms=3, color=colour,
-                label=f"{level * 1e-3:g} kN")
+        a2.plot(positions * 1e3, [g[row] * 1e6 for _, g in gauges], "o-", ms=3, color=colour, label=label)
         a2.plot(0, load[row] / (ep_tp * b) * 1e6, "s", color=colour, mfc="none")  # ε₀ of (8.5)
     a2.set_xlabel("distance from the bonded length's loaded end [mm]")
     a2.set_ylabel("FRP strain [µε]")
@@ -107,7 +93,8 @@ def plot_pullout(run, stem, out_dir):
 
 def plot_pullout_cracks(run, stem, out_dir, keys, load, time, peak):
     """The cracks near the bonded length (from 15 mm before its loaded end to 5 mm past its other end, 12 mm
-    deep) logged by the first time the load reached each fraction of the capacity, and all of them at the end."""
+    deep) logged by the first time the load reached each fraction of the capacity, and all of them at the end: the
+    breaks by mode and by where they lie (the adhesive or the concrete), the first yields of softening bonds as dots."""
     c, spec = run["cracks"], run["specimen"]
     xy, r = spec["x"], spec["radius"]
     top = (xy[:, 1] + r).max()
@@ -123,6 +110,12 @@ def plot_pullout_cracks(run, stem, out_dir, keys, load, time, peak):
     factor = 1e3
     for ax, (label, until) in zip(axes, stages):
         draw_discs(ax, xy[near], r[near], window, factor, facecolors="0.92")
+        # A softening bond's first yield (kind 1, engine/crack.hpp) marks the damage zone ahead of the breaks: a dot
+        # at its contact point, under the breaks.
+        yields = (c["kind"] == 1) & (c["time"] <= until)
+        if yields.any():
+            p = c["position"][yields] * factor
+            ax.scatter(p[:, 0], p[:, 1], s=4, c=YIELD_COLOUR, marker="o", linewidths=0, zorder=2.5)
         for mode, colour in MODE_COLOURS.items():
             for glue, style in ((True, ":"), (False, "-")):
                 sel = (c["kind"] == 0) & (c["mode"] == mode) & (c["time"] <= until)
@@ -130,15 +123,16 @@ def plot_pullout_cracks(run, stem, out_dir, keys, load, time, peak):
                 sel &= pair if glue else ~pair
                 if sel.any():
                     ax.add_collection(LineCollection(crack_segments(c, sel, factor), colors=colour,
-                                                     linewidths=1.0, linestyles=style))
+                                                     linewidths=1.0, linestyles=style, zorder=3))
         n = int(((c["kind"] == 0) & (c["time"] <= until)).sum())
-        ax.set_title(f"{label}: {n} broken bonds", fontsize="medium", loc="left")
+        ax.set_title(f"{label}: {n} broken bonds, {int(yields.sum())} first yields", fontsize="medium", loc="left")
         ax.set_ylabel("y [mm]")
     axes[-1].set_xlabel("x [mm]")
     handles = [Line2D([], [], color=MODE_COLOURS[1], label="tensile break"),
                Line2D([], [], color=MODE_COLOURS[2], label="shear break"),
+               Line2D([], [], color=YIELD_COLOUR, marker="o", ms=3, ls="none", label="first yield (softening)"),
                Line2D([], [], color="0.3", ls=":", label="adhesive (FRP-concrete)"),
                Line2D([], [], color="0.3", ls="-", label="concrete")]
-    axes[0].legend(handles=handles, loc="lower left", bbox_to_anchor=(0, 1.15), ncol=4, fontsize="small")
+    axes[0].legend(handles=handles, loc="lower left", bbox_to_anchor=(0, 1.15), ncol=5, fontsize="small")
     fig.suptitle(f"{stem}: cracks near the bonded length (Tang Fig. 8.12), over the initial specimen")
     return [save(fig, out_dir, stem, "pullout_cracks", dpi=150)]

@@ -2,16 +2,21 @@
 """Check of app/report.py on small synthetic mesocrack-1 files (2D/3D, with and without frames,
 with an xy_plots attribute) plus the error cases. Run: /usr/bin/python3 tests/report_plots.py
 Set REPORT_PLOTS_KEEP=DIR to keep the files and PNGs in DIR for a look."""
+import contextlib
 import hashlib
+import io
 import os
 import subprocess
 import sys
 import tempfile
+import zlib
 
 import h5py
 import numpy as np
+from matplotlib.colors import to_rgba
 
-REPORT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "app", "report.py")
+APP = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "app")
+REPORT = os.path.join(APP, "report.py")
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 results = []
 
@@ -79,7 +84,8 @@ def make_run(path, dim, n, frames=3, history=True, xy=None, seed=1, cracks=0):
             series(h, "energy.body_work", 0 * s, "J")
             series(h, "energy.residual", 1e-4 * rng.standard_normal(S).cumsum() / S ** 0.5, "J")
             for c in "xyz"[:dim]:
-                series(h, f"wall.top.force_{c}", (2e4 if c == "y" else 50) * s * (1 + 0.01 * rng.standard_normal(S)), "N")
+                series(h, f"wall.top.force_{c}", (2e4 if c == "y" else 50) * s * (1 + 0.01 * rng.standard_normal(S)),
+                       "N")
             series(h, "wall.top.stress", 30e6 * s, "Pa")
             series(h, "wall.top.disp_y", -2e-5 * s, "m")
             series(h, "measure.box.stress_xx", 5e6 * s, "Pa")
@@ -102,7 +108,8 @@ def make_run(path, dim, n, frames=3, history=True, xy=None, seed=1, cracks=0):
             xs = np.stack([x + 1e-5 * k * rng.standard_normal(x.shape) for k in range(frames)]).reshape(frames, -1)
             fr["x"] = xs
             fr["v"] = np.zeros_like(xs)
-            fr["force"] = (rng.lognormal(2, 0.8, (frames, n, 1)) * rng.standard_normal((frames, n, dim))).reshape(frames, -1)
+            fr["force"] = (rng.lognormal(2, 0.8, (frames, n, 1))
+                           * rng.standard_normal((frames, n, dim))).reshape(frames, -1)
         f.create_group("checkpoint")
 
 
@@ -167,6 +174,116 @@ def add_cells(path, dim, shape):
             fr[k] = np.tile(sp["x"][()].ravel(), (F, 1))
 
 
+def set_scene(path, text):
+    with h5py.File(path, "r+") as f:
+        del f["scene"]
+        f.create_dataset("scene", data=fixed(text))
+
+
+def add_cell_cracks(path, kind):
+    """A crack log naming each contact facet that add_cells cracks (damage 1 in the last frame), as the engine logs it:
+    the two cells' ids (here not their rows), the facet's centroid, mode tensile."""
+    with h5py.File(path, "r+") as f:
+        D = int(f.attrs["dimension"])
+        sp, g = f["specimen"], f["specimen/cells"]
+        P = int(g.attrs["contacts"])
+        cracked = np.flatnonzero(f["frames/damage"][-1][:P] > 0.9)
+        corner, start, ends = g["corner"][()], g["facet_start"][()], g["facet_corner"][()]
+        rows = sp["x"].shape[0]
+        del sp["id"]
+        sp["id"] = 1000 + np.arange(rows, dtype=np.int64)[::-1]
+        ids = sp["id"][()]
+        n = len(cracked)
+        c = f.create_group("cracks")
+        c["position"] = np.array([corner[ends[start[k]:start[k + 1]]].mean(axis=0) for k in cracked])
+        c["normal"] = np.tile(np.eye(D)[0], (n, 1))
+        c["mode"], c["kind"] = np.ones(n, np.int64), np.full(n, kind, np.int64)
+        c["phase_a"], c["phase_b"] = np.zeros(n, np.int64), np.zeros(n, np.int64)
+        c["id_a"], c["id_b"] = ids[g["facet_a"][()][cracked]], ids[g["facet_b"][()][cracked]]
+        c["step"] = np.arange(n, dtype=np.int64)
+        c["time"] = np.linspace(0, f["frames/time"][-1], n)
+    return cracked
+
+
+def add_contacts(path, seed=2, frame_count=True):
+    """Each frame's contacts as the engine writes them (README, "Output", /contacts): pairs of particles, normal
+    forces of both signs (positive in compression) with one largest in magnitude, fewer contacts in later frames, the
+    branch x_B - x_A of the frame. Without frame_count, a frame's rows end where the next frame's begin."""
+    rng = np.random.default_rng(seed)
+    with h5py.File(path, "r+") as f:
+        D = int(f.attrs["dimension"])
+        X = f["frames/x"][()]
+        F, N = X.shape[0], X.shape[1] // D
+        tables = {k: [] for k in ("pair", "normal_force", "shear_force", "bonded", "branch")}
+        first, count = [], []
+        for k in range(F):
+            x = X[k].reshape(N, D)
+            m = 2 * N - 37 * k
+            a = rng.integers(0, N, m)
+            b = (a + rng.integers(1, 40, m)) % N
+            fn = 1e3 * rng.standard_normal(m) + 300
+            fn[rng.integers(m)] = 3 * np.abs(fn).max()
+            first.append(sum(len(q) for q in tables["normal_force"]))
+            count.append(m)
+            tables["pair"].append(np.stack([a, b], axis=1))
+            tables["normal_force"].append(fn)
+            tables["shear_force"].append(np.abs(0.3 * fn))
+            tables["bonded"].append((rng.uniform(size=m) < 0.7).astype(np.int64))
+            tables["branch"].append(x[b] - x[a])
+        g = f.create_group("contacts")
+        units = {"pair": "-", "normal_force": "N", "shear_force": "N", "bonded": "-", "branch": "m"}
+        for name, parts in tables.items():
+            d = g.create_dataset(name, data=np.concatenate(parts))
+            d.attrs.create("unit", fixed(units[name]))
+        g["frame_first"] = np.array(first, np.int64)
+        if frame_count:
+            g["frame_count"] = np.array(count, np.int64)
+
+
+def last_contacts(path):
+    """The last frame's contacts read straight from the file: pair, normal force, branch, and the frame's x [N, D]."""
+    with h5py.File(path, "r") as f:
+        D = int(f.attrs["dimension"])
+        g = f["contacts"]
+        a = int(g["frame_first"][-1])
+        x = f["frames/x"][-1].reshape(-1, D)
+        return g["pair"][a:], g["normal_force"][a:], g["branch"][a:], x
+
+
+# A Brazilian disc of rigid cells (Květoň §9.4) and one of particles (a packing: the disc inscribed in its box).
+BRAZILIAN_CELLS = """[specimen]
+kind = "voronoi_cells"
+shape = "disc"
+centre = ["35 mm", "35 mm"]
+radius = "35 mm"
+l_min = "2.5 mm"
+
+[[summary]]
+name = "peak_load"
+of = "group.bottom.reaction_y"
+reduce = "max"
+"""
+BRAZILIAN_PACKING = """[specimen]
+kind = "packing"
+shape = "disc"
+lo = [0, 0]
+hi = ["20 mm", 0.02]
+radius_min = "1 mm"
+radius_ratio = 1.2
+"""
+
+
+def add_disc_load(path, peak):
+    """The plates' reaction and approach of a Brazilian disc, its reaction peaking at `peak` [N per metre]."""
+    with h5py.File(path, "r+") as f:
+        h = f["history"]
+        s = np.linspace(0, 1, h["time"].shape[0])
+        series(h, "group.bottom.reaction_y", peak * np.sin(0.8 * np.pi * s) / np.sin(0.8 * np.pi * s).max(), "N")
+        series(h, "group.top.disp_y", -4e-5 * s, "m")
+        h.attrs.create("xy_plots", fixed("group.top.disp_y:group.bottom.reaction_y"))
+        return float(np.abs(h["group.bottom.reaction_y"][()]).max())
+
+
 PULL_SCENE = """[pullout]
 frp_phase = "aggregate"
 width = "50 mm"
@@ -199,18 +316,150 @@ def check_pngs(case, p, expected):
 
 
 def png_description(path):
-    """The PNG's Description text chunk (tEXt), or None."""
+    """The PNG's Description text chunk, or None: tEXt (Latin-1), or iTXt (UTF-8, maybe compressed), which the
+    writer takes for text beyond Latin-1 (π, ř)."""
     data = open(path, "rb").read()
     at = 8
     while at + 8 <= len(data):
         size = int.from_bytes(data[at:at + 4], "big")
-        kind = data[at + 4:at + 8]
-        if kind == b"tEXt":
-            key, _, value = data[at + 8:at + 8 + size].partition(b"\0")
-            if key == b"Description":
-                return value.decode("latin-1")
+        kind, body = data[at + 4:at + 8], data[at + 8:at + 8 + size]
+        key, _, value = body.partition(b"\0")
+        if key == b"Description" and kind == b"tEXt":
+            return value.decode("latin-1")
+        if key == b"Description" and kind == b"iTXt":
+            compressed, value = value[0], value[2:]
+            value = value.split(b"\0", 2)[2]  # after the language tag and the translated keyword
+            return (zlib.decompress(value) if compressed else value).decode("utf-8")
         at += 12 + size
     return None
+
+
+def report_figures(path, out_dir):
+    """app/report.py run in this process on the file: its exit status and {kind: figure} of every PNG it wrote (each
+    saved as the command saves it, then kept for a look at what it holds)."""
+    sys.path.insert(0, APP)
+    import report
+    import report_fibres
+    import report_plots
+    import report_pullout
+    import report_specimen
+    modules = (report_plots, report_specimen, report_pullout, report_fibres)
+    real = [m.save for m in modules]
+    figures = {}
+
+    def keep(fig, out_dir, stem, kind, dpi=120):
+        figures[kind] = fig
+        return real[0](fig, out_dir, stem, kind, dpi)
+
+    for m in modules:
+        m.save = keep
+    try:
+        with contextlib.redirect_stdout(io.StringIO()):
+            status = report.main([path, "--out-dir", out_dir])
+    finally:
+        for m, f in zip(modules, real):
+            m.save = f
+    return status, figures
+
+
+def legends(fig):
+    """The figure's legends, its axes' and its own, each with its window extent and the figure's (pixels)."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    found = [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None] + list(fig.legends)
+    return [(lg, lg.get_window_extent(renderer), fig.bbox) for lg in found]
+
+
+def check_legends_inside(case, figures, at_least=()):
+    """Every legend of every figure lies inside the figure (nothing of it cut off at the edge); the kinds in
+    at_least have one."""
+    for kind, fig in figures.items():
+        found = legends(fig)
+        out = [(tuple(np.round(e.extents, 1)), tuple(np.round(b.extents, 1))) for _, e, b in found
+               if e.x0 < b.x0 - 1 or e.y0 < b.y0 - 1 or e.x1 > b.x1 + 1 or e.y1 > b.y1 + 1]
+        check(f"{case}: {kind}.png's {len(found)} legends lie inside the figure", not out,
+              f"legend extents beyond the figure's: {out}")
+        if kind in at_least:
+            check(f"{case}: {kind}.png has a legend", found)
+
+
+def collections(fig, kind):
+    return [c for ax in fig.axes for c in ax.collections if type(c).__name__ == kind]
+
+
+def axes_titled(fig, start):
+    return [ax for ax in fig.axes if ax.get_title().startswith(start)]
+
+
+def check_cells_drawn_as_polygons(case, figures, polygons, cracked_ends=None):
+    """Rigid cells: the specimen picture draws each cell as its polygon, no disc anywhere; the crack picture draws
+    the facets the crack log names (their ends in mm, any order), as lines."""
+    kind = "specimen" if "specimen" in figures else "slice"
+    fig = figures[kind]
+    check(f"{case}: {kind}.png draws no disc", not collections(fig, "EllipseCollection"))
+    drawn = [len(c.get_paths()) for c in fig.axes[0].collections if type(c).__name__ == "PolyCollection"]
+    check(f"{case}: {kind}.png's phase panel draws the {polygons} cell polygons", drawn == [polygons], str(drawn))
+    if cracked_ends is None:
+        return
+    fig = figures["cracks"]
+    check(f"{case}: cracks.png draws no disc", not collections(fig, "EllipseCollection"))
+    segments = [seg for c in collections(fig, "LineCollection") for seg in c.get_segments()]
+    got = sorted(tuple(np.round(np.sort(np.asarray(q), axis=0).ravel(), 6)) for q in segments)
+    want = sorted(tuple(np.round(np.sort(np.asarray(q), axis=0).ravel(), 6)) for q in cracked_ends)
+    check(f"{case}: cracks.png draws the {len(want)} logged facets", got == want,
+          f"{len(got)} segments, e.g. {got[:2]}; expected e.g. {want[:2]}")
+
+
+def check_splitting_strength(case, figures, png, P, D, t=1.0):
+    """A Brazilian disc's load plot marks the peak P and states f_st = 2P/(πDt), as does its PNG's Description."""
+    f_st = 2 * P / (np.pi * D * t)
+    said = f"f_st = 2P/(πDt) = {f_st * 1e-6:.3g} MPa"
+    ax = [a for a in figures["xy"].axes if a.get_title().startswith("group.bottom.reaction_y")]
+    texts = [x.get_text() for x in ax[0].get_legend().get_texts()] if ax and ax[0].get_legend() else []
+    check(f"{case}: load plot states {said}", any(said in x for x in texts), str(texts))
+    peak = [ln for ln in ax[0].lines if ln.get_label().startswith("peak P")] if ax else []
+    check(f"{case}: load plot marks the peak P = {P * 1e-3:.4g} kN", len(peak) == 1 and
+          abs(peak[0].get_ydata()[0] - P * 1e-3) < 1e-9 * P, str([ln.get_ydata() for ln in peak]))
+    note = png_description(png) or ""
+    check(f"{case}: xy.png's Description states {said}", said in note and "per metre of thickness" in note, note)
+
+
+def check_force_chains(case, figures, path, in_slice=None):
+    """The specimen picture's force-chain panel: one line per contact of the last frame whose particles it draws,
+    the widest (3 pt) the largest |normal force|, tension red and compression not, and its legend saying what the
+    width means."""
+    kind = "specimen" if "specimen" in figures else "slice"
+    fig = figures[kind]
+    panels = axes_titled(fig, "force chains")
+    check(f"{case}: {kind}.png has a force-chain panel", len(panels) == 1, str([a.get_title() for a in fig.axes]))
+    check(f"{case}: {kind}.png's other force panel is the out-of-balance force",
+          len(axes_titled(fig, "out-of-balance force")) == 1, str([a.get_title() for a in fig.axes]))
+    if len(panels) != 1:
+        return
+    ax = panels[0]
+    pair, fn, branch, x = last_contacts(path)
+    keep = np.ones(len(fn), bool) if in_slice is None else in_slice[pair[:, 0]] & in_slice[pair[:, 1]]
+    lines = [c for c in ax.collections if type(c).__name__ == "LineCollection"]
+    segments = lines[0].get_segments() if len(lines) == 1 else []
+    check(f"{case}: force chains draw the {int(keep.sum())} contacts of the last frame"
+          + (" in the slice" if in_slice is not None else ""), len(segments) == keep.sum() and len(lines) == 1,
+          f"{len(lines)} line collections, {len(segments)} segments")
+    if len(segments) != keep.sum() or keep.sum() == 0:
+        return
+    widths = np.broadcast_to(lines[0].get_linewidths(), (len(segments),))
+    big = np.flatnonzero(keep)[np.argmax(np.abs(fn[keep]))]
+    plane = [0, 1] if x.shape[1] == 2 else [0, 2]
+    want = np.stack([x[pair[big, 0]][plane], (x[pair[big, 0]] + branch[big])[plane]]) * 1e3  # mm
+    widest = np.asarray(segments[int(np.argmax(widths))])
+    check(f"{case}: the widest chain line (3 pt) is the largest |normal force|",
+          np.allclose(widest, want) and abs(widths.max() - 3.0) < 1e-9, f"{widest} vs {want}, width {widths.max()}")
+    red = np.all(np.isclose(lines[0].get_colors(), to_rgba("tab:red")), axis=1)
+    red = np.broadcast_to(red, (len(segments),))
+    check(f"{case}: tension chains red, compression not", red.sum() == (fn[keep] < 0).sum() and red.sum() > 0,
+          f"{red.sum()} red, {(fn[keep] < 0).sum()} in tension")
+    title = ax.get_legend().get_title().get_text() if ax.get_legend() else ""
+    words = ["line width ∝ |normal force|", "largest"] + (["per metre of thickness"] if x.shape[1] == 2 else [])
+    check(f"{case}: chain legend says what the width means", all(w in title for w in words), title)
 
 
 def check_error(case, p, path, words):
@@ -224,9 +473,10 @@ def check_error(case, p, path, words):
 def check_compression_curve_reads_left_to_right_with_its_strength_and_modulus_marked():
     """A uniaxial compression run's strain and stress are negative: the x-y plot draws their magnitudes (left to
     right, upwards), marks the strength at the curve's peak and E's secant as `summary` reads them."""
-    sys.path.insert(0, os.path.join(os.path.dirname(REPORT)))
+    sys.path.insert(0, APP)
     import report_plots
     figures = []
+    real = report_plots.save
     report_plots.save = lambda fig, out_dir, stem, kind, dpi=120: figures.append(fig) or kind
     strain = -np.linspace(0, 2e-3, 201)
     stress = np.where(-strain < 1e-3, 30e9 * strain, -30e6 - 10e9 * (strain + 1e-3))  # peak 30 MPa at 1e-3
@@ -235,7 +485,10 @@ def check_compression_curve_reads_left_to_right_with_its_strength_and_modulus_ma
                        "wall.top.stress": {"data": stress, "unit": "Pa", "label": None}},
            "summary": {"uniaxial": {"ucs": 30e6, "E_platens": 30e9, "E": 30e9, "peak_passed": True}},
            "uniaxial_pair": ("strain.axial", "wall.top.stress")}
-    report_plots.plot_xy(run, "c", ".")
+    try:
+        report_plots.plot_xy(run, "c", ".")
+    finally:
+        report_plots.save = real
     ax = figures[0].axes[0]
     curve = ax.lines[0].get_xydata()
     check("compression curve: drawn as magnitudes, left to right and upwards",
@@ -246,6 +499,24 @@ def check_compression_curve_reads_left_to_right_with_its_strength_and_modulus_ma
     slope = np.diff(ax.lines[2].get_ydata()) / np.diff(ax.lines[2].get_xdata())
     check("compression curve: E's secant along the elastic curve (30 GPa in MPa per unit strain)",
           abs(slope[0] - 30e3) < 1e-6 * 30e3, str(slope))
+
+
+def check_splitting_strength_of_3d_discs():
+    """3D: the disc's thickness from the scene, t of a cylinder of cells, the box's depth along z for a packing."""
+    sys.path.insert(0, APP)
+    import report_plots
+    load = {"data": np.array([0.0, 15.24e3, 9e3]), "unit": "N", "label": None}
+    for scene, D, t in (('kind = "voronoi_cells"\nshape = "disc"\ncentre = ["35 mm", "35 mm"]\nradius = "35 mm"\n'
+                         'thickness = "55 mm"', 0.07, 0.055),
+                        ('kind = "packing"\nshape = "cylinder"\nlo = [0, 0, 0]\nhi = ["70 mm", "80 mm", "3 cm"]',
+                         0.07, 0.03)):
+        run = {"dimension": 3, "scene_text": "[specimen]\n" + scene, "xy_plots": [("d", "group.bottom.reaction_y")],
+               "history": {"group.bottom.reaction_y": load}}
+        s = report_plots.splitting_strength(run) or {}
+        check(f"3D disc ({scene.split(chr(10))[0]}): f_st = 2P/(πDt) with D = {D} m, t = {t} m",
+              np.isclose(s.get("f_st", 0), 2 * 15.24e3 / (np.pi * D * t)), str(s))
+    run["scene_text"] = "[specimen]\nkind = \"packing\"\nshape = \"box\"\nlo = [0, 0, 0]\nhi = [1, 1, 1]"
+    check("a box is no Brazilian disc", report_plots.splitting_strength(run) is None)
 
 
 def main():
@@ -309,6 +580,35 @@ def main():
         check_pngs("pull test", run_report(fp),
                    ["pull_history.png", "pull_energy.png", "pull_specimen.png", "pull_cracks.png", "pull_pullout.png",
                     "pull_pullout_cracks.png"])
+        status, figures = report_figures(fp, os.path.join(d, "figures"))
+        check_legends_inside("pull test", figures, at_least=("pullout_cracks",))
+        with h5py.File(fp, "r") as w:
+            yields = int((w["cracks/kind"][()] == 1).sum())
+        stages = figures["pullout_cracks"].axes
+        dots = [sum(len(c.get_offsets()) for c in ax.collections if type(c).__name__ == "PathCollection")
+                for ax in stages]
+        check("pull test: the crack stages draw the first yields as dots, all of them at the end",
+              dots[-1] == yields > 0 and dots == sorted(dots), f"{dots}, {yields} first yields logged")
+        colours = {tuple(np.round(c.get_facecolor()[0], 3)) for ax in stages for c in ax.collections
+                   if type(c).__name__ == "PathCollection"}
+        check("pull test: first yields in a colour of their own",
+              colours == {tuple(np.round(to_rgba("tab:orange"), 3))}, str(colours))
+        labels = [x.get_text() for x in stages[0].get_legend().get_texts()]
+        check("pull test: the legend names the first yields", "first yield (softening)" in labels, str(labels))
+        title = stages[-1].get_title(loc="left")
+        check("pull test: each stage counts its first yields", title.endswith(f"{yields} first yields"), title)
+        # Without load levels (scenes/pull_elastic_2d.toml), the strain profile at the end of the run.
+        fpn = os.path.join(d, "pull_no_levels.h5")
+        with open(fp, "rb") as a, open(fpn, "wb") as b:
+            b.write(a.read())
+        set_scene(fpn, PULL_SCENE.replace('load_levels = ["4 kN", "8 kN", "12 kN", "14 kN"]\n', ""))
+        status, figures = report_figures(fpn, os.path.join(d, "figures"))
+        with h5py.File(fpn, "r") as w:
+            last = [w[f"history/pullout.strain_{k}"][-1] * 1e6 for k in range(5)]
+        drawn = figures["pullout"].axes[1].lines
+        profiles = [ln for ln in drawn if "end of the run" in ln.get_label()]
+        check("pull test without load levels: the strain profile at the end of the run",
+              len(profiles) == 1 and np.allclose(profiles[0].get_ydata(), last), str([ln.get_label() for ln in drawn]))
 
         # Rigid cells: the crack pattern of their facets, by the load's peak and at the end (2D), or at the end in
         # the section at mid-thickness (3D: the scene plots no load).
@@ -322,6 +622,83 @@ def main():
         make_run(fc3, 3, 96, frames=3, history=False)
         add_cells(fc3, 3, (4, 6, 4))
         check_pngs("3D rigid cells", run_report(fc3), ["cells3d_slice.png", "cells3d_cells.png"])
+        status, figures = report_figures(fc3, os.path.join(d, "figures"))
+        # The section at z = 10 mm, the top of the second layer of cells: its 4 x 6 cells are cut.
+        check_cells_drawn_as_polygons("3D rigid cells", figures, 24)
+
+        # Their crack logs: the facets the log names drawn as lines, over the cells as polygons.
+        with h5py.File(fc2, "r") as w:
+            faces = w["specimen/cells/face_start"].shape[0] - 1
+        cracked = add_cell_cracks(fc2, kind=0)
+        check_pngs("2D rigid cells with a crack log", run_report(fc2),
+                   ["cells2d_history.png", "cells2d_xy.png", "cells2d_energy.png", "cells2d_specimen.png",
+                    "cells2d_cracks.png", "cells2d_cells.png"])
+        status, figures = report_figures(fc2, os.path.join(d, "figures"))
+        with h5py.File(fc2, "r") as w:
+            g = w["specimen/cells"]
+            corner, start, ends = g["corner"][()], g["facet_start"][()], g["facet_corner"][()]
+        check_cells_drawn_as_polygons("2D rigid cells", figures, faces,
+                                      [corner[ends[start[k]:start[k + 1]]] * 1e3 for k in cracked])
+        check_legends_inside("2D rigid cells", figures, at_least=("cracks", "specimen"))
+        cracked = add_cell_cracks(fc3, kind=1)
+        status, figures = report_figures(fc3, os.path.join(d, "figures"))
+        with h5py.File(fc3, "r") as w:
+            g = w["specimen/cells"]
+            corner, start, ends = g["corner"][()], g["facet_start"][()], g["facet_corner"][()]
+        cut = []
+        for k in cracked:  # the cracked facets the section crosses: their corners on the plane, in x-y
+            q = corner[ends[start[k]:start[k + 1]]]
+            if q[:, 2].min() < 10e-3 <= q[:, 2].max() + 1e-12:
+                cut.append(np.unique(q[np.isclose(q[:, 2], 10e-3)][:, :2], axis=0) * 1e3)
+        check_cells_drawn_as_polygons("3D rigid cells with a crack log", figures, 24, cut)
+        check("3D rigid cells: 6 cracked facets cut by the section", len(cut) == 6, str(len(cut)))
+
+        # Brazilian discs: the legends inside the figures, the peak load and the splitting strength marked.
+        fb = os.path.join(d, "brazilian_cells.h5")
+        make_run(fb, 2, 196, frames=5)
+        add_cells(fb, 2, (14, 14))
+        set_scene(fb, BRAZILIAN_CELLS)
+        P = add_disc_load(fb, 3.6e5)
+        add_cell_cracks(fb, kind=1)
+        status, figures = report_figures(fb, os.path.join(d, "figures"))
+        check("Brazilian disc of cells: report exit 0", status == 0)
+        check_legends_inside("Brazilian disc of cells", figures, at_least=("cracks", "specimen", "xy"))
+        check_splitting_strength("Brazilian disc of cells", figures,
+                                 os.path.join(d, "figures", "brazilian_cells_xy.png"), P, 0.07)
+        with h5py.File(fb, "r") as w:
+            faces = w["specimen/cells/face_start"].shape[0] - 1
+        check_cells_drawn_as_polygons("Brazilian disc of cells", figures, faces)
+
+        fe = os.path.join(d, "brazilian_particles.h5")
+        make_run(fe, 2, 3000, frames=3, cracks=400)
+        set_scene(fe, BRAZILIAN_PACKING)
+        P = add_disc_load(fe, 2.8e5)
+        add_contacts(fe, frame_count=False)
+        status, figures = report_figures(fe, os.path.join(d, "figures"))
+        check("Brazilian disc of particles: report exit 0", status == 0)
+        check_legends_inside("Brazilian disc of particles", figures, at_least=("cracks", "specimen", "xy"))
+        check_splitting_strength("Brazilian disc of particles", figures,
+                                 os.path.join(d, "figures", "brazilian_particles_xy.png"), P, 0.02)
+        check_force_chains("2D contacts (no frame_count)", figures, fe)
+
+        # Force chains in 3D: the contacts whose two spheres the slice cuts. Without /contacts, no chain panel.
+        f3c = os.path.join(d, "sphere3d_contacts.h5")
+        make_run(f3c, 3, 4000, frames=3)
+        add_contacts(f3c)
+        status, figures = report_figures(f3c, os.path.join(d, "figures"))
+        with h5py.File(f3c, "r") as w:
+            x, r = w["frames/x"][-1].reshape(-1, 3), w["specimen/radius"][()]
+        yc = 0.5 * ((x[:, 1] - r).min() + (x[:, 1] + r).max())
+        check_force_chains("3D contacts", figures, f3c, in_slice=np.abs(x[:, 1] - yc) < r)
+        check_legends_inside("3D contacts", figures, at_least=("slice",))
+        status, figures = report_figures(f2, os.path.join(d, "figures"))
+        check("2D without /contacts: no force-chain panel", not axes_titled(figures["specimen"], "force chains"),
+              str([a.get_title() for a in figures["specimen"].axes]))
+        check("2D without /contacts: the force panel is the out-of-balance force",
+              len(axes_titled(figures["specimen"], "out-of-balance force")) == 1)
+        check("not a Brazilian disc: no splitting strength", "f_st" not in (png_description(
+            os.path.join(d, "figures", "disc2d_xy.png")) or "x"))
+        check_legends_inside("2D with frames and cracks", figures, at_least=("cracks", "specimen"))
 
         missing = os.path.join(d, "no_such_run.h5")
         check_error("missing file", run_report(missing), missing, ["no such file"])
@@ -337,6 +714,7 @@ def main():
         check_error("not an HDF5 file", run_report(text), text, ["HDF5"])
 
     check_compression_curve_reads_left_to_right_with_its_strength_and_modulus_marked()
+    check_splitting_strength_of_3d_discs()
 
     failed = [r for r in results if not r[1]]
     for name, _, detail in failed:
