@@ -64,7 +64,7 @@ def plot_pullout(run, stem, out_dir):
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(11, 4), constrained_layout=True)
     a1.plot(slip * 1e3, load * 1e-3, lw=1)
     a1.plot(slip[peak] * 1e3, load[peak] * 1e-3, "o", color="tab:red",
-            label=f"capacity {load[peak] * 1e-3:.2f} kN at slip {slip[peak] * 1e3:.3f} mm")
+            label=f"{capacity_name(run)} {load[peak] * 1e-3:.2f} kN at slip {slip[peak] * 1e3:.3f} mm")
     a1.set_xlabel("slip at the bonded length's loaded end [mm]")
     a1.set_ylabel(f"load for b_f = {b * 1e3:g} mm [kN]")
     a1.legend(fontsize="small")
@@ -80,6 +80,7 @@ def plot_pullout(run, stem, out_dir):
         colour = f"C{k}"
         a2.plot(positions * 1e3, [g[row] * 1e6 for _, g in gauges], "o-", ms=3, color=colour, label=label)
         a2.plot(0, load[row] / (ep_tp * b) * 1e6, "s", color=colour, mfc="none")  # ε₀ of (8.5)
+    draw_shear_lag(a2, (run.get("summary") or {}).get("pullout") or {}, length)
     a2.set_xlabel("distance from the bonded length's loaded end [mm]")
     a2.set_ylabel("FRP strain [µε]")
     a2.set_title("strain profiles (squares: ε₀ = F/(E_p t_p b_f), (8.5))", fontsize="medium")
@@ -89,6 +90,27 @@ def plot_pullout(run, stem, out_dir):
     if run["cracks"] is not None and run["specimen"] is not None:
         out += plot_pullout_cracks(run, stem, out_dir, keys, load, time, peak)
     return out
+
+
+def capacity_name(run):
+    """What the largest load is: the capacity once the summary saw the load fall past its peak, else only the largest
+    load so far (an elastic or interrupted pull)."""
+    passed = ((run.get("summary") or {}).get("pullout") or {}).get("peak_passed", True)
+    return "capacity" if passed else "largest load so far (no peak)"
+
+
+def draw_shear_lag(ax, summary, length):
+    """The linear shear-lag solution ε₀ sinh(λ(L − x))/sinh(λL) that `summary` sets beside the final profile of a
+    scene declaring [pullout] interface_stiffness (Tang §8.1), with how far the gauges lie from it."""
+    s = summary.get("shear_lag")
+    if not isinstance(s, dict) or not all(isinstance(s.get(k), (int, float)) for k in ("lambda", "epsilon_0")):
+        return
+    x = np.linspace(0, length, 200)
+    lam = s["lambda"]
+    strain = s["epsilon_0"] * np.sinh(lam * (length - x)) / np.sinh(lam * length)
+    off = s.get("max_deviation_over_epsilon_0")
+    off = f", gauges within {100 * off:.2g} % of ε₀" if isinstance(off, (int, float)) else ""
+    ax.plot(x * 1e3, strain * 1e6, "--", color="0.3", label=f"shear lag, λL = {lam * length:.3g}{off}")
 
 
 def plot_pullout_cracks(run, stem, out_dir, keys, load, time, peak):

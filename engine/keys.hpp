@@ -31,10 +31,11 @@ enum class Unit {
   Acceleration,
   Stiffness,  // N/m
   Energy,
-  Angle,          // rad
-  Rate,           // 1/s
-  Frequency,      // Hz
-  EnergyPerArea,  // J/m2 = N/m: fracture energies
+  Angle,             // rad
+  Rate,              // 1/s
+  Frequency,         // Hz
+  EnergyPerArea,     // J/m2 = N/m: fracture energies
+  StiffnessPerArea,  // Pa/m = N/m3: an interface's stress per slip
 };
 
 // The allowed interval of a number, in SI. Bounds are inclusive unless marked open. Beside it, the interval of the

@@ -71,6 +71,12 @@ constexpr UnitDef kUnits[] = {
     {"Hz", Unit::Frequency, 0},
     {"kHz", Unit::Frequency, 3},
     {"%", Unit::None, -2},
+    {"Pa/m", Unit::StiffnessPerArea, 0},
+    {"N/m3", Unit::StiffnessPerArea, 0},
+    {"MPa/m", Unit::StiffnessPerArea, 6},
+    {"GPa/m", Unit::StiffnessPerArea, 9},
+    {"MPa/mm", Unit::StiffnessPerArea, 9},
+    {"N/mm3", Unit::StiffnessPerArea, 9},
     // Last: a unit of two kinds ("N/m") is named in messages by its first, the stiffness.
     {"J/m2", Unit::EnergyPerArea, 0},
     {"N/m", Unit::EnergyPerArea, 0},
@@ -101,6 +107,7 @@ const KindDef& kind_def(Unit u) {
       {"a rate", "1/s", "0.1", "0.1 /s"},
       {"a frequency", "Hz", "1000", "1 kHz"},
       {"an energy per area", "J/m2", "100", "100 N/m"},
+      {"a stiffness per area", "Pa/m", "2e11", "200 MPa/mm"},
   };
   return defs[static_cast<int>(u)];
 }
@@ -218,6 +225,7 @@ constexpr Usual kUsual[] = {
     {Unit::Rate, 1e-6, 1e4, "1/s"},           //
     {Unit::Frequency, 1e-3, 1e9, "kHz"},      //
     {Unit::EnergyPerArea, 1.0, 1e4, "J/m2"},  // a mortar's fracture energy to an FRP bond's
+    {Unit::StiffnessPerArea, 1e6, 1e14, "MPa/mm"},  // a soft adhesive's shear stiffness to a steel bar's rib
 };
 
 }  // namespace

@@ -47,6 +47,10 @@ TEST_CASE("frp_strain_profile_of_an_elastic_pull_follows_the_shear_lag_solution"
     CHECK(std::abs(strain - expected) < 0.05 * eps0);
   }
   const Json j = summary_of("pull.h5", d.dir);
+  // The summary sets the final profile beside the same solution for the scene's interface_stiffness (= K).
+  const Json& lag = j["pullout"]["shear_lag"];
+  CHECK(lag["lambda"].number == doctest::Approx(lambda).epsilon(1e-9));
+  CHECK(lag["max_deviation_over_epsilon_0"].number < 0.05);
   // The reported capacity is the load per metre times the sheet's width (b_f = 50 mm), and β_w of (8.1) for
   // b_f/b_c = 50/80 is √(1.375/1.625); the summary prints 10 significant digits.
   CHECK(j["pullout"]["capacity"].number == doctest::Approx(j["pullout"]["capacity_simulated"].number * 0.05));

@@ -519,6 +519,34 @@ def check_splitting_strength_of_3d_discs():
     check("a box is no Brazilian disc", report_plots.splitting_strength(run) is None)
 
 
+def check_shear_lag_curve_is_the_summary_solution():
+    """An elastic pull's strain panel draws ε₀ sinh(λ(L − x))/sinh(λL) of the summary's shear_lag block, its legend
+    giving λL and the gauges' deviation; without the block, no such curve."""
+    sys.path.insert(0, APP)
+    import matplotlib.pyplot as plt
+    import report_pullout
+    fig, ax = plt.subplots()
+    lam, eps0, length = 75.0, 2e-4, 0.04
+    report_pullout.draw_shear_lag(ax, {"shear_lag": {"lambda": lam, "epsilon_0": eps0,
+                                                     "max_deviation_over_epsilon_0": 0.012}}, length)
+    lines = [ln for ln in ax.lines if ln.get_label().startswith("shear lag")]
+    ok = len(lines) == 1
+    if ok:
+        x, y = lines[0].get_xdata() * 1e-3, lines[0].get_ydata() * 1e-6
+        ok = np.allclose(y, eps0 * np.sinh(lam * (length - x)) / np.sinh(lam * length), rtol=1e-12, atol=1e-15)
+        ok = ok and "λL = 3," in lines[0].get_label() and "within 1.2 % of ε₀" in lines[0].get_label()
+    check("elastic pull: the shear-lag curve of the summary's λ and ε₀, labelled with λL and the deviation", ok,
+          str([ln.get_label() for ln in ax.lines]))
+    fig2, ax2 = plt.subplots()
+    report_pullout.draw_shear_lag(ax2, {}, length)
+    check("a pull without interface_stiffness: no shear-lag curve", not ax2.lines)
+    plt.close(fig)
+    plt.close(fig2)
+    names = [report_pullout.capacity_name({"summary": {"pullout": {"peak_passed": p}}}) for p in (True, False)]
+    check("a pull that never peaked marks its largest load so far, not a capacity",
+          names == ["capacity", "largest load so far (no peak)"], str(names))
+
+
 def main():
     keep = os.environ.get("REPORT_PLOTS_KEEP")
     with tempfile.TemporaryDirectory() as tmp:
@@ -715,6 +743,7 @@ def main():
 
     check_compression_curve_reads_left_to_right_with_its_strength_and_modulus_marked()
     check_splitting_strength_of_3d_discs()
+    check_shear_lag_curve_is_the_summary_solution()
 
     failed = [r for r in results if not r[1]]
     for name, _, detail in failed:

@@ -33,6 +33,14 @@ long first_reaching(const std::vector<double>& load, std::size_t peak, double le
   return -1;
 }
 
+// A sheet of axial stiffness E_p t_p on a rigid substrate through an interface of stiffness K, pulled at x = 0 and
+// free at x = L: E_p t_p u'' = K u gives ε(x) = ε₀ sinh(λ(L − x))/sinh(λL), λ = √(K/(E_p t_p)) (the linear
+// bond-slip shear-lag solution, Tang §8.1). A gauge over [x0, x1] reads its mean.
+double shear_lag_gauge_strain(double eps0, double lambda, double length, double x0, double x1) {
+  return eps0 * (std::cosh(lambda * (length - x0)) - std::cosh(lambda * (length - x1))) /
+         (lambda * (x1 - x0) * std::sinh(lambda * length));
+}
+
 double quantile(std::vector<double> v, double q) {
   if (v.empty()) return kNaN;
   const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())));
@@ -76,6 +84,10 @@ const KeyTable& pullout_keys() {
           {.name = "load_levels", .type = KeyType::Reals, .unit = Unit::Force, .range = Range::positive(),
            .doc = "loads of the reported width where the strain profiles are taken, e.g. [\"4 kN\", \"8 kN\"] "
                   "(Tang Fig. 8.8)"},
+          {.name = "interface_stiffness", .unit = Unit::StiffnessPerArea, .range = Range::positive(),
+           .doc = "K, the bond's shear stress per slip of an elastic joint: summary and report set the final strain "
+                  "profile beside the linear shear-lag solution ε(x) = ε₀ sinh(λ(L − x))/sinh(λL), "
+                  "λ = √(K/(E_p t_p))"},
       }};
   return t;
 }
@@ -118,6 +130,7 @@ std::shared_ptr<const Analysis> read_pullout(const KeyReader& k, const Scene& s)
   a->frp_modulus = k.number("frp_modulus");
   a->frp_thickness = k.number("frp_thickness");
   if (k.has("load_levels")) a->load_levels = k.numbers("load_levels", 0);
+  if (k.has("interface_stiffness")) a->interface_stiffness = k.number("interface_stiffness");
   return a;
 }
 
@@ -278,6 +291,7 @@ std::string PulloutAnalysis::summary_json(const RunRecord& run) const {
            "breaks lie deeper than a third of the prism, else a thin concrete layer\"}";
     }
   }
+  if (std::isfinite(interface_stiffness)) o << ",\n    \"shear_lag\": " << shear_lag_json(h);
   o << ",\n    \"energy\": " << energy_json(h, bonded_length(), "G_bonds", "bonded");
   o << ",\n    \"units\": "
     << units_json({{"width", "m"},
@@ -290,6 +304,37 @@ std::string PulloutAnalysis::summary_json(const RunRecord& run) const {
                    {"slip_at_capacity", "m"},
                    {"final_load_over_capacity", "-"}})
     << "\n  }";
+  return o.str();
+}
+
+std::string PulloutAnalysis::shear_lag_json(const Histories& h) const {
+  const auto last = [&](const std::string& n) {
+    const auto it = h.find(n);
+    return it == h.end() || it->second.empty() ? kNaN : it->second.back();
+  };
+  const double ea = frp_modulus * frp_thickness, lambda = std::sqrt(interface_stiffness / ea);
+  const double length = bonded_length(), dx = length / gauges, eps0 = last("pullout.load") / ea;
+  std::ostringstream simulated, analytic;
+  double deviation = 0;
+  for (int k = 0; k < gauges; ++k) {
+    const double got = last("pullout.strain_" + std::to_string(k));
+    const double want = shear_lag_gauge_strain(eps0, lambda, length, k * dx, (k + 1) * dx);
+    deviation = std::max(deviation, std::abs(got - want) / eps0);
+    simulated << (k ? ", " : "") << json_number(got);
+    analytic << (k ? ", " : "") << json_number(want);
+  }
+  std::ostringstream o;
+  o << "{\"interface_stiffness\": " << json_number(interface_stiffness) << ", \"lambda\": " << json_number(lambda)
+    << ", \"lambda_L\": " << json_number(lambda * length) << ", \"epsilon_0\": " << json_number(eps0)
+    << ",\n      \"strains\": [" << simulated.str() << "],\n      \"strains_shear_lag\": [" << analytic.str()
+    << "],\n      \"max_deviation_over_epsilon_0\": " << json_number(deviation)
+    << ",\n      \"definition\": \"the gauges' strains at the run's end beside the mean over each gauge of "
+       "epsilon_0 sinh(lambda (L - x)) / sinh(lambda L), lambda = sqrt(K / (E_p t_p)), epsilon_0 = F / (E_p t_p) of "
+       "the final load per metre of thickness\""
+    << ",\n      \"units\": "
+    << units_json({{"interface_stiffness", "Pa/m"}, {"lambda", "1/m"}, {"lambda_L", "-"}, {"epsilon_0", "-"},
+                   {"strains", "-"}, {"strains_shear_lag", "-"}, {"max_deviation_over_epsilon_0", "-"}})
+    << "}";
   return o.str();
 }
 

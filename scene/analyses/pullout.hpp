@@ -34,6 +34,7 @@ class PulloutAnalysis final : public Analysis {
   double width = 0, prism_width = 0;          // b_f, b_c [m] of the reported specimen (β_w of (8.1))
   double frp_modulus = 0, frp_thickness = 0;  // E_p [Pa], t_p [m] for ε₀ of (8.5)
   std::vector<double> load_levels;            // [N] of the reported width: where the strain profiles are taken
+  double interface_stiffness = kNaN;          // K [Pa/m]: where given, the final profile against the shear lag
   std::string scene_file;
 
   std::string name() const override;  // its key table's
@@ -48,6 +49,8 @@ class PulloutAnalysis final : public Analysis {
   // The centre of gauge k, from the bonded length's loaded end [m].
   double gauge_position(int k) const { return (k + 0.5) * bonded_length() / gauges; }
   PulloutFailure failure(const std::vector<LoggedCrack>& cracks, double interface_y, double bottom_y) const;
+  // The gauges' strains at the run's end beside the linear shear-lag solution for interface_stiffness (JSON).
+  std::string shear_lag_json(const Histories& h) const;
 };
 
 const KeyTable& pullout_keys();
