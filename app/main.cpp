@@ -21,6 +21,7 @@
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
 #include "studies/calibration.hpp"
+#include "studies/model_code.hpp"
 #include "studies/ranks.hpp"
 #include "studies/realizations.hpp"
 #include "studies/runner.hpp"
@@ -219,13 +220,13 @@ constexpr int kAnyCount = std::numeric_limits<int>::max();
 
 constexpr const char* kSetHelp =
     "override a scene value: key.path=value (repeatable); a number without a unit is SI (walls[0].rate=\"5 mm/s\")";
-constexpr const char* kCommands = "run, generate, calibrate, summary, report, keys";
+constexpr const char* kCommands = "run, generate, calibrate, summary, report, keys, concrete";
 
 // A first word that is no subcommand: CLI11 would only say that a subcommand is required.
 bool unknown_command(int argc, char** argv) {
   if (argc < 2 || argv[1][0] == '-') return false;
   const std::string first = argv[1];
-  for (const char* c : {"run", "generate", "calibrate", "summary", "report", "keys"})
+  for (const char* c : {"run", "generate", "calibrate", "summary", "report", "keys", "concrete"})
     if (first == c) return false;
   std::fprintf(stderr, "error: unknown command '%s'; allowed: %s (see mesocrack --help)\n", argv[1], kCommands);
   return true;
@@ -301,8 +302,8 @@ int main(int argc, char** argv) {
       ->required();
   calibrate_cmd
       ->add_option("--target", targets,
-                   "targets, e.g. E=30GPa,nu=0.2,ucs=40MPa, E=35GPa,nu=0.16,ft=3.2MPa,Gf=170.4N/m or "
-                   "E=30GPa,nu=0.2,ft=3MPa,fc=40MPa")
+                   "targets, e.g. E=30GPa,nu=0.2,ucs=40MPa, E=35GPa,nu=0.16,ft=3.2MPa,Gf=170.4N/m, "
+                   "E=30GPa,nu=0.2,ft=3MPa,fc=40MPa, or class=C30/37 (fib Model Code 2010: see mesocrack concrete)")
       ->required();
   calibrate_cmd->add_option("--compression", compression,
                             "cpm with an fc target: the compression test scene (same specimen and material entry)");
@@ -329,6 +330,11 @@ int main(int argc, char** argv) {
   bool markdown = false;
   keys_cmd->add_option("table", keys_table, "a table's name, e.g. walls, cpm, run.stop (none: the list of tables)");
   keys_cmd->add_flag("--markdown", markdown, "every table as Markdown (docs/keys.md)")->excludes("table");
+  auto* concrete_cmd = app.add_subcommand(
+      "concrete", "a concrete of a fib Model Code 2010 class: E, nu, f_t, f_c and G_F as calibrate's targets");
+  std::string concrete_class, aggregate = "quartzite";
+  concrete_cmd->add_option("class", concrete_class, "the strength class, e.g. C30/37 (C12/15 to C120/140)")->required();
+  concrete_cmd->add_option("--aggregate", aggregate, "quartzite (default), basalt, limestone or sandstone (alpha_E)");
   if (unknown_command(argc, argv)) return 2;
   try {
     app.parse(argc, argv);
@@ -345,6 +351,10 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*report_cmd) return report(target);
+    if (*concrete_cmd) {
+      std::cout << mc::model_code_json(mc::model_code_concrete(concrete_class, aggregate));
+      return 0;
+    }
     if (*keys_cmd) {
       std::cout << (markdown ? mc::key_reference_markdown()
                              : keys_table.empty() ? mc::key_table_list() : mc::key_table_text(keys_table));

@@ -9,7 +9,9 @@
 #include "engine/errors.hpp"
 #include "scene/model_registry.hpp"
 #include "scene/toml_reader.hpp"
+#include "scene/scene.hpp"
 #include "studies/calibration_run.hpp"
+#include "studies/model_code.hpp"
 #include "studies/ranks.hpp"
 
 namespace mc {
@@ -43,17 +45,50 @@ CalibrationTarget parse_targets(const std::string& text) {
     c.tensile = t.number("ft", Unit::Pressure, Range::positive(), kNaN);
     c.compressive = t.number("fc", Unit::Pressure, Range::positive(), kNaN);
     c.fracture_energy = t.number("Gf", Unit::EnergyPerArea, Range::positive(), kNaN);
+    c.concrete_class = t.string("class", "");
+    c.aggregate = t.string("aggregate", c.aggregate);
     t.finish();
+    if (!c.concrete_class.empty() || t.has("aggregate")) model_code_concrete(c.concrete_class, c.aggregate);
     if (std::isnan(c.modulus) && std::isnan(c.poisson) && std::isnan(c.ucs) && std::isnan(c.tensile) &&
-        std::isnan(c.compressive) && std::isnan(c.fracture_energy))
-      throw InputError("--target '" + text + "': name at least one of E, nu, ucs, ft, fc, Gf");
+        std::isnan(c.compressive) && std::isnan(c.fracture_energy) && c.concrete_class.empty())
+      throw InputError("--target '" + text + "': name at least one of E, nu, ucs, ft, fc, Gf, or a class");
     return c;
   } catch (const InputError& e) {
     throw InputError(std::string(e.what()) +
                      " (allowed targets: E [Pa], nu in (0, 0.5); ucs [Pa] in compression; ft [Pa] in tension, with "
-                     "Gf [N/m] for softening bonds and fc [Pa] for cpm)");
+                     "Gf [N/m] for softening bonds and fc [Pa] for cpm; class, a fib Model Code 2010 class such as "
+                     "C30/37, with aggregate = quartzite, basalt, limestone or sandstone)");
   }
 }
+
+namespace {
+
+// The targets of `t` not given by value that a model can fit, from its concrete class; said on `log`.
+CalibrationTarget with_class_values(CalibrationTarget t, bool cpm, bool softening, bool tension, bool compression_run,
+                                    std::FILE* log) {
+  if (t.concrete_class.empty()) return t;
+  const ModelCodeConcrete m = model_code_concrete(t.concrete_class, t.aggregate);
+  std::string took;
+  auto take = [&](double& target, double value, bool fits, const char* name) {
+    if (!fits || !std::isnan(target)) return;
+    target = value;
+    took += std::string(took.empty() ? "" : ", ") + name;
+  };
+  take(t.modulus, m.e_ci, true, "E = E_ci");
+  take(t.poisson, m.poisson, true, "nu");
+  take(t.tensile, m.f_ctm, cpm || tension, "ft = f_ctm");
+  take(t.ucs, m.f_cm, !cpm && !tension, "ucs = f_cm");
+  take(t.compressive, m.f_cm, cpm && compression_run, "fc = f_cm");
+  take(t.fracture_energy, m.fracture_energy, softening, "Gf = G_F");
+  std::fprintf(log,
+               "%s (fib Model Code 2010, %s aggregate): E_ci %.4g GPa, nu %.2g, f_ctm %.3g MPa, f_cm %.4g MPa, "
+               "G_F %.4g N/m; this scene's model fits %s\n",
+               m.name.c_str(), m.aggregate.c_str(), m.e_ci * 1e-9, m.poisson, m.f_ctm * 1e-6, m.f_cm * 1e-6,
+               m.fracture_energy, took.empty() ? "none of them beside the targets given" : took.c_str());
+  return t;
+}
+
+}  // namespace
 
 // Which procedure: the scene's calibrated [[contacts]] entry decides; the procedure refuses targets it cannot reach.
 CalibrationResult calibrate(const std::string& scene_file, const std::vector<std::string>& overrides,
@@ -69,19 +104,23 @@ CalibrationResult calibrate(const std::string& scene_file, const std::vector<std
                      "compression, ch. 7 in tension), model = \"softening_bond\" (Tang ch. 7, in tension) or "
                      "model = \"cpm\" (Šmilauer, \"Parameter calibration\")" +
                      (found > 1 ? "; this scene has several: calibrate each material in its own scene" : ""));
+  const Scene scene = read_scene(doc, scene_file);
+  const auto* u = scene.analysis<UniaxialAnalysis>();
+  const CalibrationTarget t = with_class_values(target, cpm >= 0, softening >= 0, u && u->tension,
+                                                !options.compression_scene.empty(), log);
   CalibrationOptions o = options;
   if (cpm >= 0) {
     auto refuse = [](double value, const std::string& name, const std::string& why) {
       if (!std::isnan(value))
         throw InputError("--target " + name + ": not a target for a cpm scene (its targets: E, nu, ft, fc)" + why);
     };
-    refuse(target.ucs, "ucs", "; its compressive strength is fc");
-    refuse(target.fracture_energy, "Gf", "; its G_f follows from relative_ductility, which calibrate holds");
+    refuse(t.ucs, "ucs", "; its compressive strength is fc");
+    refuse(t.fracture_energy, "Gf", "; its G_f follows from relative_ductility, which calibrate holds");
     if (std::isnan(o.tolerance)) o.tolerance = 0.03;
-    return calibrate_cpm(scene_file, overrides, cpm, target, o, log);
+    return calibrate_cpm(scene_file, overrides, cpm, t, o, log);
   }
   if (std::isnan(o.tolerance)) o.tolerance = 0.05;
-  return calibrate_bonded(scene_file, overrides, std::max(parallel, softening), target, o, log);
+  return calibrate_bonded(scene_file, overrides, std::max(parallel, softening), t, o, log);
 }
 
 namespace calibration {

@@ -21,10 +21,13 @@ struct CalibrationTarget {
   double tensile = kNaN;                  // f_t of the tension test (bonded or CPM)
   double compressive = kNaN;              // CPM: f_c of the compression test
   double fracture_energy = kNaN;          // softening bonds: G_f [J/m²] of the tension test
+  // A concrete class of the fib Model Code 2010 ("C30/37", studies/model_code.hpp): the targets not given otherwise
+  // that the scene's model can fit take the class's values (E_ci, ν = 0.2, f_ctm, f_cm, G_F).
+  std::string concrete_class, aggregate = "quartzite";
 };
-// "E=30 GPa,nu=0.2,ucs=40 MPa", "E=35GPa,nu=0.16,ft=3.2MPa,Gf=170.4N/m" or "E=30GPa,nu=0.2,ft=3MPa,fc=40MPa" (any
-// subset, any order; numbers without units are SI). Which targets a scene can use depends on its model: calibrate()
-// refuses the others. Throws InputError.
+// "E=30 GPa,nu=0.2,ucs=40 MPa", "E=35GPa,nu=0.16,ft=3.2MPa,Gf=170.4N/m", "E=30GPa,nu=0.2,ft=3MPa,fc=40MPa" or
+// "class=C30/37[,aggregate=basalt]" (any subset, any order; numbers without units are SI). Which targets a scene
+// can use depends on its model: calibrate() refuses the others. Throws InputError.
 CalibrationTarget parse_targets(const std::string& text);
 
 struct CalibrationOptions {

@@ -53,6 +53,9 @@ ENTRIES = [
      run("{cli}", "run", "{src}/" + SMALL, "-o", "out/r.h5", "--realizations", "2", *SHORT)),
     ("calibrate SCENE.toml --target E=30GPa,nu=0.2,ucs=40MPa",
      covered("calibration_converges_on_a_small_2d_specimen", "E, ν and UCS on a small 2D packing")),
+    ("--target class=C30/37 -o CALIBRATED.toml",
+     covered("concrete_command_prints_a_classs_values_with_units_and_calibrate_takes_those_its_model_fits",
+             "one run of the class's calibration on that scene")),
     ("calibrate scenes/tension_mortar_softening_2d.toml",
      covered("calibrate_on_the_phase_scenes_own_values_converges_in_the_runs_their_headers_say",
              "the header's targets on the scene itself")),
@@ -61,6 +64,7 @@ ENTRIES = [
              "a CPM calibration with f_c on two ranks")),
     ("mesocrack calibrate scenes/cpm_uniax_tension.toml",
      covered("CPM calibration reaches E, nu and f_t targets on a small specimen", "CPM's tension targets")),
+    ("mesocrack concrete C", run("{cli}", "concrete", "C30/37")),
     ("mesocrack summary OUT.h5", run("{cli}", "summary", "out/o.h5")),
     ("mesocrack report OUT.h5", run("{cli}", "report", "out/o.h5")),
     ("mpirun -np 8 build/mesocrack run scenes/uniaxial_2d.toml -o out/u.h5 --realizations 32",
@@ -138,7 +142,7 @@ def check(name, ok, detail=""):
 
 def readme_commands(text):
     """Commands in README.md's code blocks (a line continued by a backslash joined) and inline code."""
-    pattern = re.compile(r"mesocrack (run|generate|calibrate|summary|report|keys)|^make |make [a-z-]+$|"
+    pattern = re.compile(r"mesocrack (run|generate|calibrate|summary|report|keys|concrete)|^make |make [a-z-]+$|"
                          r"python3 benchmarks/|^mpirun|#SBATCH")
     found = []
     for block in re.findall(r"```[a-z]*\n(.*?)```", text, re.S):

@@ -153,3 +153,27 @@ TEST_CASE("ctrl_c_or_sigterm_checkpoint_the_run_and_resume_from_the_file_alone_g
     CHECK(slurp(d / "whole_history.csv") == slurp(d / (fs::path(out).stem().string() + "_history.csv")));
   }
 }
+
+TEST_CASE("resume_from_the_file_alone_in_another_folder_finds_the_files_the_scene_names_relative_to_itself") {
+  // The scene names its specimen relative to its own folder, a/; the resume runs in b/ with no scene given.
+  const TempDir d;
+  fs::create_directories(d / "a");
+  fs::create_directories(d / "b");
+  fs::copy_file(kScenes / "specimens" / "cpm_1x1x2.spheres", d / "a" / "block.spheres");
+  std::string scene = slurp(fs::path(MESOCRACK_SOURCE_DIR) / "tests" / "scenes" / "split_bonded_pull_3d.toml");
+  const std::string named = "../../scenes/specimens/cpm_1x1x2.spheres";
+  REQUIRE(scene.find(named) != std::string::npos);
+  scene.replace(scene.find(named), named.size(), "block.spheres");
+  std::ofstream(d / "a" / "scene.toml") << scene;
+  const std::vector<std::string> common = {"--set", "output.checkpoint_every=20", "--threads", "1"};
+  std::vector<std::string> first = {"run", "a/scene.toml", "-o", "out.h5", "--set", "run.duration=20 us"};
+  first.insert(first.end(), common.begin(), common.end());
+  const Result r = mesocrack(first, d.dir);
+  REQUIRE_MESSAGE(r.code == 0, r.describe());
+  std::vector<std::string> rest = {"run", "--resume", "../out.h5", "--set", "run.duration=40 us"};
+  rest.insert(rest.end(), common.begin(), common.end());
+  const Result again = mesocrack(rest, d / "b");
+  REQUIRE_MESSAGE(again.code == 0, again.describe());
+  CHECK(contains(again.err, "resumed ../out.h5 at step "));
+  CHECK(summary_of("out.h5", d.dir)["time"].number >= 40e-6 * (1 - 1e-9));
+}
