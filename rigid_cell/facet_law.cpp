@@ -18,30 +18,6 @@ constexpr double kCompression = 16;  // the compressive boundary: a circle of ra
 
 }  // namespace
 
-Elastic macroscopic(int dimension, double E0, double alpha) {
-  if (dimension == 2) return {2 * E0 * (1 + alpha) / (3 + alpha), (1 - alpha) / (3 + alpha)};
-  return {E0 * (2 + 3 * alpha) / (4 + alpha), (1 - alpha) / (4 + alpha)};
-}
-
-FacetParams mesoscopic(int dimension, double E, double nu) {
-  const double top = dimension == 2 ? 1.0 / 3.0 : 0.25;
-  if (!(nu > -1 && nu < top)) {
-    std::ostringstream m;
-    m << "a rigid-cell model in " << dimension << "D cannot have Poisson's ratio " << nu << ": allowed (-1, "
-      << (dimension == 2 ? "1/3" : "1/4") << ") (Kveton (3.8))";
-    throw InputError(m.str());
-  }
-  FacetParams p;
-  if (dimension == 2) {  // inverse of macroscopic() in 2D
-    p.alpha = (1 - 3 * nu) / (1 + nu);
-    p.E0 = E * (3 + p.alpha) / (2 * (1 + p.alpha));
-  } else {  // (3.8)
-    p.E0 = E / (1 - 2 * nu);
-    p.alpha = (1 - 4 * nu) / (1 + nu);
-  }
-  return p;
-}
-
 double omega_0(double alpha) {
   // s_T² = 256 − s_N² into the hyperbola: (kA + kShear) s_N² − kB s_N + kC − kShear·256 = 0, its negative root.
   const double a = kA + kShear, b = -kB, c = kC - kShear * kCompression * kCompression;

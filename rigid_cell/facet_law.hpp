@@ -5,7 +5,9 @@
 // that a facet dissipates G_t per unit area in pure tension whatever its length L.
 #pragma once
 #include <Eigen/Core>
+#include <sstream>
 
+#include "engine/errors.hpp"
 #include "engine/keys.hpp"
 
 namespace mc::rigid_cell {
@@ -99,9 +101,32 @@ double rate_increase(const FacetParams& p, double strain_rate);
 struct Elastic {
   double E, nu;
 };
-Elastic macroscopic(int dimension, double E0, double alpha);
+// (Inline: the calibration, above the family's library, reads them in a build without it.)
+inline Elastic macroscopic(int dimension, double E0, double alpha) {
+  if (dimension == 2) return {2 * E0 * (1 + alpha) / (3 + alpha), (1 - alpha) / (3 + alpha)};
+  return {E0 * (2 + 3 * alpha) / (4 + alpha), (1 - alpha) / (4 + alpha)};
+}
+
 // E₀ and α from E and ν; throws InputError when ν leaves (−1, 1/4) in 3D or (−1, 1/3) in 2D.
-FacetParams mesoscopic(int dimension, double E, double nu);
+inline FacetParams mesoscopic(int dimension, double E, double nu) {
+  const double top = dimension == 2 ? 1.0 / 3.0 : 0.25;
+  if (!(nu > -1 && nu < top)) {
+    std::ostringstream m;
+    m << "a rigid-cell model in " << dimension << "D cannot have Poisson's ratio " << nu << ": allowed (-1, "
+      << (dimension == 2 ? "1/3" : "1/4") << ") (Kveton (3.8))";
+    throw InputError(m.str());
+  }
+  FacetParams p;
+  if (dimension == 2) {  // inverse of macroscopic() in 2D
+    p.alpha = (1 - 3 * nu) / (1 + nu);
+    p.E0 = E * (3 + p.alpha) / (2 * (1 + p.alpha));
+  } else {  // (3.8)
+    p.E0 = E / (1 - 2 * nu);
+    p.alpha = (1 - 4 * nu) / (1 + nu);
+  }
+  return p;
+}
+
 
 // What a facet carries between converged steps: the largest damage reached, D_max (irreversibility, (3.17)).
 struct FacetState {

@@ -126,6 +126,7 @@ struct RigidCellSetup {
   std::optional<DynamicsSpec> dynamics;
   std::optional<StressWave<D>> stress_wave;
   std::vector<SectionPlane> sections;
+  std::optional<std::pair<Vec<D>, Vec<D>>> strain_box;  // low and high corners of the mean-strain box
   StaticOptions options;
   bool crack_log = false;
   // Květoň (3.21): the field h that scales each contact facet's f_t by h and G_t by h² at its centroid; null: none.
@@ -183,6 +184,9 @@ class RigidCellSystem final : public System {
   // The mean normal stress across a section plane [Pa], tension positive: the facets between cells on its two
   // sides, their forces' component along the axis over their area projected on the plane.
   double section_stress(int section) const;
+  // Component c (xx, yy, xy in 2D; xx, yy, zz, yz, zx, xy in 3D) of the mean strain over the strain box: the
+  // symmetric part of the least-squares gradient G of the box's nodes' displacements, u_i − ū = G (x_i − x̄).
+  double mean_strain(int c) const { return strain_rows_[c].dot(u_); }
   std::size_t facets_damaged() const;
   std::size_t facets_cracked() const;
   double max_damage() const;
@@ -226,6 +230,7 @@ class RigidCellSystem final : public System {
   std::vector<int> prescribed_;  // reduced degrees of freedom
   std::unique_ptr<StaticSolver<D>> solver_;
   std::vector<Eigen::VectorXd> gauges_;  // reduced rows: a gauge's reading is its row · u
+  std::vector<Eigen::VectorXd> strain_rows_;  // the same for each mean-strain component
   std::optional<GaugeControl> control_;
   std::vector<Series> series_;
 
@@ -253,6 +258,7 @@ class RigidCellSystem final : public System {
   void apply_strength_field(std::vector<FacetParams>& params);
   void build_plates();
   void build_gauges();
+  void build_strain_rows();
   void build_dynamics();
   void dynamic_step();
   void explicit_step();

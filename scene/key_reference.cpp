@@ -25,7 +25,7 @@ std::vector<const KeyTable*> all_key_tables() {
   for (const KeyTable* a : analysis_keys()) t.push_back(a);
   for (const KeyTable* k : {&rigid_cell_keys(), &rigid_cell::facet_law_keys(), &cell_specimen_keys(),
                             &random_field_keys(), &opening_control_keys(), &cell_dynamics_keys(), &stress_wave_keys(),
-                            &sections_keys(), &fibres_keys()})
+                            &sections_keys(), &strain_box_keys(), &fibres_keys()})
     t.push_back(k);
   return t;
 }

@@ -11,6 +11,12 @@ std::string section_history_name(const SectionSpec& s) {
   return m.str();
 }
 
+const char* const* strain_component_names(int dimension) {
+  static const char* const two[] = {"xx", "yy", "xy"};
+  static const char* const three[] = {"xx", "yy", "zz", "yz", "zx", "xy"};
+  return dimension == 2 ? two : three;
+}
+
 std::vector<CellSeries> rigid_cell_series(const Scene& s) {
   using W = CellSeries::What;
   std::vector<CellSeries> out = {{W::Time, "time", "s"},
@@ -47,6 +53,9 @@ std::vector<CellSeries> rigid_cell_series(const Scene& s) {
       if (!s.rigid_cell->fibres.empty())
         out.push_back({W::SectionBridging, name + ".bridging_force", "N", static_cast<int>(i)});
     }
+  if (s.rigid_cell && s.rigid_cell->strain)
+    for (int c = 0; c < (d == 2 ? 3 : 6); ++c)
+      out.push_back({W::Strain, std::string("strain.") + strain_component_names(d)[c], "-", -1, c});
   if (s.rigid_cell && !s.rigid_cell->fibres.empty()) {
     out.push_back({W::FibresBridging, "fibres.bridging", "-"});
     out.push_back({W::FibresPulledOut, "fibres.pulled_out", "-"});

@@ -26,6 +26,7 @@ struct CellSeries {
     Opening,            // an opening probe's reading (`plate` holds the probe's index)
     SectionStress,      // the mean normal stress across a section plane (`plate` holds its index)
     SectionBridging,    // the fibres' force across it
+    Strain,             // a component of the mean strain over [rigid_cell.strain]'s box (`dof` holds its index)
     FibresBridging,     // fibres that carry a force across a crack
     FibresPulledOut,    // fibres pulled out of a side
     FibresRuptured,     // fibres broken
@@ -39,6 +40,10 @@ struct CellSeries {
 };
 
 std::vector<CellSeries> rigid_cell_series(const Scene& s);
+
+// The strain histories' components, in the order of RigidCellSystem::mean_strain: xx, yy, xy (2D); xx, yy, zz,
+// yz, zx, xy (3D).
+const char* const* strain_component_names(int dimension);
 
 // "section.z_70mm": the history of the mean normal stress across a section plane.
 std::string section_history_name(const SectionSpec& s);

@@ -188,6 +188,21 @@ const KeyTable& sections_keys() {
   return t;
 }
 
+const KeyTable& strain_box_keys() {
+  static const KeyTable t{
+      .name = "rigid_cell.strain",
+      .title = "[rigid_cell.strain]",
+      .about = "The mean strain of the cells whose nodes lie in a box, by the least-squares displacement gradient of "
+               "those nodes: histories strain.xx, strain.yy, strain.xy (3D: and strain.zz, strain.yz, strain.zx), "
+               "tensile positive, engineering-free (ε_xy is half the shear angle). An extensometer over the box: "
+               "E and ν of a tension prism read away from its plates.",
+      .keys = {
+          {.name = "box_lo", .type = KeyType::Reals, .unit = Unit::Length, .need = Need::Required, .doc = "the box's low corner"},
+          {.name = "box_hi", .type = KeyType::Reals, .unit = Unit::Length, .need = Need::Required, .doc = "its high corner"},
+      }};
+  return t;
+}
+
 namespace scene_read {
 
 namespace {
@@ -492,6 +507,17 @@ void read_sections(const Table& t, Scene& s) {
   t.finish();
 }
 
+// [rigid_cell.strain]: the box of the strain histories (the cells in it are counted when the cells exist).
+void read_strain_box(const Table& t, Scene& s) {
+  const KeyReader k(t, strain_box_keys());
+  StrainBoxSpec b;
+  b.box_lo = vec(k, "box_lo", s.dimension);
+  b.box_hi = vec(k, "box_hi", s.dimension);
+  check_box(k, "box_lo", b.box_lo, "box_hi", b.box_hi);
+  s.rigid_cell->strain = b;
+  t.finish();
+}
+
 // The load step, or the time step of dynamics: given ('fixed'); under central differences it may instead be the
 // fraction 'safety' of the critical step (0.8 unless given), as in the explicit engine.
 void read_load_step(const Table& root, Scene& s) {
@@ -535,6 +561,7 @@ void read_rigid_cell(const Table& root, Scene& s) {
   const std::optional<Table> dynamics = optional_table_of(t, cell_dynamics_keys());
   const std::optional<Table> wave = optional_table_of(t, stress_wave_keys());
   const std::optional<Table> sections = optional_table_of(t, sections_keys());
+  const std::optional<Table> strain = optional_table_of(t, strain_box_keys());
   const std::vector<Table> fibres = tables_of(t, fibres_keys());
   t.finish();
   read_facet_laws(root, s);
@@ -547,6 +574,7 @@ void read_rigid_cell(const Table& root, Scene& s) {
   if (dynamics) read_dynamics(*dynamics, s);
   if (wave) read_stress_wave(*wave, s);
   if (sections) read_sections(*sections, s);
+  if (strain) read_strain_box(*strain, s);
   read_mesostructure(root, s);
   read_groups(root, s);
   check_plates(root, s);

@@ -235,8 +235,15 @@ struct FibreFamilySpec {
   std::vector<double> ends;       // given fibres: x, y, z of end a, then of end b, per fibre [m]
 };
 
+// The mean strain of the cells whose nodes lie in a box ([rigid_cell.strain]): the least-squares displacement
+// gradient of their nodes, its symmetric part a history per component (an extensometer over the box).
+struct StrainBoxSpec {
+  std::vector<double> box_lo, box_hi;
+};
+
 struct RigidCellSpec {
   CellSpecimenSpec specimen;
+  std::optional<StrainBoxSpec> strain;
   std::vector<FibreFamilySpec> fibres;
   std::vector<SectionSpec> sections;
   std::optional<StressWaveSpec> stress_wave;

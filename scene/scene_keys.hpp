@@ -41,6 +41,7 @@ const KeyTable& opening_control_keys();      // [rigid_cell.opening_control]
 const KeyTable& cell_dynamics_keys();        // [rigid_cell.dynamics]
 const KeyTable& stress_wave_keys();          // [rigid_cell.stress_wave]
 const KeyTable& sections_keys();             // [rigid_cell.sections]
+const KeyTable& strain_box_keys();           // [rigid_cell.strain]
 const KeyTable& fibres_keys();               // [[rigid_cell.fibres]]
 
 // Every table, the analyses' (scene/analysis.cpp) and the models' (scene/model_registry.cpp) included, in the

@@ -97,6 +97,13 @@ CalibrationResult calibrate(const std::string& scene_file, const std::vector<std
   const TomlDoc doc = TomlDoc::load(scene_file, overrides);
   const int parallel = contacts_entry(doc, ParallelBond::name), softening = contacts_entry(doc, SofteningBond::name),
             cpm = contacts_entry(doc, Cpm::name);
+  const Scene scene = read_scene(doc, scene_file);
+  if (scene.rigid_cell) {
+    const CalibrationTarget t = with_class_values(target, false, true, true, false, log);
+    CalibrationOptions o = options;
+    if (std::isnan(o.tolerance)) o.tolerance = 0.05;
+    return calibrate_rigid_cell(scene_file, overrides, contacts_entry(doc, "facet_damage"), t, o, log);
+  }
   const int found = (parallel >= 0) + (softening >= 0) + (cpm >= 0);
   if (found != 1)
     throw InputError(scene_file +
@@ -104,7 +111,6 @@ CalibrationResult calibrate(const std::string& scene_file, const std::vector<std
                      "compression, ch. 7 in tension), model = \"softening_bond\" (Tang ch. 7, in tension) or "
                      "model = \"cpm\" (Šmilauer, \"Parameter calibration\")" +
                      (found > 1 ? "; this scene has several: calibrate each material in its own scene" : ""));
-  const Scene scene = read_scene(doc, scene_file);
   const auto* u = scene.analysis<UniaxialAnalysis>();
   const CalibrationTarget t = with_class_values(target, cpm >= 0, softening >= 0, u && u->tension,
                                                 !options.compression_scene.empty(), log);
@@ -148,12 +154,14 @@ std::string run_file(const std::string& output, int iteration, const std::string
   return (out.parent_path() / (out.stem().string() + "_it" + std::to_string(iteration) + suffix + ".h5")).string();
 }
 
-void write_scene(const std::string& scene_file, const std::vector<std::string>& overrides, const std::string& output) {
+void write_scene(const std::string& scene_file, const std::vector<std::string>& overrides, const std::string& output,
+                 const std::string& note) {
   if (!Ranks::world().root()) return;  // every rank of an MPI launch holds the same scene: rank 0 writes it
   const std::string text = TomlDoc::load(scene_file, overrides).text();
   const std::string tmp = output + ".tmp";
   {
     std::ofstream f(tmp);
+    if (!note.empty()) f << "# " << note << "\n";
     f << text;
     if (!f) throw IoError(tmp + ": cannot write the calibrated scene");
   }

@@ -34,13 +34,19 @@ class RunCost {
 std::string run_file(const std::string& output, int iteration, const std::string& suffix = "");
 
 // The scene `scene_file` with `overrides` applied (listed in its header comment), written to `output` whole or
-// not at all.
-void write_scene(const std::string& scene_file, const std::vector<std::string>& overrides, const std::string& output);
+// not at all; a `note` goes first, as a comment.
+void write_scene(const std::string& scene_file, const std::vector<std::string>& overrides, const std::string& output,
+                 const std::string& note = "");
 
 // Tang's procedure (§6.3; ch. 7 in tension) on the scene's parallel_bond or softening_bond entry `entry`
 // (studies/calibration_bonded.cpp); options.tolerance is set.
 CalibrationResult calibrate_bonded(const std::string& scene_file, const std::vector<std::string>& overrides, int entry,
                                    const CalibrationTarget& target, const CalibrationOptions& options, std::FILE* log);
+
+// The rigid-cell family's procedure on the scene's facet_damage entry `entry` (studies/calibration_rigid_cell.cpp).
+CalibrationResult calibrate_rigid_cell(const std::string& scene_file, const std::vector<std::string>& overrides,
+                                       int entry, const CalibrationTarget& target, const CalibrationOptions& options,
+                                       std::FILE* log);
 
 // Šmilauer's procedure on the scene's cpm entry `entry` (studies/calibration_cpm.cpp); options.tolerance is set.
 CalibrationResult calibrate_cpm(const std::string& scene_file, const std::vector<std::string>& overrides, int entry,

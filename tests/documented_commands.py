@@ -129,6 +129,9 @@ HINTS = {
 # tests/calibration_tension.cpp, whose list must name the scene; or not, and why.
 HEADER_CALIBRATIONS = "calibrate_on_the_phase_scenes_own_values_converges_in_the_runs_their_headers_say"
 CALIBRATIONS_NOT_RUN = {
+    "rigid_cell_calibration_tension_2d.toml":
+        "run, and its result checked, by rigid_cell_calibration_to_a_model_code_class_gives_its_e_nu_ft_and_gf_in_"
+        "the_calibrated_scene (tests/rigid_cell/rigid_cell_calibration.cpp)",
     "pull_concrete_tension_2d.toml": "15 s a run on one core, 8 iterations: the phase scenes check the same path",
     "pull_concrete_softening_tension_2d.toml": "8 minutes a run (its header): the phase scenes check the same path",
 }

@@ -146,6 +146,7 @@ RigidCellSetup<D> setup_of(const Scene& s) {
         DynamicsSpec{d->central_difference ? DynamicsSpec::Scheme::CentralDifference : DynamicsSpec::Scheme::Newmark,
                      d->beta, d->gamma, d->mass_damping, d->stiffness_damping};
   for (const SectionSpec& x : r.sections) setup.sections.push_back({x.axis, x.at});
+  if (const auto& b = r.strain) setup.strain_box = {{vec_of<D>(b->box_lo), vec_of<D>(b->box_hi)}};
   setup.options = {r.damage_tolerance, r.force_tolerance, r.max_iterations};
   for (std::size_t i = 0; i + D <= r.specimen.nodes.size(); i += D)
     setup.nodes.push_back(vec_of<D>(std::vector<double>(r.specimen.nodes.begin() + static_cast<std::ptrdiff_t>(i),
@@ -177,6 +178,7 @@ std::vector<Series> series_of(const Scene& s, const RigidCellSystem<D>* sys) {
       case W::PlateVelocity: f = [sys, p, k] { return sys->plate_velocity(p, k); }; break;
       case W::Opening: f = [sys, p] { return sys->opening(p); }; break;
       case W::SectionStress: f = [sys, p] { return sys->section_stress(p); }; break;
+      case W::Strain: f = [sys, k] { return sys->mean_strain(k); }; break;
       case W::SectionBridging: f = [sys, p] { return sys->section_bridging_force(p); }; break;
       case W::FibresBridging: f = [sys] { return static_cast<double>(sys->fibre_counts()[0]); }; break;
       case W::FibresPulledOut: f = [sys] { return static_cast<double>(sys->fibre_counts()[1]); }; break;

@@ -29,6 +29,58 @@ TEST_CASE("rigid_cell_box_between_plates_answers_with_the_facet_modulus_when_alp
   CHECK(final_value(f, "energy.boundary_work") == doctest::Approx(0.5 * force * travel).epsilon(1e-9));
 }
 
+// The mean strain over a box ([rigid_cell.strain], the least-squares gradient of its nodes' displacements) read
+// as an extensometer: with α = 1 the cells between the plates take a uniform strain (E = E₀, ν = 0), so over the
+// middle half the axial stress across a section over the axial strain is E₀, and the lateral and shear strains
+// vanish. Not to round-off: the plates move their cells rigidly, which perturbs the uniform field near them. Measured
+// 50 mm away: σ/ε within 1.7e-5 of E₀ (bound 1e-4); lateral and shear strains 1.8e-4 to 8.6e-4 of the axial one
+// (2D and 3D; bound 2e-3), where a wrong gradient (a transposed or halved weight) would be off by order one.
+TEST_CASE("rigid_cell_mean_strain_over_a_box_reads_the_uniform_strain_of_a_box_pulled_with_alpha_one") {
+  const TempDir d;
+  for (const int dim : {2, 3}) {
+    CAPTURE(dim);
+    std::string scene = slurp(kScenes / "rigid_cell_tension_2d.toml");
+    const std::string name = "box" + std::to_string(dim);
+    if (dim == 3)
+      for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+               {"dimension = 2", "dimension = 3"},
+               {"size = [\"40 mm\", \"200 mm\"]", "size = [\"40 mm\", \"200 mm\", \"20 mm\"]"},
+               {"l_min = \"2 mm\"", "l_min = \"4 mm\""},
+               {"box_lo = [0, 0]", "box_lo = [0, 0, 0]"},
+               {"box_hi = [\"40 mm\", \"2 mm\"]", "box_hi = [\"40 mm\", \"4 mm\", \"20 mm\"]"},
+               {"box_lo = [0, \"198 mm\"]", "box_lo = [0, \"196 mm\", 0]"},
+               {"box_hi = [\"40 mm\", \"200 mm\"]", "box_hi = [\"40 mm\", \"200 mm\", \"20 mm\"]"},
+               {"velocity = [0, \"1 mm/s\"]", "velocity = [0, \"1 mm/s\", 0]"}}) {
+        REQUIRE_MESSAGE(scene.find(from) != std::string::npos, from);
+        scene.replace(scene.find(from), from.size(), to);
+      }
+    scene += dim == 2 ? "[rigid_cell.strain]\nbox_lo = [0, \"50 mm\"]\nbox_hi = [\"40 mm\", \"150 mm\"]\n"
+                      : "[rigid_cell.strain]\nbox_lo = [0, \"50 mm\", 0]\n"
+                        "box_hi = [\"40 mm\", \"150 mm\", \"20 mm\"]\n";
+    scene += "[rigid_cell.sections]\naxis = \"y\"\nat = [\"100 mm\"]\n";
+    write_file(d / (name + ".toml"), scene);
+    const Result r = mesocrack({"run", name + ".toml", "-o", name + ".h5"}, d.dir);
+    REQUIRE_MESSAGE(r.code == 0, r.describe());
+    const mc::H5File f((d / (name + ".h5")).string(), mc::H5File::Mode::ReadOnly);
+    const double eyy = final_value(f, "strain.yy"), E0 = 30e9;
+    CHECK(eyy > 0);
+    CHECK(final_value(f, "section.y_100mm") / eyy == doctest::Approx(E0).epsilon(1e-4));
+    CHECK(std::abs(final_value(f, "strain.xx") / eyy) < 2e-3);
+    CHECK(std::abs(final_value(f, "strain.xy") / eyy) < 2e-3);
+    if (dim == 3) {
+      CHECK(std::abs(final_value(f, "strain.zz") / eyy) < 2e-3);
+      CHECK(std::abs(final_value(f, "strain.yz") / eyy) < 2e-3);
+    }
+  }
+  // A box that holds too few nodes is refused naming the table.
+  std::string scene = slurp(kScenes / "rigid_cell_tension_2d.toml") +
+                      "[rigid_cell.strain]\nbox_lo = [0, \"50 mm\"]\nbox_hi = [\"0.1 mm\", \"50.1 mm\"]\n";
+  write_file(d / "tiny.toml", scene);
+  const Result bad = mesocrack({"run", "tiny.toml", "-o", "tiny.h5"}, d.dir);
+  CHECK_MESSAGE(bad.code == 2, bad.describe());
+  CHECK_MESSAGE(contains(bad.err, "[rigid_cell.strain]"), bad.err);
+}
+
 TEST_CASE("rigid_cell_brazilian_disc_resumed_halfway_gives_the_same_bits") {
   const TempDir d;
   const std::string scene = (kScenes / "brazilian_2d.toml").string();
