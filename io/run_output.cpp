@@ -154,7 +154,10 @@ RunOutput::RunOutput(const std::string& path, const std::string& scene_text, con
 void RunOutput::write_initial(const std::string& scene_text, const std::string& scene_file, const SpecimenData& s) {
   file_.set_attr("/", "format", std::string("mesocrack-1"));
   file_.set_attr("/", "dimension", static_cast<std::int64_t>(s.dimension));
-  file_.set_attr("/", "scene_file", scene_file);
+  // Absolute, so that `run --resume OUT.h5` alone, from any folder, finds the files the scene names relative to it.
+  const std::string where =
+      scene_file.empty() ? scene_file : std::filesystem::absolute(scene_file).lexically_normal().string();
+  file_.set_attr("/", "scene_file", where);
   file_.write_string("/scene", scene_text);
   const hsize_t n = s.radius.size();
   file_.write("/specimen/x", s.x, {n, static_cast<hsize_t>(s.dimension)});

@@ -1,5 +1,6 @@
 #include "scene/model_registry.hpp"
 
+#include <cstdio>
 #include <functional>
 #include <memory>
 
@@ -84,6 +85,22 @@ int contacts_entry(const TomlDoc& doc, const std::string& model) {
     found = static_cast<int>(i);
   }
   return found;
+}
+
+std::vector<std::string> facet_law_overrides(int entry, bool by_facets, double stiffness, double ratio,
+                                             double tensile_strength, double fracture_energy) {
+  auto line = [&](const char* key, double value, const char* unit) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%.10g%s%s", value, *unit ? " " : "", unit);
+    return "contacts[" + std::to_string(entry) + "]." + key + "=" + b;
+  };
+  std::vector<std::string> out = {line(by_facets ? "E0" : "modulus", stiffness, "Pa"),
+                                  line(by_facets ? "alpha" : "poisson_ratio", ratio, "")};
+  if (tensile_strength > 0) {
+    out.push_back(line("tensile_strength", tensile_strength, "Pa"));
+    out.push_back(line("fracture_energy", fracture_energy, "N/m"));
+  }
+  return out;
 }
 
 }  // namespace mc

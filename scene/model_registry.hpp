@@ -56,6 +56,11 @@ template <class Model, class T>
   KeyReader(tables_of(doc.root(), contacts_keys()).at(static_cast<std::size_t>(entry)), keys).fail(k->name, what);
 }
 
+// The --set lines that give a rigid-cell scene's facet_damage entry `entry` its elastic constants, f_t and G_t: E₀
+// and α when `by_facets` (the scene gives those), else the macroscopic modulus and poisson_ratio (Květoň (3.8)).
+std::vector<std::string> facet_law_overrides(int entry, bool by_facets, double stiffness, double ratio,
+                                             double tensile_strength, double fracture_energy);
+
 // The --set lines "contacts[entry].key=value" that change the entry's parameters from `from` to `to`.
 template <class Model>
 std::vector<std::string> contact_overrides(int entry, const typename Model::Params& from,

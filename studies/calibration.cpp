@@ -55,9 +55,8 @@ CalibrationTarget parse_targets(const std::string& text) {
     return c;
   } catch (const InputError& e) {
     throw InputError(std::string(e.what()) +
-                     " (allowed targets: E [Pa], nu in (0, 0.5); ucs [Pa] in compression; ft [Pa] in tension, with "
-                     "Gf [N/m] for softening bonds and fc [Pa] for cpm; class, a fib Model Code 2010 class such as "
-                     "C30/37, with aggregate = quartzite, basalt, limestone or sandstone)");
+                     " (allowed: E [Pa], nu in (0, 0.5), ucs, ft, fc [Pa], Gf [N/m], class=C30/37 (fib Model Code "
+                     "2010), aggregate; which fit: mesocrack calibrate --help)");
   }
 }
 

@@ -41,13 +41,6 @@ struct CellMeasured {
   double E = kNaN, nu = kNaN, ft = kNaN, gf = kNaN, wall = 0;
 };
 
-std::string with_unit(double v, const char* unit) {
-  std::ostringstream s;
-  s.precision(10);
-  s << v << " " << unit;
-  return s.str();
-}
-
 class RigidCellCalibration {
  public:
   RigidCellCalibration(const std::string& scene_file, const std::vector<std::string>& overrides, int entry,
@@ -91,10 +84,12 @@ class RigidCellCalibration {
     RunCost cost[2];
     for (int it = 1; it <= options_.max_iterations; ++it) {
       RunCost& c = cost[elastic ? 0 : 1];
-      if (c.beyond_bound(knobs_.E, elastic ? 1.0 : knobs_.gt / knobs_.ft, elastic ? "elastic" : "full", log_)) break;
+      // Static load steps: a run's steps follow the opening it must reach (w ∝ G_t/f_t), not the stiffness.
+      const double reach = elastic ? 1.0 : knobs_.gt / knobs_.ft;
+      if (c.beyond_bound(1.0, reach, elastic ? "elastic" : "full", log_)) break;
       ran = knobs_;
       const CellMeasured m = trial(it, elastic);
-      c.ran(m.wall, knobs_.E, elastic ? 1.0 : knobs_.gt / knobs_.ft);
+      c.ran(m.wall, 1.0, reach);
       log_line(it, elastic, m);
       res_.iterations = it;
       if (elastic) {
@@ -156,8 +151,8 @@ class RigidCellCalibration {
                        ") only (Květoň (3.8), α > 0)");
     const bool full = !std::isnan(target_.tensile) || !std::isnan(target_.fracture_energy);
     if (full && !(knobs_.ft > 0))
-      throw InputError(file_ + ": contacts[" + std::to_string(entry_) +
-                       "].tensile_strength is 0 (elastic facets): give it and fracture_energy to start from");
+      throw InputError(file_ + ": the facets are elastic (no tensile strength): give them a strength and a "
+                       "fracture energy to start from");
     if (!std::isnan(target_.fracture_energy)) {
       const bool stops = std::any_of(base.stops.begin(), base.stops.end(), [](const StopSpec& s) {
         return s.kind == StopSpec::Kind::PostPeak && s.value <= kCellIncompleteStop;
@@ -173,21 +168,11 @@ class RigidCellCalibration {
     return std::isnan(target) || rel(value, target) <= options_.tolerance;
   }
 
-  // The entry's keys for these knobs, as --set strings; E and ν back through (3.8) when the scene gives E₀ and α.
+  // The entry's --set lines for these knobs; E and ν back through (3.8) when the scene gives E₀ and α.
   std::vector<std::string> overrides_of(const CellKnobs& k) const {
-    const std::string e = "contacts[" + std::to_string(entry_) + "].";
-    std::vector<std::string> o;
-    if (macro_form_) {
-      o = {e + "modulus=" + with_unit(k.E, "Pa"), e + "poisson_ratio=" + with_unit(k.nu, "")};
-    } else {
-      const rigid_cell::FacetParams p = rigid_cell::mesoscopic(d_, k.E, k.nu);
-      o = {e + "E0=" + with_unit(p.E0, "Pa"), e + "alpha=" + with_unit(p.alpha, "")};
-    }
-    for (auto& s : o)
-      if (s.back() == ' ') s.pop_back();
-    if (k.ft > 0) o.push_back(e + "tensile_strength=" + with_unit(k.ft, "Pa"));
-    if (k.ft > 0) o.push_back(e + "fracture_energy=" + with_unit(k.gt, "N/m"));
-    return o;
+    if (macro_form_) return facet_law_overrides(entry_, false, k.E, k.nu, k.ft, k.gt);
+    const rigid_cell::FacetParams p = rigid_cell::mesoscopic(d_, k.E, k.nu);
+    return facet_law_overrides(entry_, true, p.E0, p.alpha, k.ft, k.gt);
   }
 
   struct CellRan {
