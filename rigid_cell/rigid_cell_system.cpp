@@ -9,6 +9,7 @@
 
 #include "engine/errors.hpp"
 #include "engine/ramp.hpp"
+#include "rigid_cell/box_strain.hpp"
 #include "rigid_cell/fibre_crossings.hpp"
 #include "rigid_cell/node_placement.hpp"
 
@@ -277,44 +278,16 @@ void RigidCellSystem<D>::build_plates() {
 
 // Each gauge's row over the reduced degrees of freedom, and the drive of an opening control: its plate's held
 // translations along its unit direction. A drive that does not open its gauge at the start is refused.
-// The least-squares gradient of the box's nodes' displacements, G = (Σ u_i dx_iᵀ) M⁻¹ with dx_i = x_i − x̄ and
-// M = Σ dx_i dx_iᵀ, is linear in u: G_ab = Σ_i u_i,a w_i,b with w_i = M⁻¹ dx_i. Each component of its symmetric
-// part is therefore a row over the cells' translations, mapped onto the reduced degrees of freedom like a gauge's.
+// Each component of the box's mean strain is a row over the cells' translations (box_strain.hpp), mapped onto the
+// reduced degrees of freedom like a gauge's.
 template <int D>
 void RigidCellSystem<D>::build_strain_rows() {
   if (!setup_.strain_box) return;
+  std::vector<Vec<D>> nodes;
+  for (const auto& c : tessellation_.cells) nodes.push_back(c.node);
   const auto& [lo, hi] = *setup_.strain_box;
-  std::vector<int> in;
-  Vec<D> mean = Vec<D>::Zero();
-  for (int i = 0; i < cells(); ++i) {
-    const Vec<D>& x = tessellation_.cells[i].node;
-    if ((x.array() >= lo.array()).all() && (x.array() <= hi.array()).all()) in.push_back(i), mean += x;
-  }
-  if (in.size() < static_cast<std::size_t>(D + 1))
-    throw InputError("[rigid_cell.strain]: its box holds " + std::to_string(in.size()) + " cell nodes; the mean " +
-                     "strain needs at least " + std::to_string(D + 1) + " not on one " + (D == 2 ? "line" : "plane"));
-  mean /= static_cast<double>(in.size());
-  Eigen::Matrix<double, D, D> m = Eigen::Matrix<double, D, D>::Zero();
-  for (int i : in) m += (tessellation_.cells[i].node - mean) * (tessellation_.cells[i].node - mean).transpose();
-  const Eigen::FullPivLU<Eigen::Matrix<double, D, D>> lu(m);
-  if (lu.rank() < D)
-    throw InputError("[rigid_cell.strain]: the nodes in its box lie on one " + std::string(D == 2 ? "line" : "plane") +
-                     ": widen the box");
-  const Eigen::Matrix<double, D, D> m_inv = lu.inverse();
-  constexpr int kComponents = D == 2 ? 3 : 6;
-  // The pairs (a, b) of each component, in strain_component_names' order.
-  const int pairs[6][2] = {{0, 0}, {1, 1}, {D == 2 ? 0 : 2, D == 2 ? 1 : 2}, {1, 2}, {2, 0}, {0, 1}};
-  const Eigen::SparseMatrix<double>& map = plates_->map();
-  for (int c = 0; c < kComponents; ++c) {
-    const int a = pairs[c][0], b = pairs[c][1];
-    Eigen::VectorXd full = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(cells()) * kDofs);
-    for (int i : in) {
-      const Vec<D> w = m_inv * (tessellation_.cells[i].node - mean);
-      full[i * kDofs + a] += 0.5 * w[b];  // ε_ab = ½ (G_ab + G_ba)
-      full[i * kDofs + b] += 0.5 * w[a];
-    }
-    strain_rows_.push_back(map.transpose() * full);
-  }
+  for (const Eigen::VectorXd& full : box_strain_rows<D>(nodes, lo, hi, kDofs))
+    strain_rows_.push_back(plates_->map().transpose() * full);
 }
 
 template <int D>

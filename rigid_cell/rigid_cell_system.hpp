@@ -184,8 +184,8 @@ class RigidCellSystem final : public System {
   // The mean normal stress across a section plane [Pa], tension positive: the facets between cells on its two
   // sides, their forces' component along the axis over their area projected on the plane.
   double section_stress(int section) const;
-  // Component c (xx, yy, xy in 2D; xx, yy, zz, yz, zx, xy in 3D) of the mean strain over the strain box: the
-  // symmetric part of the least-squares gradient G of the box's nodes' displacements, u_i − ū = G (x_i − x̄).
+  // Component c (xx, yy, xy in 2D; xx, yy, zz, yz, zx, xy in 3D) of the mean strain over the strain box
+  // (box_strain.hpp).
   double mean_strain(int c) const { return strain_rows_[c].dot(u_); }
   std::size_t facets_damaged() const;
   std::size_t facets_cracked() const;

@@ -175,13 +175,9 @@ class RigidCellCalibration {
     return facet_law_overrides(entry_, true, p.E0, p.alpha, k.ft, k.gt);
   }
 
-  struct CellRan {
-    double E, nu, ft, gf, wall;
-  };
-
   CellMeasured trial(int it, bool elastic) const {
     const std::string out = run_file(options_.output, it);
-    const auto ran = share_values<CellRan>(Ranks::world(), 1, [&](int) {
+    const auto ran = share_values<CellMeasured>(Ranks::world(), 1, [&](int) {
       std::vector<std::string> o = overrides_;
       CellKnobs k = knobs_;
       if (elastic) k.ft *= kCellStrong, k.gt *= kCellStrong * kCellStrong;  // the crack band's f_t²/G_t kept
@@ -191,17 +187,18 @@ class RigidCellCalibration {
       if (elastic) scene.stops.clear();
       RunOptions ro;
       ro.output = out;
-      const RunResult r = run_scene(scene, ro);
-      const CellMeasured m = measure(out, elastic);
-      return CellRan{m.E, m.nu, m.ft, m.gf, r.wall_seconds};
+      const double wall = run_scene(scene, ro).wall_seconds;
+      CellMeasured m = measure(out, elastic);
+      m.wall = wall;
+      return m;
     });
-    return {ran[0].E, ran[0].nu, ran[0].ft, ran[0].gf, ran[0].wall};
+    return ran[0];
   }
 
   CellMeasured measure(const std::string& out, bool elastic) const {
     const StoredRun run = read_stored_run(out);
     const auto& h = run.histories;
-    const std::string xyz = "xyz";
+    auto normal_strain = [&](int k) { return std::string("strain.") + strain_component_names(d_)[k]; };
     auto series = [&](const std::string& name) -> const std::vector<double>& {
       const auto i = h.find(name);
       if (i == h.end() || i->second.size() < 2)
@@ -209,12 +206,12 @@ class RigidCellCalibration {
       return i->second;
     };
     const auto& sigma = series(section_);
-    const auto& eps = series(std::string("strain.") + xyz[axis_] + xyz[axis_]);
+    const auto& eps = series(normal_strain(axis_));
     CellMeasured m;
     if (elastic) {
       double lateral = 0;
       for (int k = 0; k < d_; ++k)
-        if (k != axis_) lateral += series(std::string("strain.") + xyz[k] + xyz[k]).back() / (d_ - 1);
+        if (k != axis_) lateral += series(normal_strain(k)).back() / (d_ - 1);
       m.E = sigma.back() / eps.back();
       m.nu = -lateral / eps.back();
       return m;
