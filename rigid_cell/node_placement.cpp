@@ -1,5 +1,6 @@
 #include "rigid_cell/node_placement.hpp"
 
+#include <algorithm>
 #include <limits>
 
 #include "engine/random_stream.hpp"
@@ -9,37 +10,37 @@ namespace mc::rigid_cell {
 
 namespace {
 
-// Stops the search at the first node within the radius.
-struct AnyWithin {
+// Stops the search at the first node nearer than the mean of its spacing and the candidate's.
+struct AnyTooNear {
   using DistanceType = double;
   using IndexType = std::size_t;
-  double radius2;
+  const std::vector<double>& spacing;  // of each node kept
+  double own, radius2;                 // the candidate's spacing; the search radius², the farthest a node may matter
   bool found = false;
   std::size_t size() const { return found ? 1 : 0; }
   bool full() const { return found; }
   double worstDist() const { return radius2; }
-  bool addPoint(double d2, std::size_t) {
-    if (d2 < radius2) found = true;
+  bool addPoint(double d2, std::size_t i) {
+    const double least = 0.5 * (own + spacing[i]);
+    if (d2 < least * least) found = true;
     return !found;
   }
 };
 
-}  // namespace
-
+// Random sequential addition of candidates drawn in [lo, hi], until max_rejections in a row were refused.
 template <int D>
-std::vector<Vec<D>> place_nodes(const SpecimenShape<D>& shape, double l_min, std::uint64_t seed,
-                                int max_rejections) {
-  std::vector<Vec<D>> nodes;
-  NodeCloud<D> cloud{nodes};
-  DynamicNodeTree<D> tree(D, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  const Vec<D> lo = shape.lo(), hi = shape.hi();
-  RandomStream random(seed);
+void add_nodes(const SpecimenShape<D>& shape, const NodeSpacing<D>& spacing, const Vec<D>& lo, const Vec<D>& hi,
+               RandomStream& random, int max_rejections, std::vector<Vec<D>>& nodes, std::vector<double>& own,
+               DynamicNodeTree<D>& tree) {
+  const double largest = spacing.largest();
   for (int rejected = 0; rejected < max_rejections;) {
     Vec<D> x;
     for (int k = 0; k < D; ++k) x[k] = random.uniform(lo[k], hi[k]);
-    AnyWithin near{l_min * l_min};
-    bool keep = shape.inside(x) && shape.depth(x) >= 0.5 * l_min;
+    const double l = spacing.at(x);
+    bool keep = shape.inside(x) && shape.depth(x) >= 0.5 * l;
     if (keep && !nodes.empty()) {
+      const double reach = 0.5 * (l + largest);
+      AnyTooNear near{own, l, reach * reach};
       tree.findNeighbors(near, x.data(), nanoflann::SearchParams());
       keep = !near.found;
     }
@@ -49,9 +50,42 @@ std::vector<Vec<D>> place_nodes(const SpecimenShape<D>& shape, double l_min, std
     }
     rejected = 0;
     nodes.push_back(x);
+    own.push_back(l);
     tree.addPoints(nodes.size() - 1, nodes.size() - 1);
   }
+}
+
+}  // namespace
+
+template <int D>
+double NodeSpacing<D>::at(const Vec<D>& x) const {
+  if (uniform()) return l_min;
+  const double away = (x - x.cwiseMax(fine_lo).cwiseMin(fine_hi)).norm();
+  return std::min(l_max, l_min + grading * away);
+}
+
+template <int D>
+std::vector<Vec<D>> place_nodes(const SpecimenShape<D>& shape, const NodeSpacing<D>& spacing, std::uint64_t seed,
+                                int max_rejections) {
+  std::vector<Vec<D>> nodes;
+  std::vector<double> own;
+  NodeCloud<D> cloud{nodes};
+  DynamicNodeTree<D> tree(D, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+  const Vec<D> lo = shape.lo(), hi = shape.hi();
+  RandomStream random(seed);
+  if (!spacing.uniform()) {
+    const Vec<D> fine_lo = spacing.fine_lo.cwiseMax(lo), fine_hi = spacing.fine_hi.cwiseMin(hi);
+    if ((fine_hi - fine_lo).minCoeff() > 0)
+      add_nodes(shape, spacing, fine_lo, fine_hi, random, max_rejections, nodes, own, tree);
+  }
+  add_nodes(shape, spacing, lo, hi, random, max_rejections, nodes, own, tree);
   return nodes;
+}
+
+template <int D>
+std::vector<Vec<D>> place_nodes(const SpecimenShape<D>& shape, double l_min, std::uint64_t seed,
+                                int max_rejections) {
+  return place_nodes(shape, NodeSpacing<D>{.l_min = l_min, .l_max = l_min}, seed, max_rejections);
 }
 
 template <int D>
@@ -75,6 +109,10 @@ NearestPair nearest_pair(const std::vector<Vec<D>>& nodes) {
   return best;
 }
 
+template struct NodeSpacing<2>;
+template struct NodeSpacing<3>;
+template std::vector<Vec<2>> place_nodes(const SpecimenShape<2>&, const NodeSpacing<2>&, std::uint64_t, int);
+template std::vector<Vec<3>> place_nodes(const SpecimenShape<3>&, const NodeSpacing<3>&, std::uint64_t, int);
 template std::vector<Vec<2>> place_nodes(const SpecimenShape<2>&, double, std::uint64_t, int);
 template std::vector<Vec<3>> place_nodes(const SpecimenShape<3>&, double, std::uint64_t, int);
 template NearestPair nearest_pair(const std::vector<Vec<2>>&);

@@ -17,8 +17,8 @@ namespace mc::rigid_cell {
 
 namespace {
 
-// Cells reach at most about l_min from their node once the placement is saturated; three times that is a safe
-// band for the mirror images (tessellation.hpp).
+// Cells reach at most about l_min (l_max where they coarsen) from their node once the placement is saturated;
+// three times that is a safe band for the mirror images (tessellation.hpp).
 constexpr double kReachPerLmin = 3.0;
 
 template <int D>
@@ -167,9 +167,9 @@ void RigidCellSystem<D>::build_cells() {
       if (setup_.nodes[i] == setup_.nodes[j])
         throw InputError("specimen.nodes: nodes " + std::to_string(j) + " and " + std::to_string(i) + " coincide");
   }
-  const auto nodes = setup_.nodes.empty() ? place_nodes(*setup_.shape, setup_.l_min, setup_.seed, setup_.max_rejections)
+  const auto nodes = setup_.nodes.empty() ? place_nodes(*setup_.shape, setup_.spacing, setup_.seed, setup_.max_rejections)
                                           : setup_.nodes;
-  tessellation_ = tessellate(nodes, *setup_.shape, kReachPerLmin * setup_.l_min);
+  tessellation_ = tessellate(nodes, *setup_.shape, kReachPerLmin * setup_.spacing.largest());
   polygons_ = std::make_unique<const CellPolygons<D>>(tessellation_);
   for (const auto& c : tessellation_.cells) phase_.push_back(setup_.phase_at ? setup_.phase_at(c.node) : 0);
   std::vector<FacetParams> params;
@@ -266,7 +266,7 @@ void RigidCellSystem<D>::build_plates() {
     }
     if (volume == 0)
       throw InputError("plate '" + s.name + "': no cell's node lies in its box " + box_text<D>(s.lo, s.hi) +
-                       " (nodes are at least l_min = " + std::to_string(setup_.l_min) +
+                       " (nodes are at least l_min = " + std::to_string(setup_.spacing.l_min) +
                        " m apart and l_min/2 inside the surface: widen the box)");
     references.push_back(moment / volume);
   }
@@ -473,7 +473,7 @@ SpecimenData RigidCellSystem<D>::specimen() const {
                  {{"cells", static_cast<double>(cells())},
                   {"contact_facets", static_cast<double>(tessellation_.contacts)},
                   {"surface_facets", static_cast<double>(tessellation_.facets.size() - tessellation_.contacts)},
-                  {"l_min", setup_.l_min},
+                  {"l_min", setup_.spacing.l_min},
                   {"volume_tiled_over_shape", tessellation_.volume() / shape_volume}});
   if (explicit_)
     d.facts.insert(d.facts.end(), {{"highest_frequency_rad_per_s", explicit_->highest_frequency()},

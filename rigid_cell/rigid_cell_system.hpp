@@ -23,6 +23,7 @@
 #include "rigid_cell/fibre_bridges.hpp"
 #include "rigid_cell/fibre_placement.hpp"
 #include "rigid_cell/newmark.hpp"
+#include "rigid_cell/node_placement.hpp"
 #include "rigid_cell/plate_constraints.hpp"
 #include "rigid_cell/random_field.hpp"
 #include "rigid_cell/static_solver.hpp"
@@ -108,7 +109,7 @@ struct FibreFamily {
 template <int D>
 struct RigidCellSetup {
   std::shared_ptr<const SpecimenShape<D>> shape;
-  double l_min = 0;  // [m]
+  NodeSpacing<D> spacing;  // l_min, or l_min in a box coarsening to l_max away from it
   std::uint64_t seed = 1;
   int max_rejections = 2000;
   std::vector<std::string> phase_names;
@@ -131,7 +132,7 @@ struct RigidCellSetup {
   bool crack_log = false;
   // Květoň (3.21): the field h that scales each contact facet's f_t by h and G_t by h² at its centroid; null: none.
   std::shared_ptr<const RandomField<D>> strength_field;
-  // The nodes of the cells, when given (else placed at random l_min apart in the shape) [m].
+  // The nodes of the cells, when given (else placed at random, `spacing` apart, in the shape) [m].
   std::vector<Vec<D>> nodes;
   std::vector<FibreFamily> fibres;  // 3D only
 };

@@ -73,7 +73,46 @@ double inner_volume(const CellSpecimenSpec& c, int d) {
   return d == 3 ? v * std::max(0.0, c.thickness - h) : v;
 }
 
+// The volume (2D: area) of the fine box within the specimen's inner volume, at least: its overlap with the bounding
+// box less what of the bounding box is not inner.
+double fine_inner_volume(const CellSpecimenSpec& c, int d, double inner) {
+  double box = 1, overlap = 1;
+  for (int i = 0; i < d; ++i) {
+    double lo = 0, hi = 0;  // the specimen's bounding box along i
+    if (c.shape == CellSpecimenSpec::Shape::Box) {
+      hi = c.size[i];
+    } else if (i == 2) {
+      hi = c.thickness;
+    } else if (c.shape == CellSpecimenSpec::Shape::Disc) {
+      lo = c.centre[i] - c.radius, hi = c.centre[i] + c.radius;
+    } else {
+      lo = hi = c.vertices[0][i];
+      for (const auto& v : c.vertices) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
+    }
+    box *= hi - lo;
+    overlap *= std::max(0.0, std::min(hi, c.fine_hi[i]) - std::max(lo, c.fine_lo[i]));
+  }
+  return std::max(0.0, overlap - (box - inner));
+}
+
 }  // namespace
+
+void read_coarsening(const KeyReader& k, CellSpecimenSpec& c, int d) {
+  if (!k.has("l_max")) {
+    for (const char* key : {"fine_lo", "fine_hi", "grading"})
+      if (k.has(key)) k.fail(key, "coarsens the cells away from a box, which needs l_max (the coarsest distance)");
+    return;
+  }
+  if (k.has("nodes")) k.fail("l_max", "the nodes are given (nodes): there is no placement to coarsen");
+  c.l_max = k.number("l_max");
+  if (!(c.l_max > c.l_min)) k.fail("l_max", "must exceed l_min, the distance in the fine box");
+  c.fine_lo = k.numbers("fine_lo", d);
+  c.fine_hi = k.numbers("fine_hi", d);
+  for (int i = 0; i < d; ++i)
+    if (!(c.fine_hi[i] > c.fine_lo[i]))
+      k.fail("fine_hi", "each component must exceed fine_lo's (component " + std::to_string(i) + ")");
+  c.grading = k.number("grading");
+}
 
 // Before any node is placed: a specimen with no room for a node, or whose cells this machine cannot hold, is refused
 // with the estimate (placing 10⁹ nodes takes hours before it fails).
@@ -86,7 +125,10 @@ void check_cells_affordable(const KeyReader& k, const CellSpecimenSpec& c, int d
          "specimen's smallest extent";
     k.fail("l_min", m.str());
   }
-  const double cells = kNodesPerLminVolume * inner / std::pow(c.l_min, d);
+  // Coarsening cells: the fine box's inner part at l_min, the rest at l_max at least.
+  const double fine = c.l_max > 0 ? fine_inner_volume(c, d, inner) : inner;
+  const double cells = kNodesPerLminVolume * (fine / std::pow(c.l_min, d) +
+                                              (inner - fine) / std::pow(std::max(c.l_max, c.l_min), d));
   const double per_cell = d == 2 ? kBytesPerCell2D : kBytesPerCell3D;
   const double need = cells * per_cell;
   const double have = physical_memory();

@@ -1,5 +1,6 @@
 // The checks of a cell specimen's outline and size that need no cell (scene/rigid_cell_read.cpp reads the table):
-// a simple polygon, and room and memory for the cells random sequential addition would place. Internal to scene/.
+// a simple polygon, the coarsening's box, and room and memory for the cells random sequential addition would
+// place. Internal to scene/.
 #pragma once
 #include <vector>
 
@@ -10,6 +11,9 @@ namespace mc::scene_read {
 
 // No vertex twice, no edge crossing another; else fail naming vertices_x.
 void refuse_repeated_or_crossing(const KeyReader& k, const std::vector<double>& x, const std::vector<double>& y);
+// l_max with its fine box and grading: l_max above l_min, the box's corners D numbers each and in order; the box
+// keys without l_max, or with given nodes, fail naming them.
+void read_coarsening(const KeyReader& k, CellSpecimenSpec& c, int d);
 // A specimen with no room for a node, or whose cells this machine cannot hold, fails naming l_min, with the estimate.
 void check_cells_affordable(const KeyReader& k, const CellSpecimenSpec& c, int d);
 

@@ -65,6 +65,19 @@ const KeyTable& cell_specimen_keys() {
            .when = "3D disc or polygon", .doc = "along z, from 0"},
           {.name = "l_min", .unit = Unit::Length, .range = Range::positive(), .need = Need::Required,
            .doc = "the least distance between nodes"},
+          {.name = "l_max", .unit = Unit::Length, .range = Range::positive(), .when = "with fine_lo, fine_hi",
+           .doc = "cells that coarsen away from where the crack runs: nodes l(x) = min(l_max, l_min + grading · "
+                  "distance from the box fine_lo..fine_hi) apart (two nodes the mean of their l), the box filled "
+                  "first; fewer cells for the same crack where it stays in the box",
+           .shown_default = "l_min everywhere"},
+          {.name = "fine_lo", .type = KeyType::Reals, .unit = Unit::Length, .when = "with l_max",
+           .doc = "the low corner of the box where nodes are l_min apart"},
+          {.name = "fine_hi", .type = KeyType::Reals, .unit = Unit::Length, .when = "with l_max",
+           .doc = "its high corner"},
+          {.name = "grading", .range = Range{0.0, 1.0, true, false}, .when = "with l_max",
+           .doc = "how fast the distance grows: metres per metre from the box (gentle grading keeps the cells' "
+                  "shapes regular)",
+           .fallback = 0.25},
           {.name = "max_rejections", .type = KeyType::Integer, .range = Range::closed(10, 1e8),
            .doc = "placement saturation: consecutive rejected trials that end it", .fallback = 2000},
           {.name = "nodes", .type = KeyType::Reals, .unit = Unit::Length,
@@ -285,6 +298,7 @@ void read_cell_specimen(const Table& root, Scene& s) {
   if (d == 3 && shape != "box") c.thickness = k.number("thickness");
   c.l_min = k.number("l_min");
   c.max_rejections = static_cast<int>(k.integer("max_rejections"));
+  read_coarsening(k, c, d);
   if (k.has("nodes")) {
     c.nodes = k.numbers("nodes", 0);
     if (c.nodes.size() < 2 * static_cast<std::size_t>(d) || c.nodes.size() % d != 0)

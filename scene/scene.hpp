@@ -164,6 +164,9 @@ struct CellSpecimenSpec {
   std::vector<std::array<double, 2>> vertices;  // Polygon, counter-clockwise [m]
   double thickness = 0;                         // 3D disc and polygon: along z from 0 [m]
   double l_min = 0;                             // least node distance [m]
+  double l_max = 0;                             // coarsening away from the fine box up to this; 0: none [m]
+  std::vector<double> fine_lo, fine_hi;         // the box where nodes are l_min apart [m]
+  double grading = 0.25;                        // growth of the distance per unit distance from it
   int max_rejections = 2000;                    // placement saturation (rigid_cell/node_placement.hpp)
   std::vector<double> nodes;                    // the cells' nodes, when given (D numbers each) [m]
 };

@@ -104,7 +104,10 @@ RigidCellSetup<D> setup_of(const Scene& s) {
   const RigidCellSpec& r = *s.rigid_cell;
   RigidCellSetup<D> setup;
   setup.shape = shape_of<D>(r.specimen);
-  setup.l_min = r.specimen.l_min;
+  const CellSpecimenSpec& c = r.specimen;
+  setup.spacing = {.l_min = c.l_min, .l_max = c.l_max, .grading = c.grading};
+  if (c.l_max > 0)
+    for (int i = 0; i < D; ++i) setup.spacing.fine_lo[i] = c.fine_lo[i], setup.spacing.fine_hi[i] = c.fine_hi[i];
   setup.seed = s.seed;
   setup.max_rejections = r.specimen.max_rejections;
   for (const auto& p : s.phases) setup.phase_names.push_back(p.name), setup.phase_density.push_back(p.density);
