@@ -264,10 +264,13 @@ void RigidCellSystem<D>::build_plates() {
       moment += m.volume * (nodes[c] + m.centroid());
       volume += m.volume;
     }
-    if (volume == 0)
+    if (volume == 0) {
+      const double l = setup_.spacing.at((s.lo + s.hi) / 2);  // l_min, or the coarser distance there
       throw InputError("plate '" + s.name + "': no cell's node lies in its box " + box_text<D>(s.lo, s.hi) +
-                       " (nodes are at least l_min = " + std::to_string(setup_.spacing.l_min) +
-                       " m apart and l_min/2 inside the surface: widen the box)");
+                       " (nodes are at least l = " + std::to_string(l) +
+                       " m apart there and l/2 inside the surface: widen the box" +
+                       (setup_.spacing.uniform() ? "" : " or the fine box, or lower l_max") + ")");
+    }
     references.push_back(moment / volume);
   }
   plates_ = std::make_unique<PlateConstraints<D>>(nodes, plate_of, references);

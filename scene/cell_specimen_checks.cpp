@@ -38,6 +38,30 @@ void refuse_repeated_or_crossing(const KeyReader& k, const std::vector<double>& 
     }
 }
 
+std::vector<AxisRange> specimen_bounds(const CellSpecimenSpec& c, int d) {
+  std::vector<AxisRange> b(d);
+  for (int i = 0; i < d; ++i) {
+    auto& [lo, hi] = b[i];
+    if (c.shape == CellSpecimenSpec::Shape::Box) {
+      lo = 0, hi = c.size[i];
+    } else if (i == 2) {
+      lo = 0, hi = c.thickness;
+    } else if (c.shape == CellSpecimenSpec::Shape::Disc) {
+      lo = c.centre[i] - c.radius, hi = c.centre[i] + c.radius;
+    } else {
+      lo = hi = c.vertices[0][i];
+      for (const auto& v : c.vertices) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
+    }
+  }
+  return b;
+}
+
+std::vector<double> specimen_extent(const CellSpecimenSpec& c, int d) {
+  std::vector<double> e;
+  for (const auto& [lo, hi] : specimen_bounds(c, d)) e.push_back(hi - lo);
+  return e;
+}
+
 namespace {
 
 // Random sequential addition keeps a node at least l_min/2 inside the surface and l_min from every other; it
@@ -77,18 +101,9 @@ double inner_volume(const CellSpecimenSpec& c, int d) {
 // box less what of the bounding box is not inner.
 double fine_inner_volume(const CellSpecimenSpec& c, int d, double inner) {
   double box = 1, overlap = 1;
+  const std::vector<AxisRange> bounds = specimen_bounds(c, d);
   for (int i = 0; i < d; ++i) {
-    double lo = 0, hi = 0;  // the specimen's bounding box along i
-    if (c.shape == CellSpecimenSpec::Shape::Box) {
-      hi = c.size[i];
-    } else if (i == 2) {
-      hi = c.thickness;
-    } else if (c.shape == CellSpecimenSpec::Shape::Disc) {
-      lo = c.centre[i] - c.radius, hi = c.centre[i] + c.radius;
-    } else {
-      lo = hi = c.vertices[0][i];
-      for (const auto& v : c.vertices) lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
-    }
+    const auto [lo, hi] = bounds[i];
     box *= hi - lo;
     overlap *= std::max(0.0, std::min(hi, c.fine_hi[i]) - std::max(lo, c.fine_lo[i]));
   }
@@ -105,7 +120,7 @@ void read_coarsening(const KeyReader& k, CellSpecimenSpec& c, int d) {
   }
   if (k.has("nodes")) k.fail("l_max", "the nodes are given (nodes): there is no placement to coarsen");
   c.l_max = k.number("l_max");
-  if (!(c.l_max > c.l_min)) k.fail("l_max", "must exceed l_min, the distance in the fine box");
+  if (!(c.l_max >= c.l_min)) k.fail("l_max", "at least l_min, the distance in the fine box (equal: l_min everywhere)");
   c.fine_lo = k.numbers("fine_lo", d);
   c.fine_hi = k.numbers("fine_hi", d);
   for (int i = 0; i < d; ++i)

@@ -310,21 +310,6 @@ void read_cell_specimen(const Table& root, Scene& s) {
   t.finish();
 }
 
-// The specimen's bounding box, its extent along each axis: what the random field's grid spans.
-std::vector<double> specimen_extent(const CellSpecimenSpec& c, int d) {
-  using S = CellSpecimenSpec::Shape;
-  if (c.shape == S::Box) return c.size;
-  std::vector<double> e{2 * c.radius, 2 * c.radius};
-  if (c.shape == S::Polygon)
-    for (int k = 0; k < 2; ++k) {
-      const auto [lo, hi] = std::minmax_element(c.vertices.begin(), c.vertices.end(),
-                                                [k](const auto& a, const auto& b) { return a[k] < b[k]; });
-      e[k] = (*hi)[k] - (*lo)[k];
-    }
-  if (d == 3) e.push_back(c.thickness);
-  return e;
-}
-
 // Květoň §3.4 (3.21): the random field of [rigid_cell.random_field], on a grid over the specimen's box (so read
 // after the specimen). Each axis's correlation matrix is decomposed densely, in O(n³): at most this many nodes.
 constexpr double kMaxFieldNodesPerAxis = 1000;

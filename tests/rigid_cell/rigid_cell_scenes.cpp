@@ -166,7 +166,18 @@ TEST_CASE("rigid_cell_bad_input_names_the_plate_cell_or_step") {
        {"E0 = \"40 GPa\"\nalpha = 0.237",
         "modulus = \"30 GPa\"\npoisson_ratio = 0.4",
         {"modulus and poisson_ratio", "0.4"}},
-       {"fracture_energy = \"40.66 N/m\"", "fracture_energy = \"0.1 N/m\"", {"facet", "snap"}}});
+       {"fracture_energy = \"40.66 N/m\"", "fracture_energy = \"0.1 N/m\"", {"facet", "snap"}},
+       // Coarsening: its box without l_max, an l_max finer than l_min, a box inside out, nodes given.
+       {"l_min = \"2.5 mm\"", "l_min = \"2.5 mm\"\nfine_lo = [0, 0]",
+        {"specimen.fine_lo", "needs l_max"}},
+       {"l_min = \"2.5 mm\"", "l_min = \"2.5 mm\"\nl_max = \"2 mm\"\nfine_lo = [0, 0]\nfine_hi = [1, 1]",
+        {"specimen.l_max", "at least l_min"}},
+       {"l_min = \"2.5 mm\"",
+        "l_min = \"2.5 mm\"\nl_max = \"5 mm\"\nfine_lo = [\"30 mm\", 0]\nfine_hi = [\"40 mm\", 0]",
+        {"specimen.fine_hi", "component 1"}},
+       {"l_min = \"2.5 mm\"",
+        "l_min = \"2.5 mm\"\nl_max = \"5 mm\"\nfine_lo = [0, 0]\nfine_hi = [1, 1]\nnodes = [0, 0, 1, 1]",
+        {"specimen.l_max", "nodes are given"}}});
 }
 
 TEST_CASE("rigid_cell_secant_iteration_that_cannot_converge_stops_with_exit_4_naming_the_step") {
