@@ -120,6 +120,22 @@ bool SpecimenShape<D>::inside(const Vec<D>& x) const {
 }
 
 template <int D>
+bool SpecimenShape<D>::sees(const Vec<D>& a, const Vec<D>& b) const {
+  const Eigen::Vector2d p = plane(a), q = plane(b);
+  auto side = [](const Eigen::Vector2d& o, const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
+    const double c = (u - o).x() * (v - o).y() - (u - o).y() * (v - o).x();
+    return (c > 0) - (c < 0);
+  };
+  for (std::size_t i = 0, j = polygon_.size() - 1; i < polygon_.size(); j = i++) {
+    const auto& u = polygon_[j];
+    const auto& v = polygon_[i];
+    // A proper crossing: each segment's ends strictly on both sides of the other's line.
+    if (side(p, q, u) * side(p, q, v) < 0 && side(u, v, p) * side(u, v, q) < 0) return false;
+  }
+  return true;
+}
+
+template <int D>
 double SpecimenShape<D>::depth(const Vec<D>& x) const {
   double d = outline_depth(plane(x));
   if constexpr (D == 3) d = std::min({d, x[2], thickness_ - x[2]});

@@ -20,6 +20,9 @@ class SpecimenShape {
   static SpecimenShape circle(const Eigen::Vector2d& centre, double radius, double thickness);
 
   bool inside(const Vec<D>& x) const;
+  // Whether the straight segment between two points inside stays inside: it crosses no edge of the outline (a
+  // circle's and a convex polygon's always do; across a notch they do not).
+  bool sees(const Vec<D>& a, const Vec<D>& b) const;
   // The distance from a point inside to the nearest boundary surface.
   double depth(const Vec<D>& x) const;
   // The distance from a point inside along the unit direction u to where the line first leaves the shape.

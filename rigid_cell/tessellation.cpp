@@ -46,7 +46,21 @@ void throw_unbounded(int cell, const Vec<D>& node) {
 }
 
 template <int D>
-void finish(Tessellation<D>& t, const std::vector<Vec<D>>& nodes, std::vector<Facet<D>> surface) {
+[[noreturn]] void throw_contact_outside(const Facet<D>& f, const std::vector<Vec<D>>& nodes) {
+  std::ostringstream m;
+  m << "rigid cells: cells " << f.a << " and " << f.b << " (nodes at (" << nodes[f.a].transpose() << ") and ("
+    << nodes[f.b].transpose() << ") m) meet at (" << f.centroid.transpose()
+    << ") m across a gap of the outline (the line between their nodes leaves the specimen): a notch or slit there "
+       "is too narrow for the cells beside it (their mirror images across its faces fall among the cells on its "
+       "other side, where images are dropped); make it at least 2 l wide, or the cells finer there";
+  throw InputError(m.str());
+}
+
+template <int D>
+void finish(Tessellation<D>& t, const std::vector<Vec<D>>& nodes, std::vector<Facet<D>> surface,
+            const SpecimenShape<D>& shape) {
+  for (const auto& f : t.facets)
+    if (!shape.sees(nodes[f.a], nodes[f.b])) throw_contact_outside(f, nodes);
   std::sort(t.facets.begin(), t.facets.end(),
             [](const Facet<D>& x, const Facet<D>& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
   // A node as far from two faces has two surface facets of one length: their normals tell them apart.
@@ -89,8 +103,8 @@ template std::pair<Vec<2>, std::array<int, 3>> circumcentre<2>(std::array<std::p
 template std::pair<Vec<3>, std::array<int, 4>> circumcentre<3>(std::array<std::pair<int, Vec<3>>, 4>);
 template void throw_unbounded(int, const Vec<2>&);
 template void throw_unbounded(int, const Vec<3>&);
-template void finish(Tessellation<2>&, const std::vector<Vec<2>>&, std::vector<Facet<2>>);
-template void finish(Tessellation<3>&, const std::vector<Vec<3>>&, std::vector<Facet<3>>);
+template void finish(Tessellation<2>&, const std::vector<Vec<2>>&, std::vector<Facet<2>>, const SpecimenShape<2>&);
+template void finish(Tessellation<3>&, const std::vector<Vec<3>>&, std::vector<Facet<3>>, const SpecimenShape<3>&);
 template std::vector<Vec<2>> nodes_and_images(const std::vector<Vec<2>>&, const SpecimenShape<2>&, double);
 template std::vector<Vec<3>> nodes_and_images(const std::vector<Vec<3>>&, const SpecimenShape<3>&, double);
 template void check_nodes(const std::vector<Vec<2>>&, const SpecimenShape<2>&);

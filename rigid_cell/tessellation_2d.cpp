@@ -70,7 +70,7 @@ Tessellation<2> tessellate(const std::vector<Vec<2>>& nodes, const SpecimenShape
     facet.centroid = 0.5 * (facet.vertices[0] + facet.vertices[1]);
     (facet.b >= 0 ? t.facets : surface).push_back(std::move(facet));
   }
-  finish(t, nodes, std::move(surface));
+  finish(t, nodes, std::move(surface), shape);
   return t;
 }
 

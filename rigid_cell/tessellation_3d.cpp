@@ -110,7 +110,7 @@ Tessellation<3> tessellate(const std::vector<Vec<3>>& nodes, const SpecimenShape
     if (facet.b < 0 && !(facet.area > kNoArea * facet.length * facet.length)) continue;
     (facet.b >= 0 ? t.facets : surface).push_back(std::move(facet));
   }
-  finish(t, nodes, std::move(surface));
+  finish(t, nodes, std::move(surface), shape);
   return t;
 }
 

@@ -26,8 +26,11 @@ std::pair<Vec<D>, std::array<int, D + 1>> circumcentre(std::array<std::pair<int,
 
 // Where a builder ends, with the contacts (in t.facets) and the surface faces: the contacts sorted by their cells
 // and the surface faces after them, so that the order does not depend on the triangulation's; then the cells at
-// the nodes, each one's volume and moments from the pyramids over its faces, in that order.
+// the nodes, each one's volume and moments from the pyramids over its faces, in that order. Throws InputError
+// naming the two cells when a contact joins cells across a gap of the outline (a notch, a slit narrower than the
+// cells: the nodes on either side mirror into each other's side, where images are dropped).
 template <int D>
-void finish(Tessellation<D>& t, const std::vector<Vec<D>>& nodes, std::vector<Facet<D>> surface);
+void finish(Tessellation<D>& t, const std::vector<Vec<D>>& nodes, std::vector<Facet<D>> surface,
+            const SpecimenShape<D>& shape);
 
 }  // namespace mc::rigid_cell

@@ -167,6 +167,11 @@ TEST_CASE("rigid_cell_bad_input_names_the_plate_cell_or_step") {
         "modulus = \"30 GPa\"\npoisson_ratio = 0.4",
         {"modulus and poisson_ratio", "0.4"}},
        {"fracture_energy = \"40.66 N/m\"", "fracture_energy = \"0.1 N/m\"", {"facet", "snap"}},
+       // A slit 1 mm wide among cells 2.5 mm apart: the cells on its two sides would join across it.
+       {"shape = \"disc\"\ncentre = [\"35 mm\", \"35 mm\"]\nradius = \"35 mm\"",
+        "shape = \"polygon\"\nvertices_x = [0, \"34.5 mm\", \"34.5 mm\", \"35.5 mm\", \"35.5 mm\", \"70 mm\", "
+        "\"70 mm\", 0]\nvertices_y = [0, 0, \"40 mm\", \"40 mm\", 0, 0, \"70 mm\", \"70 mm\"]",
+        {"across a gap of the outline", "notch or slit", "at least 2 l wide"}},
        // Coarsening: its box without l_max, an l_max finer than l_min, a box inside out, nodes given.
        {"l_min = \"2.5 mm\"", "l_min = \"2.5 mm\"\nfine_lo = [0, 0]",
         {"specimen.fine_lo", "needs l_max"}},
