@@ -9,13 +9,13 @@
    CMOD control) with the calibrated facets, and once with the concrete's values at face value: load against CMOD
    beside the test's two curves (pypd examples/data/half_notched_beam.csv, decimated into TEST_BAND below).
 3. Geometrically similar beams of depth D (length 3.5 D, span 2.5 D, notch D/2; the notch's width, the plates'
-   height and the cells over the ligament stay the same size; the cells coarsen to l_max from D/5 + 5 l_min
-   either side of the notch, where the beam stays elastic), the nominal strength σ_N = 3 F S / (2 b D²) against D, and Bažant's
+   height and the cells over the ligament stay the same size; the cells coarsen from D/5 + 5 l_min either side of
+   the notch, where the beam stays elastic, to D/12 or l_max), the nominal strength σ_N = 3 F S / (2 b D²) against D, and Bažant's
    size-effect law σ_N = B f_t / sqrt(1 + D/D₀) fitted by least squares on 1/σ_N² = (1 + D/D₀)/(B f_t)²;
    D₀ against the concrete's l_ch = E G_F / f_t².
 Output (--out): gregoire.md, gregoire.png, the calibrated scene and the runs.
 
-  benchmarks/bending_gregoire_size_effect.py                # l_min 2 mm, l_max 6 mm, D = 25, 50, 100, 200 mm
+  benchmarks/bending_gregoire_size_effect.py                # l_min 2 mm, l_max 8 mm, D = 25, 50, 100, 200 mm
   benchmarks/bending_gregoire_size_effect.py --sizes 50 --no-face-value
 """
 import argparse
@@ -55,21 +55,22 @@ def box(name, i, lo, hi):
 
 def beam_geometry(depth, l_min, l_max):
     """--set lines of a beam of depth D similar to the scene's D = 50 mm (groups in the scene's order): cells l_min
-    apart over the ligament and D/5 + 5 l_min to either side, coarsening to l_max beyond."""
+    apart over the ligament and D/5 + 5 l_min to either side, coarsening beyond to D/12 (at most l_max)."""
     d, s = depth, depth / 0.05
     mid, half = 1.75 * d, NOTCH_WIDTH / 2
     xs = [0, mid - half, mid - half, mid + half, mid + half, 3.5 * d, 3.5 * d, 0]
     ys = [0, 0, d / 2, d / 2, 0, 0, d, d]
-    fine = 0.2 * d + 5 * l_min
-    sets = [f"specimen.l_min={mm(l_min)}", f"specimen.l_max={mm(l_max)}",
-            f"specimen.fine_lo=[{mid - fine:.9g},0]", f"specimen.fine_hi=[{mid + fine:.9g},{d:.9g}]",
+    fine, coarse = 0.2 * d + 5 * l_min, min(l_max, max(l_min, d / 12))
+    sets = [f"specimen.l_min={mm(l_min)}", f"specimen.l_max={mm(coarse)}", f"specimen.fine_lo=[{mid - fine:.9g},0]",
+            f"specimen.fine_hi=[{mid + fine:.9g},{d:.9g}]",
             "specimen.vertices_x=[" + ",".join(f"{x:.9g}" for x in xs) + "]",
             "specimen.vertices_y=[" + ",".join(f"{y:.9g}" for y in ys) + "]"]
-    # The plates' cells: at least a row of nodes (l/2 inside the surface, l where the plate is), 4 × 2.5 mm at least
-    plates = [("left", 0.5 * d, 0, l_max), ("right", 3.0 * d, 0, l_max), ("load", mid, None, l_min),
+    # A plate 2 l high and 3 l wide holds a node wherever the cells are l apart (a saturated placement leaves no
+    # point of it farther than l from a node, and none lies within l/2 of the surface); at least 4 × 2.5 mm.
+    plates = [("left", 0.5 * d, 0, coarse), ("right", 3.0 * d, 0, coarse), ("load", mid, None, l_min),
               ("mouth_left", mid - 0.01 * s, 0, l_min), ("mouth_right", mid + 0.01 * s, 0, l_min)]
     for i, (name, x, y, l) in enumerate(plates):
-        height, width = max(0.0025, 1.25 * l), max(0.004 * s, 2.5 * l)
+        height, width = max(0.0025, 2 * l), max(0.004 * s, 3 * l)
         y = d - height if y is None else y
         sets += box(name, i, (x - width / 2, y), (x + width / 2, y + height))
     # CMOD steps and the end of the record grow with D: the opening at the peak does (0.5 µm steps at D = 50 mm)
@@ -100,10 +101,13 @@ def read_beam(h5):
     return cmod, load, cells
 
 
-def calibrate(exe, out, l_min, target):
+def calibrate(exe, out, l_min, target, sets=()):
+    """The facets' --set lines calibrate finds on the tension prism at l_min (sets: more changes to the prism)."""
     scene = out / f"calibrated_{l_min * 1e3:g}mm.toml"
-    r = subprocess.run([exe, "calibrate", str(PRISM), "--target", target, "--set", f"specimen.l_min={mm(l_min)}",
-                        "-o", str(scene), "--threads", "1"], capture_output=True, text=True)
+    cmd = [exe, "calibrate", str(PRISM), "--target", target, "--set", f"specimen.l_min={mm(l_min)}"]
+    for s in sets:
+        cmd += ["--set", s]
+    r = subprocess.run(cmd + ["-o", str(scene), "--threads", "1"], capture_output=True, text=True)
     if r.returncode != 0:
         sys.exit(f"calibrate: exit {r.returncode}\n{r.stderr}")
     runs = int(re.search(r"converged after (\d+) iterations", r.stderr).group(1))
@@ -128,7 +132,7 @@ def main():
     p.add_argument("--exe", default=str(ROOT / "build" / "mesocrack"))
     p.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "bending_gregoire_size_effect"))
     p.add_argument("--l-min", type=float, default=2.0, help="cell size over the ligament [mm]")
-    p.add_argument("--l-max", type=float, default=6.0, help="cell size far from it [mm] (= l-min: uniform)")
+    p.add_argument("--l-max", type=float, default=8.0, help="cell size far from it, at most [mm] (D/12 if less)")
     p.add_argument("--sizes", type=float, nargs="+", default=[25, 50, 100, 200], help="depths D [mm]")
     p.add_argument("--no-face-value", action="store_true", help="skip the D = 50 mm beam with uncalibrated facets")
     p.add_argument("--jobs", type=int, default=2, help="runs at once, one thread each")
@@ -163,7 +167,7 @@ def main():
         if name != "D50_face_value":
             series.append((depth, sigma))
     lines = [f"# Rigid cells calibrated on direct tension, predicting notched beams (l_min {a.l_min:g} mm over the "
-             f"ligament, l_max {a.l_max:g} mm far from it)", "",
+             f"ligament, D/12 or at most {a.l_max:g} mm far from it)", "",
              f"Concrete (as pypd models Grégoire et al. 2013): E {c['E'] * 1e-9:g} GPa, ν {c['nu']:g}, "
              f"f_t {c['ft'] * 1e-6:g} MPa, G_F {c['Gf']:g} N/m; l_ch = E G_F/f_t² = "
              f"{c['E'] * c['Gf'] / c['ft'] ** 2 * 1e3:.0f} mm. Calibrated on `{PRISM.relative_to(ROOT)}` in "
