@@ -106,7 +106,8 @@ ENTRIES = [
 ]
 # The studies: each parses its options and says what it does (their runs are the benchmarks', hours).
 for study in ("brazilian_kveton", "kveton_l_shape_cts", "brazilian_two_families", "kveton_dynamic_rates",
-              "spalling_kveton", "rigid_cell_direct_tension_hordijk"):
+              "spalling_kveton", "rigid_cell_direct_tension_hordijk", "bending_gregoire_size_effect",
+              "bending_petersson", "bending_garcia_alvarez"):
     ENTRIES.append((f"python3 benchmarks/{study}.py", run("/usr/bin/python3", f"{{src}}/benchmarks/{study}.py",
                                                            "--help")))
 
