@@ -10,7 +10,8 @@
    beside the test's two curves (pypd examples/data/half_notched_beam.csv, decimated into TEST_BAND below).
 3. Geometrically similar beams of depth D (length 3.5 D, span 2.5 D, notch D/2; the notch's width, the plates'
    height and the cells over the ligament stay the same size; the cells coarsen from D/5 + 5 l_min either side of
-   the notch, where the beam stays elastic, to D/12 or l_max), the nominal strength σ_N = 3 F S / (2 b D²) against D, and Bažant's
+   the notch, where the beam stays elastic, to D/12 or l_max), the nominal strength σ_N = 3 F S / (2 b D²)
+   against D, and Bažant's
    size-effect law σ_N = B f_t / sqrt(1 + D/D₀) fitted by least squares on 1/σ_N² = (1 + D/D₀)/(B f_t)²;
    D₀ against the concrete's l_ch = E G_F / f_t².
 Output (--out): gregoire.md, gregoire.png, the calibrated scene and the runs.
@@ -101,6 +102,11 @@ def read_beam(h5):
     return cmod, load, cells
 
 
+def platen_sets(platens):
+    """--set lines of the tension prism's platens: fixed (the scene's), or free to turn (translations held)."""
+    return [] if platens == "fixed" else ["groups[0].fix=x y", "groups[1].fix=x y"]
+
+
 def calibrate(exe, out, l_min, target, sets=()):
     """The facets' --set lines calibrate finds on the tension prism at l_min (sets: more changes to the prism)."""
     scene = out / f"calibrated_{l_min * 1e3:g}mm.toml"
@@ -136,6 +142,7 @@ def main():
     p.add_argument("--sizes", type=float, nargs="+", default=[25, 50, 100, 200], help="depths D [mm]")
     p.add_argument("--no-face-value", action="store_true", help="skip the D = 50 mm beam with uncalibrated facets")
     p.add_argument("--jobs", type=int, default=2, help="runs at once, one thread each")
+    p.add_argument("--platens", choices=("fixed", "rotating"), default="fixed", help="the tension prism's platens")
     a = p.parse_args()
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -143,7 +150,7 @@ def main():
     c = CONCRETE
     target = f"E={c['E']:g}Pa,nu={c['nu']:g},ft={c['ft']:g}Pa,Gf={c['Gf']:g}N/m"
     cpu0 = time.process_time()
-    knobs, cal_runs = calibrate(a.exe, out, l_min, target)
+    knobs, cal_runs = calibrate(a.exe, out, l_min, target, platen_sets(a.platens))
     jobs = [(f"D{d:g}", d * 1e-3, knobs) for d in a.sizes]
     if not a.no_face_value:
         jobs.append(("D50_face_value", 0.05, []))
@@ -170,7 +177,8 @@ def main():
              f"ligament, D/12 or at most {a.l_max:g} mm far from it)", "",
              f"Concrete (as pypd models Grégoire et al. 2013): E {c['E'] * 1e-9:g} GPa, ν {c['nu']:g}, "
              f"f_t {c['ft'] * 1e-6:g} MPa, G_F {c['Gf']:g} N/m; l_ch = E G_F/f_t² = "
-             f"{c['E'] * c['Gf'] / c['ft'] ** 2 * 1e3:.0f} mm. Calibrated on `{PRISM.relative_to(ROOT)}` in "
+             f"{c['E'] * c['Gf'] / c['ft'] ** 2 * 1e3:.0f} mm. Calibrated on `{PRISM.relative_to(ROOT)}` ({a.platens} "
+             f"platens) in "
              f"{cal_runs} runs: " + ", ".join(f"`{k}`" for k in knobs) + ".", "",
              "| beam | D [mm] | cells | peak F [N] | CMOD at peak [mm] | σ_N = 3FS/(2bD²) [MPa] | σ_N/f_t | "
              "CPU [s] |", "|---|---|---|---|---|---|---|---|", *rows, "",

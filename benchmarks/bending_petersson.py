@@ -20,7 +20,7 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-from bending_gregoire_size_effect import calibrate, mm, run
+from bending_gregoire_size_effect import calibrate, mm, platen_sets, run
 
 ROOT = Path(__file__).resolve().parent.parent
 BEAM = ROOT / "scenes" / "bending_petersson_rigid_cell_2d.toml"
@@ -59,6 +59,7 @@ def main():
     p.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "bending_petersson"))
     p.add_argument("--l-min", type=float, default=2.5, help="cell size over the ligament [mm]")
     p.add_argument("--l-max", type=float, default=10.0, help="cell size far from it [mm]")
+    p.add_argument("--platens", choices=("fixed", "rotating"), default="fixed", help="the tension prism's platens")
     a = p.parse_args()
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -66,7 +67,7 @@ def main():
     c = CONCRETE
     target = f"E={c['E']:g}Pa,nu={c['nu']:g},ft={c['ft']:g}Pa,Gf={c['Gf']:g}N/m"
     wall0 = time.time()
-    knobs, cal_runs = calibrate(a.exe, out, l_min, target, scaled_prism(l_min))
+    knobs, cal_runs = calibrate(a.exe, out, l_min, target, scaled_prism(l_min) + platen_sets(a.platens))
     cal_wall = time.time() - wall0
     cells = [f"specimen.l_min={mm(l_min)}", f"specimen.l_max={mm(l_max)}"]
     jobs = [("calibrated", knobs), ("face_value", [])]
@@ -88,7 +89,8 @@ def main():
         curves[name] = (deflection, load)
     lines = [f"# Petersson's notched beam, rigid cells (l_min {a.l_min:g} mm over the ligament, {a.l_max:g} mm beyond)",
              "", f"Concrete (as code_aster SSNP166 models it): E {c['E'] * 1e-9:g} GPa, ν {c['nu']:g}, f_t "
-             f"{c['ft'] * 1e-6:g} MPa, G_F {c['Gf']:g} N/m. Calibrated on the tension prism scaled to l_min in "
+             f"{c['ft'] * 1e-6:g} MPa, G_F {c['Gf']:g} N/m. Calibrated on the tension prism scaled to l_min "
+             f"({a.platens} platens) in "
              f"{cal_runs} runs ({cal_wall:.0f} s): " + ", ".join(f"`{k}`" for k in knobs) + ".", "",
              "| facets | cells | peak F [N] | deflection at peak [mm] | "
              + " | ".join(f"F at {d:g} mm (SSNP166 {f:.0f} N)" for d, f in SSNP166) + " | CPU [s] |",
