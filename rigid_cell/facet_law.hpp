@@ -24,6 +24,10 @@ struct FacetParams {
   double rate_c1 = 0;  // c₁ [-]
 };
 
+// Where a contact facet's law is evaluated (Květoň §3.3): at its centroid (simple), or at the centroids of its parts
+// (discretized; facet_discretization.hpp).
+enum class FacetIntegration : int { Simple, Discretized };
+
 // The keys of a [[contacts]] entry with model = "facet_damage" (beside the contacts table's model and phases): E₀ and
 // α, or the macroscopic E and ν they follow from by (3.8); f_t and G_t; the rate dependence (8.16)-(8.17).
 inline const KeyTable& facet_law_keys() {

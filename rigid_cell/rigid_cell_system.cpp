@@ -170,6 +170,11 @@ void RigidCellSystem<D>::build_cells() {
   const auto nodes = setup_.nodes.empty() ? place_nodes(*setup_.shape, setup_.spacing, setup_.seed, setup_.max_rejections)
                                           : setup_.nodes;
   tessellation_ = tessellate(nodes, *setup_.shape, kReachPerLmin * setup_.spacing.largest());
+  if (setup_.facet_integration == FacetIntegration::Discretized) {
+    FacetParts<D> p = discretize_facets(tessellation_);
+    tessellation_ = std::move(p.parts);
+    part_first_ = std::move(p.first);
+  }
   polygons_ = std::make_unique<const CellPolygons<D>>(tessellation_);
   for (const auto& c : tessellation_.cells) phase_.push_back(setup_.phase_at ? setup_.phase_at(c.node) : 0);
   std::vector<FacetParams> params;
@@ -208,6 +213,13 @@ void RigidCellSystem<D>::build_fibres() {
     } catch (const std::runtime_error& e) {
       throw InputError(std::string("[rigid_cell.fibres]: ") + e.what());
     }
+    // The walk leaves a cell through any part of a facet's plane; a crossing belongs to the part that holds it.
+    if (!part_first_.empty())
+      for (FibreCrossing& c : crossings) {
+        const auto after = std::upper_bound(part_first_.begin(), part_first_.end(), static_cast<std::size_t>(c.facet));
+        const auto facet = static_cast<std::size_t>(after - part_first_.begin() - 1);
+        c.facet = static_cast<int>(part_holding(tessellation_, part_first_, facet, c.point));
+      }
     bridges_ = std::make_unique<FibreBridges<3>>(tessellation_, *model_, std::move(materials),
                                                  bridge_sites(fibres_, family_of_fibre_, crossings));
     const auto crossed = std::chrono::steady_clock::now();
@@ -474,10 +486,13 @@ SpecimenData RigidCellSystem<D>::specimen() const {
   const double shape_volume = setup_.shape->volume();
   d.facts.insert(d.facts.begin(),
                  {{"cells", static_cast<double>(cells())},
-                  {"contact_facets", static_cast<double>(tessellation_.contacts)},
+                  {"contact_facets",
+                   static_cast<double>(part_first_.empty() ? tessellation_.contacts : part_first_.size() - 1)},
                   {"surface_facets", static_cast<double>(tessellation_.facets.size() - tessellation_.contacts)},
                   {"l_min", setup_.spacing.l_min},
                   {"volume_tiled_over_shape", tessellation_.volume() / shape_volume}});
+  if (!part_first_.empty())
+    d.facts.insert(d.facts.begin() + 2, {"contact_facet_parts", static_cast<double>(tessellation_.contacts)});
   if (explicit_)
     d.facts.insert(d.facts.end(), {{"highest_frequency_rad_per_s", explicit_->highest_frequency()},
                                    {"critical_timestep", explicit_->critical_timestep()},

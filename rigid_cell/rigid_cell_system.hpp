@@ -20,6 +20,7 @@
 #include "rigid_cell/cell_assembly.hpp"
 #include "rigid_cell/cell_polygons.hpp"
 #include "rigid_cell/central_difference.hpp"
+#include "rigid_cell/facet_discretization.hpp"
 #include "rigid_cell/fibre_bridges.hpp"
 #include "rigid_cell/fibre_placement.hpp"
 #include "rigid_cell/newmark.hpp"
@@ -135,6 +136,9 @@ struct RigidCellSetup {
   // The nodes of the cells, when given (else placed at random, `spacing` apart, in the shape) [m].
   std::vector<Vec<D>> nodes;
   std::vector<FibreFamily> fibres;  // 3D only
+  // Where each contact facet's law is evaluated: at its centroid, or at its parts' (Květoň §3.3). Discretized, every
+  // count, frame and log of facets is of their parts.
+  FacetIntegration facet_integration = FacetIntegration::Simple;
 };
 
 template <int D>
@@ -220,6 +224,7 @@ class RigidCellSystem final : public System {
  private:
   RigidCellSetup<D> setup_;
   Tessellation<D> tessellation_;
+  std::vector<std::size_t> part_first_;  // discretized facets: contact facet f's parts [part_first_[f], [f + 1])
   std::vector<int> phase_;  // per cell
   std::unique_ptr<const CellPolygons<D>> polygons_;
   std::unique_ptr<CellAssembly<D>> model_;

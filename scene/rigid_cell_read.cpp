@@ -35,6 +35,13 @@ const KeyTable& rigid_cell_keys() {
                {.name = "crack_log", .doc = "each facet's first damage and its crack (D ≥ 0.99) written to /cracks"}),
           bound(&P::energy,
                {.name = "energy", .doc = "boundary work, stored and dissipated energy as histories energy.*"}),
+          bound(&P::facet_integration,
+               {.name = "facet_integration",
+                .doc = "where the facet law is evaluated (Květoň §3.3): simple, at the facet's centroid (no "
+                       "rotational stiffness), or discretized, at the centroids of the triangles its vertices make "
+                       "with it (2D: its halves); discretized, counts, frames and logs of facets are of these parts",
+                .words = {"simple", "discretized"},
+                .shown_default = "simple"}),
       });
   return t;
 }

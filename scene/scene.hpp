@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/world.hpp"
+#include "rigid_cell/facet_law.hpp"     // FacetIntegration: plain data
 #include "rigid_cell/fibre_pullout.hpp"  // FibreMaterial: plain data
 
 namespace mc {
@@ -258,6 +259,7 @@ struct RigidCellSpec {
   int max_iterations = 500;
   bool crack_log = false;  // each facet's first damage and its crack (D ≥ 0.99) written to /cracks
   bool energy = false;     // boundary work, stored and dissipated energy as histories
+  rigid_cell::FacetIntegration facet_integration = rigid_cell::FacetIntegration::Simple;  // Květoň §3.3
 };
 
 struct Scene {

@@ -156,6 +156,7 @@ RigidCellSetup<D> setup_of(const Scene& s) {
                                                         r.specimen.nodes.begin() + static_cast<std::ptrdiff_t>(i + D))));
   for (const FibreFamilySpec& f : r.fibres) setup.fibres.push_back(fibre_family(f));
   setup.crack_log = r.crack_log;
+  setup.facet_integration = r.facet_integration;
   return setup;
 }
 
