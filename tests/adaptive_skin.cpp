@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "contact_models/linear.hpp"
+#include "tests/common/relative.hpp"
 #include "tests/common/test_worlds.hpp"
 
 using namespace mc;
@@ -53,7 +54,7 @@ TEST_CASE("adaptive_skin_rebuilds_a_steady_flow_once_per_interval_and_leaves_its
   CHECK(fixed.rebuilds <= 120);
   // Adaptive: skin = 2 × 0.01 r × 30 = 0.6 r after the first rebuild, then a rebuild after 30 or 31 steps
   // (30 reach 0.3 r exactly): 19 or 20 in 600 steps, the first interval at the fixed skin counted.
-  CHECK(adaptive.skin == doctest::Approx(0.6e-3).epsilon(1e-6));
+  CHECK(adaptive.skin == mc::test::relative(0.6e-3, 1e-6));
   CHECK(adaptive.rebuilds >= 19);
   CHECK(adaptive.rebuilds <= 21);
   // Free flight is x0 + v t to rounding (600 additions of v Δt: far below 1e-12 m at 1e-2 m).
@@ -63,5 +64,5 @@ TEST_CASE("adaptive_skin_rebuilds_a_steady_flow_once_per_interval_and_leaves_its
 
 TEST_CASE("adaptive_skin_of_a_specimen_at_rest_stays_the_declared_one") {
   const Flight rest = fly(30, 0);
-  CHECK(rest.skin == doctest::Approx(0.1e-3).epsilon(1e-12));  // 0.1 R_min, as without adaptation
+  CHECK(rest.skin == mc::test::relative(0.1e-3, 1e-12));  // 0.1 R_min, as without adaptation
 }

@@ -8,33 +8,34 @@
 #include "engine/errors.hpp"
 #include "preprocess/aggregate_shape.hpp"
 #include "preprocess/grading.hpp"
+#include "tests/common/relative.hpp"
 
 using namespace mc;
 
 TEST_CASE("walraven_transform_matches_published_coefficients_and_hand_computed_points") {
   // At D0 = D_max the bracket is 1.455 − 0.5 + 0.036 + 0.006 + 0.002 + 0.001 = 1.000: all of P_k.
-  CHECK(walraven_passing(1.0, 0.75) == doctest::Approx(0.75).epsilon(1e-15));
+  CHECK(walraven_passing(1.0, 0.75) == mc::test::relative(0.75, 1e-15));
   CHECK(walraven_passing(0.0, 0.75) == 0.0);
   // D0/D_max = 1/2 (P_k = 1), term by term:
   //   1.455·√½ = 1.0288404, −0.5·¼ = −0.125, 0.036/16 = 0.00225, 0.006/64 = 0.00009375,
   //   0.002/256 = 0.0000078, 0.001/1024 = 0.0000010  → 0.9061929
-  CHECK(walraven_passing(0.5, 1.0) == doctest::Approx(0.9061929).epsilon(1e-7));
+  CHECK(walraven_passing(0.5, 1.0) == mc::test::relative(0.9061929, 1e-7));
   // D0/D_max = 1/4: 1.455·½ = 0.7275, −0.5/16 = −0.03125, 0.036/256 = 0.0001406, 0.006/4096 = 0.0000015,
   //   the rest < 1e-7  → 0.6963921
-  CHECK(walraven_passing(0.25, 1.0) == doctest::Approx(0.6963921).epsilon(1e-7));
+  CHECK(walraven_passing(0.25, 1.0) == mc::test::relative(0.6963921, 1e-7));
   // Linear in P_k.
-  CHECK(walraven_passing(0.25, 0.6) == doctest::Approx(0.6 * 0.6963921).epsilon(1e-7));
+  CHECK(walraven_passing(0.25, 0.6) == mc::test::relative(0.6 * 0.6963921, 1e-7));
 
   // The Table 4.1 sieves 4, 8, 16, 32, 64 mm at P_k = 0.75: each range's area fraction of a section is
   // P_c(hi) − P_c(lo); together P_c(1) − P_c(1/16) = 0.75 (1 − 0.3617974) (1.455/4 − 0.5/256 + … = 0.3617974).
   const SectionGrading s = walraven_section({4, 8, 16, 32, 64}, 0.75);
   REQUIRE(s.grading.ranges.size() == 4);
-  CHECK(s.fraction == doctest::Approx(0.75 * (1 - 0.3617974)).epsilon(1e-7));
-  CHECK(s.grading.ranges[3].share * s.fraction == doctest::Approx(0.75 * (1 - 0.9061929)).epsilon(1e-7));
-  CHECK(s.grading.ranges[2].share * s.fraction == doctest::Approx(0.75 * (0.9061929 - 0.6963921)).epsilon(1e-7));
+  CHECK(s.fraction == mc::test::relative(0.75 * (1 - 0.3617974), 1e-7));
+  CHECK(s.grading.ranges[3].share * s.fraction == mc::test::relative(0.75 * (1 - 0.9061929), 1e-7));
+  CHECK(s.grading.ranges[2].share * s.fraction == mc::test::relative(0.75 * (0.9061929 - 0.6963921), 1e-7));
   double sum = 0;
   for (const auto& r : s.grading.ranges) sum += r.share;
-  CHECK(sum == doctest::Approx(1.0).epsilon(1e-14));
+  CHECK(sum == mc::test::relative(1.0, 1e-14));
   CHECK_NOTHROW(check_grading(s.grading));
   CHECK_THROWS_AS(walraven_section({4, 8}, 1.5), InputError);
 }
@@ -44,11 +45,11 @@ TEST_CASE("fuller_shares_sum_to_one_and_table_4_1_is_2_2_3_3") {
   REQUIRE(f.ranges.size() == 4);
   double sum = 0;
   for (const auto& r : f.ranges) sum += r.share;
-  CHECK(sum == doctest::Approx(1.0).epsilon(1e-14));
+  CHECK(sum == mc::test::relative(1.0, 1e-14));
   // √(d/64) at the sieves: ¼, √2/4, ½, √2/2, 1; normalised over 1 − ¼ = ¾.
-  CHECK(f.ranges[0].share == doctest::Approx((std::sqrt(2.0) / 4 - 0.25) / 0.75).epsilon(1e-14));
-  CHECK(f.ranges[3].share == doctest::Approx((1 - std::sqrt(2.0) / 2) / 0.75).epsilon(1e-14));
-  CHECK(fuller_passing(16, 64, 0.5) == doctest::Approx(0.5));
+  CHECK(f.ranges[0].share == mc::test::relative((std::sqrt(2.0) / 4 - 0.25) / 0.75, 1e-14));
+  CHECK(f.ranges[3].share == mc::test::relative((1 - std::sqrt(2.0) / 2) / 0.75, 1e-14));
+  CHECK(fuller_passing(16, 64, 0.5) == mc::test::relative(0.5, 1e-5));
   const Grading t = tang_table_4_1();
   REQUIRE(t.ranges.size() == 4);
   const double lo[] = {4, 8, 16, 32}, share[] = {0.2, 0.2, 0.3, 0.3};
@@ -57,7 +58,7 @@ TEST_CASE("fuller_shares_sum_to_one_and_table_4_1_is_2_2_3_3") {
     CHECK(t.ranges[k].hi == 2 * lo[k]);
     CHECK(t.ranges[k].share == share[k]);
   }
-  CHECK(tang_table_4_1(1e-3).ranges[3].hi == doctest::Approx(0.064));
+  CHECK(tang_table_4_1(1e-3).ranges[3].hi == mc::test::relative(0.064, 1e-5));
   CHECK_THROWS_AS(check_grading(Grading{{{4, 8, 0.5}, {6, 16, 0.5}}}), InputError);  // overlapping ranges
   CHECK_THROWS_AS(check_grading(Grading{{{4, 8, 0.5}, {8, 16, 0.4}}}), InputError);  // shares sum to 0.9
   CHECK_THROWS_AS(fuller_grading({8, 4}, 0.5), InputError);
@@ -83,21 +84,21 @@ TEST_CASE("filling_a_grading_puts_the_exact_share_of_shape_areas_in_each_range")
         const auto& a = list[i];
         CHECK(a.size >= g.ranges[a.range].lo);
         CHECK(a.size < g.ranges[a.range].hi);
-        CHECK(a.content == doctest::Approx(made[a.made] * std::pow(a.scale, dim)).epsilon(1e-12));
+        CHECK(a.content == mc::test::relative(made[a.made] * std::pow(a.scale, dim), 1e-12));
         if (i > 0) CHECK(a.size <= list[i - 1].size);
         per[a.range] += a.content;
       }
       double total = 0;
       for (int k = 0; k < 4; ++k) {
-        CHECK(per[k] == doctest::Approx(g.ranges[k].share * target).epsilon(1e-9));
+        CHECK(per[k] == mc::test::relative(g.ranges[k].share * target, 1e-9));
         total += per[k];
       }
-      CHECK(total == doctest::Approx(target).epsilon(1e-9));
+      CHECK(total == mc::test::relative(target, 1e-9));
     }
   // The planning variant, with discs (content π d²/4): half of 2000 mm² filled exactly.
   const auto sizes = aggregate_sizes(Grading{{{4, 8, 1.0}}}, 0.5, 2000, 2, M_PI / 4, 3);
   double sum = 0;
   for (const auto& a : sizes) sum += a.content;
-  CHECK(sum == doctest::Approx(1000).epsilon(1e-12));
+  CHECK(sum == mc::test::relative(1000, 1e-12));
   CHECK_THROWS_AS(aggregate_sizes(tang_table_4_1(), 1.5, 2000, 2, 0.5, 3), InputError);
 }

@@ -12,6 +12,7 @@
 
 #include "engine/errors.hpp"
 #include "preprocess/aggregate_placement.hpp"
+#include "tests/common/relative.hpp"
 
 using namespace mc;
 
@@ -148,7 +149,7 @@ void check_layout(const PlacementSpec<D>& spec, const AggregateLayout<D>& lay) {
   int pairs = 0, overlapping = 0, outside = 0, in_keep_out = 0;
   for (std::size_t i = 0; i < ag.size(); ++i) {
     content_sum += ag[i].content;
-    CHECK(content(ag[i].shape) == doctest::Approx(ag[i].content).epsilon(1e-10));
+    CHECK(content(ag[i].shape) == mc::test::relative(ag[i].content, 1e-10));
     for (const auto& x : ag[i].shape.v)
       for (int k = 0; k < D; ++k) outside += x[k] < spec.lo[k] - tol || x[k] > spec.hi[k] + tol;
     for (const auto& b : spec.keep_out_boxes) in_keep_out += overlaps(ag[i].shape, box_shape(b), tol);
@@ -175,7 +176,7 @@ void check_layout(const PlacementSpec<D>& spec, const AggregateLayout<D>& lay) {
   CHECK(overlapping == 0);
   CHECK(outside == 0);
   CHECK(in_keep_out == 0);
-  CHECK(lay.achieved_fraction == doctest::Approx(content_sum / domain).epsilon(1e-12));
+  CHECK(lay.achieved_fraction == mc::test::relative(content_sum / domain, 1e-12));
 }
 
 PlacementSpec<2> notched_beam(double fraction, std::uint64_t seed) {
@@ -313,7 +314,7 @@ TEST_CASE("capability_2d_70_percent_of_beam_in_95_percent_of_50_seeds_shares_wit
     s.seed = seed;
     const auto lay = place_aggregates(s);
     reached += lay.reached;
-    if (lay.reached) CHECK(lay.achieved_fraction == doctest::Approx(0.7).epsilon(1e-3));
+    if (lay.reached) CHECK(lay.achieved_fraction == mc::test::relative(0.7, 1e-3));
     check_shares(lay);
   }
   MESSAGE("2D 70 %: reached for ", reached, " of 50 seeds");
@@ -347,7 +348,7 @@ TEST_CASE("capability_3d_50_percent_of_cube_in_95_percent_of_50_seeds_shares_wit
   for (std::uint64_t seed = 1; seed <= 50; ++seed) {
     const auto lay = place_aggregates(cube(100, coarse_table_4_1(), 0.5, seed));
     reached += lay.reached;
-    if (lay.reached) CHECK(lay.achieved_fraction == doctest::Approx(0.5).epsilon(1e-3));
+    if (lay.reached) CHECK(lay.achieved_fraction == mc::test::relative(0.5, 1e-3));
     check_shares(lay);
   }
   MESSAGE("3D 50 %: reached for ", reached, " of 50 seeds");

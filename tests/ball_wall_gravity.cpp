@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "tests/common/relative.hpp"
 #include "tests/common/test_worlds.hpp"
 
 using namespace mc;
@@ -120,8 +121,8 @@ void rest_on_wall() {
                  << ", overlap k_n / (m g) − 1 = " << overlap * kn / (m * g) - 1);
   // Local damping removes a fixed fraction of the out-of-balance force each step, so the residual decays
   // geometrically to round-off (the overlap, ~1e-9 m, is resolved to ε·R ≈ 2e-19 m): 1e-6 is far above it.
-  CHECK(fw == doctest::Approx(m * g).epsilon(1e-6));
-  CHECK(overlap == doctest::Approx(m * g / kn).epsilon(1e-6));
+  CHECK(fw == mc::test::relative(m * g, 1e-6));
+  CHECK(overlap == mc::test::relative(m * g / kn, 1e-6));
   // Nothing tangential: no shear force on the wall and no spin.
   CHECK(std::abs(w.walls[0].force[0]) <= 1e-12 * m * g);
   CHECK(w.particles.w[0].norm() == 0.0);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "tests/common/cli_harness.hpp"
+#include "tests/common/relative.hpp"
 
 // The bonded bar of scenes/lattice_tension_2d.toml pulled until it breaks: every broken bond is in /cracks (one
 // row each, the counts equal to the histories', positions inside the bar, normals of unit length), and a run
@@ -35,7 +36,7 @@ TEST_CASE("crack_log_of_a_bonded_bar_pulled_apart_is_complete_and_survives_resum
     for (std::size_t k = 0; k < mode.size(); ++k) {
       CHECK(x[2 * k] > 0);
       CHECK(x[2 * k] < 20e-3);
-      CHECK(std::hypot(n[2 * k], n[2 * k + 1]) == doctest::Approx(1.0).epsilon(1e-12));
+      CHECK(std::hypot(n[2 * k], n[2 * k + 1]) == mc::test::relative(1.0, 1e-12));
     }
   }
   // Stopped at step 12000 (a history row and a frame fall there, so the first half adds no extra final row),
@@ -78,12 +79,12 @@ TEST_CASE("generate_writes_a_mesostructure_packing_that_a_scene_loads") {
   {
     const mc::H5File f((d / "specimen.h5").string(), mc::H5File::Mode::ReadOnly);
     CHECK(f.attr_string("/", "status") == "finished");
-    CHECK(f.attr_double("/specimen", "packing_porosity_grown") == doctest::Approx(0.16).epsilon(1e-9));
-    CHECK(f.attr_double("/specimen", "packing_stress_final") == doctest::Approx(1e5).epsilon(0.02));
-    CHECK(f.attr_double("/specimen", "aggregate_fraction_achieved") == doctest::Approx(0.3).epsilon(1e-9));
+    CHECK(f.attr_double("/specimen", "packing_porosity_grown") == mc::test::relative(0.16, 1e-9));
+    CHECK(f.attr_double("/specimen", "packing_stress_final") == mc::test::relative(1e5, 0.02));
+    CHECK(f.attr_double("/specimen", "aggregate_fraction_achieved") == mc::test::relative(0.3, 1e-9));
     // Particles take the aggregate phase by their centres: their share tends to the aggregate fraction
     // (Tang Fig. 4.14); at L/R ≈ 50 it is within a few percent.
-    CHECK(f.attr_double("/specimen", "aggregate_particle_fraction") == doctest::Approx(0.3).epsilon(0.15));
+    CHECK(f.attr_double("/specimen", "aggregate_particle_fraction") == mc::test::relative(0.3, 0.15));
     CHECK(f.rows("/specimen/outline_start") > 3);
     const auto phase = f.read_ints("/specimen/phase");
     CHECK(std::count(phase.begin(), phase.end(), 1) > 0);
@@ -173,9 +174,9 @@ TEST_CASE("uniaxial_compression_E_scales_with_E_c_and_nu_rises_with_kn_over_ks")
   const Json a = run("e20.h5", 1.0, "2"), b = run("e10.h5", 0.5, "2");
   // The same problem in other units, but for the locked-in genesis overlaps (σ0/E_c ≈ 5e-6 of strain against
   // the ≈ 1e-4 of the 25–50 % window): E halves to 1 %, ν stays to 1 %. UCS, past many breaks, to 5 %.
-  CHECK(a["E"].number / b["E"].number == doctest::Approx(2.0).epsilon(0.01));
-  CHECK(a["nu"].number == doctest::Approx(b["nu"].number).epsilon(0.01));
-  CHECK(a["ucs"].number / b["ucs"].number == doctest::Approx(2.0).epsilon(0.05));
+  CHECK(a["E"].number / b["E"].number == mc::test::relative(2.0, 0.01));
+  CHECK(a["nu"].number == mc::test::relative(b["nu"].number, 0.01));
+  CHECK(a["ucs"].number / b["ucs"].number == mc::test::relative(2.0, 0.05));
   const Json c = run("r1.h5", 1.0, "1"), e = run("r3.h5", 1.0, "3");
   CHECK(c["nu"].number < a["nu"].number);
   CHECK(a["nu"].number < e["nu"].number);

@@ -133,19 +133,19 @@ TEST_CASE("summary_json_matches_histories") {
     else if (a > 0 || b > 0)
       duration += dt * std::max(a, b) / std::abs(b - a);
   }
-  CHECK(res["contact_duration_s"].number == doctest::Approx(duration).epsilon(1e-9));
-  CHECK(res["restitution"].number == doctest::Approx(std::abs(speed.back()) / std::abs(speed.front())).epsilon(1e-9));
+  CHECK(res["contact_duration_s"].number == mc::test::relative(duration, 1e-9));
+  CHECK(res["restitution"].number == mc::test::relative(std::abs(speed.back()) / std::abs(speed.front()), 1e-9));
 
   // Closed forms (the scene's comment): m = ρ (4/3)π R³, m* = m/2, k_n = 4 R E_c / 2; T = π sqrt(m*/k_n) = 23.2 µs.
   const double R = 1e-3, rho = 2600, E_c = 50e6;
   const double m = rho * 4.0 / 3.0 * std::numbers::pi * R * R * R, kn = 4 * R * E_c / 2;
   const double T = std::numbers::pi * std::sqrt(m / 2 / kn);
-  CHECK(T == doctest::Approx(23.2e-6).epsilon(0.002));
-  CHECK(res["contact_duration_s"].number == doctest::Approx(T).epsilon(0.015));
-  CHECK(res["restitution"].number == doctest::Approx(1.0).epsilon(0.01));
+  CHECK(T == mc::test::relative(23.2e-6, 0.002));
+  CHECK(res["contact_duration_s"].number == mc::test::relative(T, 0.015));
+  CHECK(res["restitution"].number == mc::test::relative(1.0, 0.01));
   // The approach speed: −0.1 m/s before (closing), +0.1 m/s after (no damping).
-  CHECK(speed.front() == doctest::Approx(-0.1).epsilon(1e-12));
-  CHECK(speed.back() == doctest::Approx(0.1).epsilon(0.01));
+  CHECK(speed.front() == mc::test::relative(-0.1, 1e-12));
+  CHECK(speed.back() == mc::test::relative(0.1, 0.01));
 }
 
 // ================================================================ 3. every scene
@@ -203,7 +203,7 @@ TEST_CASE("shipped_hertz_collision_lasts_as_long_and_overlaps_as_deep_as_hertz_s
   const double overlap = std::pow(15 * m_eff * v * v / (16 * e_eff * std::sqrt(r_eff)), 0.4);
   CHECK(res["contact_duration_s"].number == mc::test::relative(duration, 0.01));
   CHECK(res["max_overlap_m"].number == mc::test::relative(overlap, 0.01));
-  CHECK(res["restitution"].number == doctest::Approx(1.0).epsilon(1e-3));
+  CHECK(res["restitution"].number == mc::test::relative(1.0, 1e-3));
 }
 
 // The shipped rolling-resistance slope (scenes/rolling_slope_3d.toml): a sphere rolling against its rolling moment

@@ -41,9 +41,9 @@ void tension_break() {
   REQUIRE(w.cracks.size() == 1);
   CHECK(w.cracks[0].mode == CrackMode::Tensile);
   // F = k_n δ from the bonded position; δ ~ 1e-9 m is a difference of coordinates ~ 1e-3 m: round-off ~ 1e-7.
-  CHECK(stiffness_ratio == doctest::Approx(1.0).epsilon(1e-6));
+  CHECK(stiffness_ratio == mc::test::relative(1.0, 1e-6));
   // Each step adds 1/4000 of the strength: the last intact force sits within 0.025 % below it.
-  CHECK(last / p.bond_normal_strength.mean == doctest::Approx(1.0).epsilon(5e-4));
+  CHECK(last / p.bond_normal_strength.mean == mc::test::relative(1.0, 5e-4));
   CHECK(last <= p.bond_normal_strength.mean);
   w.step();
   CHECK(w.contact_force(0, 0).norm() == 0.0);  // apart and unbonded: no force
@@ -51,7 +51,7 @@ void tension_break() {
   // Work of the moving particle = energy released by the crack (the stretched spring). Work is booked with
   // the force at the start of each step: the sum differs from ∫F dx by about one of the 4000 loading steps.
   w.update_energy();
-  CHECK(w.energy.dissipated_bonds == doctest::Approx(0.5 * last * last / c.kn).epsilon(1e-3));
+  CHECK(w.energy.dissipated_bonds == mc::test::relative(0.5 * last * last / c.kn, 1e-3));
   CHECK(std::abs(w.energy.residual()) < 1e-3 * w.energy.boundary_work);
 }
 
@@ -79,12 +79,12 @@ void shear_break_then_slide() {
   }
   REQUIRE(w.cracks.size() == 1);
   CHECK(w.cracks[0].mode == CrackMode::Shear);
-  CHECK(last / p.bond_shear_strength.mean == doctest::Approx(1.0).epsilon(5e-4));  // held to its strength without slipping
+  CHECK(last / p.bond_shear_strength.mean == mc::test::relative(1.0, 5e-4));  // held to its strength without slipping
   // Sliding after the break: |F_s| = μ F_n exactly (the normal force is that of the overlap).
   const Vec<D> f = w.contact_force(0, 0);
   const Vec<D> n = (w.particles.x[1] - w.particles.x[0]).normalized();
   const double f_n = f.dot(n), f_s = (f - f.dot(n) * n).norm();
-  CHECK(f_s / (p.contact.friction * f_n) == doctest::Approx(1.0).epsilon(1e-6));  // round-off of |F_s| ≪ |F|
+  CHECK(f_s / (p.contact.friction * f_n) == mc::test::relative(1.0, 1e-6));  // round-off of |F_s| ≪ |F|
   // The overlap of the positions the last force pass saw (the step then moved them: in 3D, k_n 2e6 N/m, by 9e-14 m
   // on an overlap of 1.2e-8 m, 8e-6 of it), a difference of coordinates ~ 1e-3 m: round-off ~ 1e-19 m on ≥ 2.5e-11 m.
   CHECK(f_n == mc::test::relative(c.kn * (2 * kR - gap_before.norm()), 1e-6));

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "tests/common/cli_harness.hpp"
+#include "tests/common/relative.hpp"
 
 TEST_CASE("contact_forces_in_frames_are_the_linear_law_at_the_branch_vector_they_record") {
   const TempDir d;
@@ -31,7 +32,7 @@ TEST_CASE("contact_forces_in_frames_are_the_linear_law_at_the_branch_vector_they
     CHECK(bonded[c] == 0);
     const double length = std::hypot(branch[2 * c], branch[2 * c + 1]);
     // δ ≈ 1e-6 m out of |branch| ≈ 2e-3 m: its rounding is 1e-13 of the force, so 1e-9 leaves room and no more.
-    CHECK(normal[c] == doctest::Approx(kn * (2 * radius - length)).epsilon(1e-9));
+    CHECK(normal[c] == mc::test::relative(kn * (2 * radius - length), 1e-9));
     CHECK(shear[c] <= 1e-12 * normal[c]);  // head-on: the branch vector stays on x
     largest = std::max(largest, normal[c]);
   }
@@ -40,5 +41,5 @@ TEST_CASE("contact_forces_in_frames_are_the_linear_law_at_the_branch_vector_they
   // Energy: ½ m* v² = ½ k_n δ_max², m* = m/2, v = 0.1 m/s: the largest force √(k_n m*) v; sampled at ~70 steps a
   // contact the peak is missed by at most 1 − cos(π/140) < 0.03 %, so 1 % is the law, not the sampling.
   const double m_star = 0.5 * 2600 * M_PI * radius * radius;
-  CHECK(largest == doctest::Approx(std::sqrt(kn * m_star) * 0.1).epsilon(0.01));
+  CHECK(largest == mc::test::relative(std::sqrt(kn * m_star) * 0.1, 0.01));
 }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "scene/model_registry.hpp"
+#include "tests/common/relative.hpp"
 #include "tests/common/test_worlds.hpp"
 
 using namespace mc;
@@ -88,10 +89,10 @@ void stiffness_matches_force() {
   constexpr double du = 1e-10;  // 5e-6 of the overlap: Hertz–Mindlin's secant is then its tangent to 4e-6
   const double f0n = c.last.force.dot(Vec<D>::UnitX());
   const double f1n = c.step(-du * Vec<D>::UnitX(), Rot<D>::Zero()).force.dot(Vec<D>::UnitX());
-  CHECK((f1n - f0n) / du == doctest::Approx(k.normal).epsilon(1e-4));
+  CHECK((f1n - f0n) / du == mc::test::relative(k.normal, 1e-4));
   const double f0s = c.last.force[1];
   const double f1s = c.step(du * Vec<D>::UnitY(), Rot<D>::Zero()).force[1];
-  CHECK(-(f1s - f0s) / du == doctest::Approx(c.stiffness().shear).epsilon(1e-4));
+  CHECK(-(f1s - f0s) / du == mc::test::relative(c.stiffness().shear, 1e-4));
   // Rotation: a bond's bending moment (about z) and, in 3D, its twisting moment (about the normal, x); the
   // reported rotational stiffness is their sum (the timestep's bound for any axis). Models without moments
   // answer a turn with none.

@@ -14,6 +14,7 @@
 
 #include "contact_models/cpm.hpp"
 #include "tests/common/cpm_pair.hpp"
+#include "tests/common/relative.hpp"
 
 using namespace mc;
 
@@ -41,7 +42,7 @@ TEST_CASE("cpm: compression never damages and hardens from eps_s with modulus K_
   CHECK(dev < 1e-9 * scale);
   // The tangent beyond ε_s is K̃_s k_N, from two points on the line.
   const std::size_t a = unload / 2 + unload / 4, b = unload - 1;
-  CHECK((c.sigma_n[b] - c.sigma_n[a]) / (c.eps[b] - c.eps[a]) == doctest::Approx(ks * kn).epsilon(1e-8));
+  CHECK((c.sigma_n[b] - c.sigma_n[a]) / (c.eps[b] - c.eps[a]) == mc::test::relative(ks * kn, 1e-8));
   // Never damaged: κ stayed 0, no crack was logged, the contact is intact.
   CHECK(c.state().kappa == 0.0);
   CHECK(c.w.cracks.empty());
@@ -98,14 +99,14 @@ TEST_CASE("cpm: the shear return lands on the linear yield surface in tension") 
   const double e0 = p.crack_onset_strain;
   // Undamaged, at half the onset strain: r_pl = c_T0 − σ_N tan φ.
   const auto [sn, st, e1, w1] = shear_at(p, 0.5 * e0);
-  CHECK(st == doctest::Approx(p.cohesion - sn * p.tan_friction).epsilon(1e-9));
+  CHECK(st == mc::test::relative(p.cohesion - sn * p.tan_friction, 1e-9));
   // Damaged (κ = 2 ε_0), back at ε_0: r_pl = c_T0 (1 − ω) − σ_N tan φ.
   const auto [sn2, st2, e2, omega] = shear_at(p, e0, 2 * e0);
-  CHECK(omega == doctest::Approx(Cpm::damage(p, 2 * e0)).epsilon(1e-3));  // κ: the last strain before 2 ε_0
-  CHECK(st2 == doctest::Approx(p.cohesion * (1 - omega) - sn2 * p.tan_friction).epsilon(1e-9));
+  CHECK(omega == mc::test::relative(Cpm::damage(p, 2 * e0), 1e-3));  // κ: the last strain before 2 ε_0
+  CHECK(st2 == mc::test::relative(p.cohesion * (1 - omega) - sn2 * p.tan_friction, 1e-9));
   // σ_N on the secant; the tilting plane stretched the pair a little (θ²/2 ≈ 4.5e-6), still below κ.
   CHECK(e2 < 2 * e0);
-  CHECK(sn2 == doctest::Approx((1 - omega) * p.modulus * e2).epsilon(1e-9));
+  CHECK(sn2 == mc::test::relative((1 - omega) * p.modulus * e2, 1e-9));
   (void)e1, (void)w1;
 }
 
@@ -116,7 +117,7 @@ TEST_CASE("cpm: the shear return lands on the logarithmic yield surface in compr
   CHECK(sn < 0);
   const double y0 = p.yield_log_speed;
   const double log_surface = p.cohesion * (1 + y0 * p.tan_friction * std::log(-sn / (p.cohesion * y0) + 1));
-  CHECK(st == doctest::Approx(log_surface).epsilon(1e-9));
+  CHECK(st == mc::test::relative(log_surface, 1e-9));
   // Below the linear surface of (23), which the logarithm leaves tangentially at σ_N = 0.
   CHECK(st < p.cohesion - sn * p.tan_friction);
   // With compression_yield = "linear" (Yade's public CpmMat) it is the linear surface again.
@@ -124,7 +125,7 @@ TEST_CASE("cpm: the shear return lands on the logarithmic yield surface in compr
   lin.compression_yield = CpmYield::Linear;
   const auto [sn3, st3, e3, w3] = shear_at(lin, -20 * p.crack_onset_strain);
   (void)e3, (void)w3;
-  CHECK(st3 == doctest::Approx(p.cohesion - sn3 * p.tan_friction).epsilon(1e-9));
+  CHECK(st3 == mc::test::relative(p.cohesion - sn3 * p.tan_friction, 1e-9));
 }
 
 // The force law takes the logarithmic yield radius only when the trial shear stress passes a lower bound of it

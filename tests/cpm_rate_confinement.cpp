@@ -9,6 +9,7 @@
 
 #include "contact_models/cpm.hpp"
 #include "tests/common/cpm_pair.hpp"
+#include "tests/common/relative.hpp"
 
 using namespace mc;
 
@@ -56,7 +57,7 @@ TEST_CASE("cpm: with visco-damage the tensile peak rises monotonically with the 
           " ", peaks[4], "; without viscosity ", rate_independent);
   for (std::size_t k = 1; k < peaks.size(); ++k) CHECK(peaks[k] > peaks[k - 1]);
   // Slower, it tends to the rate-independent peak k_N ε_0 (from above); faster, it is markedly above.
-  CHECK(rate_independent == doctest::Approx(1.0).epsilon(1e-3));
+  CHECK(rate_independent == mc::test::relative(1.0, 1e-3));
   CHECK(peaks.front() > 1.0);
   CHECK(peaks.back() > 1.1 * peaks.front());
 }
@@ -84,8 +85,8 @@ TEST_CASE("cpm: confinement shifts the response by sigma_0 and its strain") {
           " Pa at eps = ", c.eps[ip] / e0, " eps_0; max deviation ", dev, " Pa");
   CHECK(std::abs(c.sigma_n[0]) < 1e-9 * kn * e0);  // stress-free where it was made
   CHECK(dev < 1e-9 * kn * e0);
-  CHECK(c.sigma_n[ip] == doctest::Approx(kn * e0 - p.confinement).epsilon(2e-3));
-  CHECK(c.eps[ip] == doctest::Approx(e0 - shift).epsilon(2e-3));
+  CHECK(c.sigma_n[ip] == mc::test::relative(kn * e0 - p.confinement, 2e-3));
+  CHECK(c.eps[ip] == mc::test::relative(e0 - shift, 2e-3));
 
   // Beyond k_N ε_s the confinement sits on the hardening branch: the contact starts there (stress-free after
   // σ_0 is taken off), compresses with K̃_s k_N and unloads (pulls) with k_N.
@@ -100,6 +101,6 @@ TEST_CASE("cpm: confinement shifts the response by sigma_0 and its strain") {
   MESSAGE("confined on the hardening branch (-120 MPa): first stress ", d.sigma_n[0],
           " Pa, tangent / k_N = ", tangent / kn, ", unloading / k_N = ", unload / kn);
   CHECK(std::abs(d.sigma_n[0]) < 1e-9 * std::abs(h.confinement));
-  CHECK(tangent == doctest::Approx(h.hardening_modulus_ratio * kn).epsilon(1e-8));
-  CHECK(unload == doctest::Approx(kn).epsilon(1e-8));
+  CHECK(tangent == mc::test::relative(h.hardening_modulus_ratio * kn, 1e-8));
+  CHECK(unload == mc::test::relative(kn, 1e-8));
 }

@@ -13,6 +13,7 @@
 
 #include "contact_models/cpm.hpp"
 #include "tests/common/cpm_pair.hpp"
+#include "tests/common/relative.hpp"
 
 using namespace mc;
 
@@ -56,10 +57,10 @@ TEST_CASE("cpm: the tensile stress-strain curve is (1 - omega) k_N eps with omeg
           ", kappa / eps_0 = ", c.state().kappa / p.crack_onset_strain);
   CHECK(dev < 1e-9 * ft);
   // The peak is k_N ε_0 (the local tensile strength), reached at ε_0, then the exponential softening.
-  CHECK(peak == doctest::Approx(ft).epsilon(2e-3));  // the sampling: strain steps of 2e-3 ε_0
+  CHECK(peak == mc::test::relative(ft, 2e-3));  // the sampling: strain steps of 2e-3 ε_0
   const double e_last = c.eps.back();                // σ = k_N ε_0 exp(−(κ − ε_0)/ε_f) on the envelope
-  CHECK(c.sigma_n.back() == doctest::Approx(ft * std::exp(-(e_last - p.crack_onset_strain) / 3e-3)).epsilon(1e-9));
-  CHECK(c.state().kappa == doctest::Approx(c.eps.back()).epsilon(1e-12));
+  CHECK(c.sigma_n.back() == mc::test::relative(ft * std::exp(-(e_last - p.crack_onset_strain) / 3e-3), 1e-9));
+  CHECK(c.state().kappa == mc::test::relative(c.eps.back(), 1e-12));
   // No shear was imposed, so none appears.
   CHECK(*std::max_element(c.sigma_t.begin(), c.sigma_t.end()) < 1e-9 * ft);
   // The first damage went to the crack log once, as a tensile yield; nothing broke (break_damage = 1).
@@ -85,16 +86,16 @@ TEST_CASE("cpm: unloading is secant to the origin, compression undamaged, reload
   const double secant = (1 - g_of(p, 3 * e0)) * p.modulus;
   for (std::size_t k = unload; k < reload; ++k)
     if (c.eps[k] > 0)
-      CHECK(c.sigma_n[k] == doctest::Approx(secant * c.eps[k]).epsilon(1e-9));
+      CHECK(c.sigma_n[k] == mc::test::relative(secant * c.eps[k], 1e-9));
     else
-      CHECK(c.sigma_n[k] == doctest::Approx(p.modulus * c.eps[k]).epsilon(1e-9));  // compression: k_N
+      CHECK(c.sigma_n[k] == mc::test::relative(p.modulus * c.eps[k], 1e-9));  // compression: k_N
   // Reloading below κ retraces it; κ grows again only past 3 ε_0.
   double kappa_mid = 0;
   for (std::size_t k = reload; k < c.eps.size(); ++k)
-    if (c.eps[k] > 0 && c.eps[k] < 2.9 * e0) CHECK(c.sigma_n[k] == doctest::Approx(secant * c.eps[k]).epsilon(1e-9));
+    if (c.eps[k] > 0 && c.eps[k] < 2.9 * e0) CHECK(c.sigma_n[k] == mc::test::relative(secant * c.eps[k], 1e-9));
   kappa_mid = c.state().kappa;
   MESSAGE("secant slope / k_N = ", secant / p.modulus, ", final kappa / eps_0 = ", kappa_mid / e0);
-  CHECK(kappa_mid == doctest::Approx(c.eps.back()).epsilon(1e-12));
+  CHECK(kappa_mid == mc::test::relative(c.eps.back(), 1e-12));
 }
 
 TEST_CASE("cpm: never_damage keeps a cohesive contact elastic in tension") {

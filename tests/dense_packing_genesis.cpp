@@ -8,6 +8,7 @@
 
 #include "engine/cell_grid.hpp"
 #include "preprocess/dense_packing.hpp"
+#include "tests/common/relative.hpp"
 
 using namespace mc;
 
@@ -38,10 +39,10 @@ void genesis() {
           rep.after.coordination, ", steps ", rep.steps);
   REQUIRE(p.x.size() > 200);
   // Grown to exactly the porosity asked for (the radii are scaled to it; round-off only).
-  CHECK(rep.porosity_grown == doctest::Approx(s.porosity).epsilon(1e-9));
+  CHECK(rep.porosity_grown == mc::test::relative(s.porosity, 1e-9));
   // Relieved to the isotropic stress within the genesis' 2 % tolerance; the packing loosens to its jammed
   // porosity at that stress (a few % above the grown one, see dense_packing.hpp), never denser than grown.
-  CHECK(rep.stress_final == doctest::Approx(s.stress).epsilon(0.02));
+  CHECK(rep.stress_final == mc::test::relative(s.stress, 0.02));
   // These boxes are only 12–20 diameters wide: the looser layers along the walls weigh in (≈ +10 %).
   CHECK(rep.porosity_final >= rep.porosity_grown);
   CHECK(rep.porosity_final < 1.20 * s.porosity);
@@ -59,8 +60,8 @@ void genesis() {
   }
   for (int k : near) floaters += k < D + 1;
   CHECK(rep.after.floaters == floaters);
-  CHECK(rep.after.floater_share == doctest::Approx(double(floaters) / p.x.size()).epsilon(1e-12));
-  CHECK(rep.after.coordination == doctest::Approx(double(ends) / p.x.size()).epsilon(1e-12));
+  CHECK(rep.after.floater_share == mc::test::relative(double(floaters) / p.x.size(), 1e-12));
+  CHECK(rep.after.coordination == mc::test::relative(double(ends) / p.x.size(), 1e-12));
   CHECK(rep.before.floaters == rep.after.floaters);
   // Inside the box, and overlaps of the order σ0/E_c R only (≈ 5e-6 R), far below the 1e-3 R asserted.
   double worst = 0;
@@ -106,7 +107,7 @@ void carved_cylinder() {
   for (const auto& x : disc.x) CHECK((x.template head<2>() - centre).norm() <= 6e-3);
   const double kept = double(disc.x.size()) / box.x.size();
   MESSAGE(D, "D: ", disc.x.size(), " of ", box.x.size(), " particles kept (", kept, ")");
-  CHECK(kept == doctest::Approx(M_PI / 4).epsilon(0.10));
+  CHECK(kept == mc::test::relative(M_PI / 4, 0.10));
 }
 
 TEST_CASE("dense_packing_carves_the_inscribed_disc_2d") { carved_cylinder<2>(); }

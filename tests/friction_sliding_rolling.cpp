@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "tests/common/relative.hpp"
 #include "tests/common/test_worlds.hpp"
 
 using namespace mc;
@@ -111,11 +112,11 @@ void block_slides(double press) {
   CHECK(worst_fn < 1e-6);
   CHECK(worst_ratio < 1e-6);
   // Momentum balance of the row: the contact forces between balls cancel, so M dv̄/dt = T − μ F_n.
-  CHECK(a == doctest::Approx(a_exact).epsilon(1e-6));
+  CHECK(a == mc::test::relative(a_exact, 1e-6));
   // Every ball moves at the same acceleration (the compression waves in the row are damped out).
   for (int i = 0; i < row.n; ++i) {
     const double ai = (w.particles.f[i][0]) / w.particles.mass[i];
-    CHECK(ai == doctest::Approx(a_exact).epsilon(1e-6));
+    CHECK(ai == mc::test::relative(a_exact, 1e-6));
   }
 }
 
@@ -144,7 +145,7 @@ void block_sticks(double press) {
   // holds the whole push by static friction. The drift allowed, 10⁻⁶ of the elastic stretch T/k_s, is what
   // the decaying transient can still add; sliding at any rate would move it by orders of magnitude more.
   CHECK(std::abs(drift) < 1e-6 * T / ks);
-  CHECK(ft == doctest::Approx(T).epsilon(1e-6));
+  CHECK(ft == mc::test::relative(T, 1e-6));
   CHECK(std::abs(ft) < mu * -w.walls[0].force[D - 1]);
 }
 
@@ -244,8 +245,8 @@ TEST_CASE("sphere_rolls_down_incline_as_closed_form") {
     // a = g sin θ / (1 + I/(m (R − U/2)²)) and ω (R − U/2) = v. With U/R ≈ 4·10⁻⁷ both differ from the
     // textbook forms by < 2·10⁻⁷; the shear–rotation transient is damped (ζ_eff ≈ 0.56, e-fold in ~2 steps)
     // to round-off by the start of the window. 10⁻⁶ covers both.
-    CHECK(r.a == doctest::Approx(r.a_roll_exact).epsilon(1e-6));
-    CHECK(r.omega_over_v == doctest::Approx(1.0).epsilon(1e-6));
+    CHECK(r.a == mc::test::relative(r.a_roll_exact, 1e-6));
+    CHECK(r.omega_over_v == mc::test::relative(1.0, 1e-6));
     CHECK(r.slip_speed < 1e-6);
   }
   // μ = 0.05 < 0.104: it slides, friction μ m g cos θ.
@@ -257,9 +258,9 @@ TEST_CASE("sphere_rolls_down_incline_as_closed_form") {
                                                                  << alpha_exact_over_a << ")");
     // Once slipping the friction force is exactly μ k_n U^n: round-off only (a few steps of sticking at the
     // start lie before the window).
-    CHECK(r.a == doctest::Approx(r.a_slide_exact).epsilon(1e-6));
+    CHECK(r.a == mc::test::relative(r.a_slide_exact, 1e-6));
     // α = μ m g cos θ (R − U/2) / I: the lever differs from R by U/2R ≈ 2·10⁻⁷.
-    CHECK(r.alpha_over_a == doctest::Approx(alpha_exact_over_a).epsilon(1e-6));
+    CHECK(r.alpha_over_a == mc::test::relative(alpha_exact_over_a, 1e-6));
   }
 }
 
@@ -272,8 +273,8 @@ TEST_CASE("disc_rolls_down_incline_as_closed_form") {
     MESSAGE("disc, μ = 0.5: a / (2/3 g sin θ) − 1 = " << r.a / r.a_roll_exact - 1 << ", ω R / v − 1 = "
                                                       << r.omega_over_v - 1 << ", slip speed / v = " << r.slip_speed);
     // As for the sphere; U/R ≈ 5·10⁻⁷ here.
-    CHECK(r.a == doctest::Approx(r.a_roll_exact).epsilon(1e-6));
-    CHECK(r.omega_over_v == doctest::Approx(1.0).epsilon(1e-6));
+    CHECK(r.a == mc::test::relative(r.a_roll_exact, 1e-6));
+    CHECK(r.omega_over_v == mc::test::relative(1.0, 1e-6));
     CHECK(r.slip_speed < 1e-6);
   }
   {
@@ -282,7 +283,7 @@ TEST_CASE("disc_rolls_down_incline_as_closed_form") {
     MESSAGE("disc, μ = 0.05: a / (g (sin θ − μ cos θ)) − 1 = " << r.a / r.a_slide_exact - 1
                                                                << ", α R / a = " << r.alpha_over_a << " (exact "
                                                                << alpha_exact_over_a << ")");
-    CHECK(r.a == doctest::Approx(r.a_slide_exact).epsilon(1e-6));
-    CHECK(r.alpha_over_a == doctest::Approx(alpha_exact_over_a).epsilon(1e-6));
+    CHECK(r.a == mc::test::relative(r.a_slide_exact, 1e-6));
+    CHECK(r.alpha_over_a == mc::test::relative(alpha_exact_over_a, 1e-6));
   }
 }

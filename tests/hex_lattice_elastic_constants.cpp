@@ -15,6 +15,7 @@
 #include "engine/measure.hpp"
 #include "preprocess/regular_packing.hpp"
 #include "tests/common/errors.hpp"
+#include "tests/common/relative.hpp"
 #include "tests/common/test_worlds.hpp"
 
 using namespace mc;
@@ -110,7 +111,7 @@ Tension virtual_tension(const LatticeStiffness& k, int per_row, int rows, double
   // Force on the rows held in y: the contacts pull the top row down and the bottom row up by the same amount.
   double f_top = 0, f_bottom = 0;
   for (int i = 0; i < per_row; ++i) f_bottom += P.f[i][1], f_top += P.f[top0 + i][1];
-  CHECK(f_bottom == doctest::Approx(-f_top).epsilon(1e-4));
+  CHECK(f_bottom == mc::test::relative(-f_top, 1e-4));
   const double stress = 0.5 * (f_bottom - f_top) / ((2 * per_row - 1) * kR);
 
   // Displacement gradient: the engine's best-fit velocity gradient (Tang 3.68–3.73) applied to a copy whose
@@ -159,13 +160,13 @@ TEST_CASE("hex_lattice_virtual_tension_gives_plane_stress_E_and_nu_of_tang_8_3")
   const double E = 30e9;
   for (const double nu : {0.2, 0.1}) {
     const LatticeStiffness k = hex_lattice_stiffness_plane_stress(E, nu);
-    CHECK(lattice_poisson_2d(k) == doctest::Approx(nu).epsilon(1e-12));  // ν₂D = ν in plane stress
+    CHECK(lattice_poisson_2d(k) == mc::test::relative(nu, 1e-12));  // ν₂D = ν in plane stress
     const Tension t = virtual_tension(k, kPerRow, kRows, kStrain, kRamp);
     MESSAGE("plane stress, target E = " << E << " Pa, ν = " << nu << ": measured E = " << t.young_2d << " Pa (ratio "
                                         << t.young_2d / E << "), ν = " << t.poisson_2d << " (ratio "
                                         << t.poisson_2d / nu << ")");
-    CHECK(t.young_2d == doctest::Approx(E).epsilon(0.02));
-    CHECK(t.poisson_2d == doctest::Approx(nu).epsilon(0.02));
+    CHECK(t.young_2d == mc::test::relative(E, 0.02));
+    CHECK(t.poisson_2d == mc::test::relative(nu, 0.02));
   }
 }
 
@@ -173,14 +174,14 @@ TEST_CASE("hex_lattice_virtual_tension_gives_plane_strain_E_and_nu_of_tang_8_2")
   const double E = 30e9;
   for (const double nu : {0.2, 0.1}) {
     const LatticeStiffness k = hex_lattice_stiffness_plane_strain(E, nu);
-    CHECK(lattice_poisson_2d(k) == doctest::Approx(nu / (1 - nu)).epsilon(1e-12));  // ν₂D = ν/(1 − ν)
+    CHECK(lattice_poisson_2d(k) == mc::test::relative(nu / (1 - nu), 1e-12));  // ν₂D = ν/(1 − ν)
     const Tension t = virtual_tension(k, kPerRow, kRows, kStrain, kRamp);
     // The plate measured in-plane is the plane-strain body seen through ν₂D = ν/(1−ν), E₂D = E/(1−ν²).
     const double nu_ps = t.poisson_2d / (1 + t.poisson_2d), E_ps = t.young_2d * (1 - nu_ps * nu_ps);
     MESSAGE("plane strain, target E = " << E << " Pa, ν = " << nu << ": measured E = " << E_ps << " Pa (ratio "
                                         << E_ps / E << "), ν = " << nu_ps << " (ratio " << nu_ps / nu << ")");
-    CHECK(E_ps == doctest::Approx(E).epsilon(0.02));
-    CHECK(nu_ps == doctest::Approx(nu).epsilon(0.02));
+    CHECK(E_ps == mc::test::relative(E, 0.02));
+    CHECK(nu_ps == mc::test::relative(nu, 0.02));
   }
 }
 
@@ -217,8 +218,8 @@ TEST_CASE("regular_packings_have_the_expected_contacts") {
     for (int j = 0; j < M; ++j)
       for (int i = 0; i < N; ++i) {  // row by row, left to right, odd rows offset by R
         const Vec<2>& x = pk.x[j * N + i];
-        CHECK(x[0] == doctest::Approx(lo[0] + R + (j % 2) * R + 2 * R * i).epsilon(1e-14));
-        CHECK(x[1] == doctest::Approx(lo[1] + R + std::sqrt(3.0) * R * j).epsilon(1e-14));
+        CHECK(x[0] == mc::test::relative(lo[0] + R + (j % 2) * R + 2 * R * i, 1e-14));
+        CHECK(x[1] == mc::test::relative(lo[1] + R + std::sqrt(3.0) * R * j, 1e-14));
         CHECK(pk.radius[j * N + i] == R);
       }
     double next = 0;
@@ -240,7 +241,7 @@ TEST_CASE("regular_packings_have_the_expected_contacts") {
     CHECK(interior == (M - 2) * (N - 2));
     CHECK(pairs / 2 == M * (N - 1) + (M - 1) * (2 * N - 1));
     // The next shell of the hexagonal lattice lies at 2√3 R: no near misses that a bond tolerance could catch.
-    CHECK(next == doctest::Approx(2 * std::sqrt(3.0) * R).epsilon(1e-12));
+    CHECK(next == mc::test::relative(2 * std::sqrt(3.0) * R, 1e-12));
     // A box a hair too narrow for the last disc of the odd rows leaves it out; one too low drops the top row.
     CHECK(hexagonal_packing(lo, lo + Vec<2>((2 * N + 0.9) * R, 2 * R + (M - 1) * std::sqrt(3.0) * R), R).x.size() ==
           static_cast<std::size_t>(N * M - M / 2));
@@ -262,7 +263,7 @@ TEST_CASE("regular_packings_have_the_expected_contacts") {
       for (int k = 0; k < 3; ++k) {
         const double f = (pk.x[p][k] - lo[k] - R) / half;
         idx[k] = static_cast<int>(std::lround(f));
-        CHECK(f == doctest::Approx(idx[k]).epsilon(1e-12));  // on the lattice
+        CHECK(f == doctest::Approx(idx[k]).epsilon(1e-12));  // on the lattice: an index, of order 1
       }
       CHECK((idx[0] + idx[1] + idx[2]) % 2 == 0);
       if (p > 0) {  // layer by layer (z), then row (y), then x
@@ -286,7 +287,7 @@ TEST_CASE("regular_packings_have_the_expected_contacts") {
     // even sum.
     CHECK(pairs / 2 == 3 * 2 * (s - 1) * (s - 1) * s / 2);
     // The next shell of the FCC lattice lies at the cube edge a = 2√2 R.
-    CHECK(next == doctest::Approx(2 * std::sqrt(2.0) * R).epsilon(1e-12));
+    CHECK(next == mc::test::relative(2 * std::sqrt(2.0) * R, 1e-12));
   }
 }
 
@@ -294,16 +295,16 @@ TEST_CASE("closed_form_lattice_stiffness_rejects_poisson_ratios_without_a_shear_
   const double E = 30e9, s3 = std::sqrt(3.0);
   // Known values: ν = 0 gives K^n = K^s = E/√3 in both; plane stress ν = 0.2: K^n = E/(0.8√3), K^s = 0.4 E/(0.96√3).
   for (const auto& k : {hex_lattice_stiffness_plane_stress(E, 0), hex_lattice_stiffness_plane_strain(E, 0)}) {
-    CHECK(k.normal == doctest::Approx(E / s3).epsilon(1e-14));
-    CHECK(k.shear == doctest::Approx(E / s3).epsilon(1e-14));
+    CHECK(k.normal == mc::test::relative(E / s3, 1e-14));
+    CHECK(k.shear == mc::test::relative(E / s3, 1e-14));
   }
   const LatticeStiffness ps = hex_lattice_stiffness_plane_stress(E, 0.2);
-  CHECK(ps.normal == doctest::Approx(E / (0.8 * s3)).epsilon(1e-14));
-  CHECK(ps.shear == doctest::Approx(0.4 * E / (0.96 * s3)).epsilon(1e-14));
+  CHECK(ps.normal == mc::test::relative(E / (0.8 * s3), 1e-14));
+  CHECK(ps.shear == mc::test::relative(0.4 * E / (0.96 * s3), 1e-14));
   // Plane strain ν = 0.2: (1 + ν)(1 − 2ν) = 0.72, 1 − 4ν = 0.2.
   const LatticeStiffness pe = hex_lattice_stiffness_plane_strain(E, 0.2);
-  CHECK(pe.normal == doctest::Approx(E / (0.72 * s3)).epsilon(1e-14));
-  CHECK(pe.shear == doctest::Approx(0.2 * E / (0.72 * s3)).epsilon(1e-14));
+  CHECK(pe.normal == mc::test::relative(E / (0.72 * s3), 1e-14));
+  CHECK(pe.shear == mc::test::relative(0.2 * E / (0.72 * s3), 1e-14));
   // Just below the limits K^s is small but positive; at and beyond them there is no shear spring to give.
   CHECK(hex_lattice_stiffness_plane_strain(E, 0.2499).shear > 0);
   CHECK(hex_lattice_stiffness_plane_stress(E, 0.3333).shear > 0);

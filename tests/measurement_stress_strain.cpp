@@ -8,6 +8,7 @@
 #include <random>
 
 #include "engine/measure.hpp"
+#include "tests/common/relative.hpp"
 #include "tests/common/test_worlds.hpp"
 
 using namespace mc;
@@ -172,7 +173,7 @@ void circle_stress_equals_wall_stress(int per_side) {
   // The whole assembly carries exactly the wall stress (box_stress), but for the box: a ball–wall contact point
   // lies δ/2 behind the wall (Tang 3.4, as in PFC), so the sum spans L + δ, not L (measured +0.05 % in 2D,
   // +0.2 % in 3D); the unbalanced forces left add ~1e-5.
-  for (int k = 0; k < D; ++k) CHECK(-box(k, k) == doctest::Approx(pk.wall_stress(k)).epsilon(5e-3));
+  for (int k = 0; k < D; ++k) CHECK(-box(k, k) == mc::test::relative(pk.wall_stress(k), 5e-3));
   // The region does not, to 2 %, in a random packing of this size: force chains make the stress of ~350
   // (2D) / ~180 (3D) particles fluctuate, and the layers along the walls carry more than the core, so the
   // region reads low on average (by ≈ 3 % in 2D, 5 % in 3D). Over 9 packings (seeds 1–8 and this one) the
@@ -181,8 +182,8 @@ void circle_stress_equals_wall_stress(int per_side) {
   // about 1.5 times the largest deviation seen. They catch a wrong sign, a factor of 2 or, in 3D, a lost
   // porosity factor (1 − n ≈ 0.65); the uniform lattice below checks the formula itself to 2 %.
   const double tol_component = D == 2 ? 0.15 : 0.20, tol_mean = D == 2 ? 0.12 : 0.15;
-  CHECK(region_mean == doctest::Approx(wall_mean).epsilon(tol_mean));
-  for (int k = 0; k < D; ++k) CHECK(-sigma(k, k) == doctest::Approx(pk.wall_stress(k)).epsilon(tol_component));
+  CHECK(region_mean == mc::test::relative(wall_mean, tol_mean));
+  for (int k = 0; k < D; ++k) CHECK(-sigma(k, k) == mc::test::relative(pk.wall_stress(k), tol_component));
   // Off-diagonal: zero on average under an isotropic load; over the same packings at most 5 % (2D) and 9 %
   // (3D) of the mean stress.
   for (int k = 0; k < D; ++k)
@@ -230,19 +231,19 @@ void lattice_stress(int per_side) {
             << Dim<D>::volume(r) / std::pow(s, D) << ")");
   // Each wall carries n^(D−1) forces F over (n s − δ)^(D−1): exact arithmetic.
   for (const auto& wl : w.walls)
-    CHECK(wl.normal_stress() == doctest::Approx(exact * std::pow(per_side * s / L, D - 1)).epsilon(1e-9));
+    CHECK(wl.normal_stress() == mc::test::relative(exact * std::pow(per_side * s / L, D - 1), 1e-9));
   // Every particle in the region has the same Σ (x^c − x^p) F^c = −s F per axis, so (3.63) must give exactly
   // (1 − n) s F / V_p: this checks the levers, the sign and the factor to round-off.
   CHECK(coordination_number(w, region) == 2 * D);
   for (int k = 0; k < D; ++k) {
-    CHECK(-sigma(k, k) == doctest::Approx(solid * s * F / Dim<D>::volume(r)).epsilon(1e-12));
+    CHECK(-sigma(k, k) == mc::test::relative(solid * s * F / Dim<D>::volume(r), 1e-12));
     for (int l = 0; l < D; ++l)
       if (l != k) CHECK(sigma(k, l) == 0.0);
   }
   // Against the true stress the only error left is how the region cuts the lattice: its solid fraction is not
   // quite the lattice's V_p/s^D. Measured 0.5 % (2D) and 1.2 % (3D) here, and within ±2 % for any radius
   // from 0.22 L to 0.47 L.
-  for (int k = 0; k < D; ++k) CHECK(-sigma(k, k) == doctest::Approx(exact).epsilon(0.02));
+  for (int k = 0; k < D; ++k) CHECK(-sigma(k, k) == mc::test::relative(exact, 0.02));
 }
 
 template <int D>
@@ -352,8 +353,8 @@ TEST_CASE("best_fit_strain_rate_recovers_affine_field_3d") { affine_field<3>(500
 TEST_CASE("porosity_of_a_single_particle_inside_and_straddling") {
   const double R = 1.0, r = 0.3;
   // Inside, outside, and a particle containing the whole region: closed forms, to round-off.
-  CHECK(single_particle_porosity<2>(R, r, 0.5) == doctest::Approx(1 - r * r / (R * R)).epsilon(1e-14));
-  CHECK(single_particle_porosity<3>(R, r, 0.5) == doctest::Approx(1 - r * r * r / (R * R * R)).epsilon(1e-14));
+  CHECK(single_particle_porosity<2>(R, r, 0.5) == mc::test::relative(1 - r * r / (R * R), 1e-14));
+  CHECK(single_particle_porosity<3>(R, r, 0.5) == mc::test::relative(1 - r * r * r / (R * R * R), 1e-14));
   CHECK(single_particle_porosity<2>(R, r, 1.31) == 1.0);
   CHECK(single_particle_porosity<3>(R, r, 1.31) == 1.0);
   CHECK(single_particle_porosity<2>(R, 2.0, 0.5) == doctest::Approx(0.0).epsilon(1e-14));
@@ -367,7 +368,7 @@ TEST_CASE("porosity_of_a_single_particle_inside_and_straddling") {
                    << " vs grid " << grid3);
     // The chord length is continuous with √-type edges, so the midpoint grid errs by O(h^1.5) relative:
     // ~1e-9 with 10^6 cells (2D), ~1e-5 with 2000² cells (3D); 1e-4 leaves room for both.
-    CHECK(lens2 == doctest::Approx(grid2).epsilon(1e-4));
-    CHECK(lens3 == doctest::Approx(grid3).epsilon(1e-4));
+    CHECK(lens2 == mc::test::relative(grid2, 1e-4));
+    CHECK(lens3 == mc::test::relative(grid3, 1e-4));
   }
 }

@@ -11,6 +11,7 @@
 #include "engine/errors.hpp"
 #include "studies/model_code.hpp"
 #include "tests/common/cli_harness.hpp"
+#include "tests/common/relative.hpp"
 
 namespace {
 
@@ -39,20 +40,20 @@ TEST_CASE("fib_model_code_2010_classes_give_the_codes_tabulated_strengths_and_mo
     // f_cm = f_ck + 8 MPa exactly; the table rounds the others to its last digit: within half of it (and 1e-9 for
     // a value that ends in 5). Its f_ctk are 0.7 and 1.3 times its rounded f_ctm, rounded again (C50/60: 0.7 × 4.1
     // = 2.87 → 2.9, where 0.7 × 4.07 = 2.85): within 0.05 + 0.7 × 0.05 and 0.05 + 1.3 × 0.05.
-    CHECK(m.f_cm == doctest::Approx(t.f_cm * 1e6).epsilon(1e-12));
+    CHECK(m.f_cm == mc::test::relative(t.f_cm * 1e6, 1e-12));
     CHECK(std::abs(m.f_ctm * 1e-6 - t.f_ctm) <= 0.05 + 1e-9);
     CHECK(std::abs(m.f_ctk_min * 1e-6 - t.f_ctk_min) <= 0.05 + 0.7 * 0.05 + 1e-9);
     CHECK(std::abs(m.f_ctk_max * 1e-6 - t.f_ctk_max) <= 0.05 + 1.3 * 0.05 + 1e-9);
     CHECK(std::abs(m.e_ci * 1e-9 - t.e_ci) <= 0.05 + 1e-9);
     // G_F = 73 f_cm^0.18 (5.1-9): 141.4 N/m for C30/37 (f_cm 38 MPa).
-    CHECK(m.fracture_energy == doctest::Approx(73 * std::pow(t.f_cm, 0.18)).epsilon(1e-12));
+    CHECK(m.fracture_energy == mc::test::relative(73 * std::pow(t.f_cm, 0.18), 1e-12));
     CHECK(m.poisson == 0.2);
     // E_c = α_i E_ci, α_i = 0.8 + 0.2 f_cm/88 at most 1 (5.1-23, 5.1-24): 29.74 GPa for C30/37.
-    CHECK(m.e_c == doctest::Approx(std::min(0.8 + 0.2 * t.f_cm / 88, 1.0) * m.e_ci).epsilon(1e-12));
+    CHECK(m.e_c == mc::test::relative(std::min(0.8 + 0.2 * t.f_cm / 88, 1.0) * m.e_ci, 1e-12));
   }
   // α_E of the aggregate multiplies E_ci only.
   const auto basalt = mc::model_code_concrete("C30/37", "basalt"), quartz = mc::model_code_concrete("C30");
-  CHECK(basalt.e_ci == doctest::Approx(1.2 * quartz.e_ci).epsilon(1e-12));
+  CHECK(basalt.e_ci == mc::test::relative(1.2 * quartz.e_ci, 1e-12));
   CHECK(basalt.f_ctm == quartz.f_ctm);
   CHECK(quartz.name == "C30/37");
 }
@@ -78,7 +79,7 @@ TEST_CASE("concrete_command_prints_a_classs_values_with_units_and_calibrate_take
   REQUIRE_MESSAGE(c.code == 0, c.describe());
   const Json j = parse_json(c.out);
   CHECK(j["class"].text == "C30/37");
-  CHECK(j["f_ctm"].number == doctest::Approx(0.3 * std::pow(30.0, 2.0 / 3.0) * 1e6).epsilon(1e-9));
+  CHECK(j["f_ctm"].number == mc::test::relative(0.3 * std::pow(30.0, 2.0 / 3.0) * 1e6, 1e-9));
   CHECK(j["calibrate"].text == "--target class=C30/37");
   const Result bad = mesocrack({"concrete", "C31/38"}, d.dir);
   CHECK_MESSAGE(bad.code == 2, bad.describe());

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "contact_models/parallel_bond.hpp"
+#include "tests/common/relative.hpp"
 #include "tests/common/test_worlds.hpp"
 
 using namespace mc;
@@ -77,7 +78,7 @@ Outcome drive(const ParallelBondParams& p, Load load) {
       CHECK(k.step == w.step_count);
       CHECK(k.kind == CrackKind::Break);
       CHECK(k.set == 0);
-      CHECK(std::abs(k.normal[0]) == doctest::Approx(1.0).epsilon(1e-3));  // the bond axis is x
+      CHECK(std::abs(k.normal[0]) == mc::test::relative(1.0, 1e-3));  // the bond axis is x
       out.mode = k.mode;
       out.crack_x = k.position[0];
       out.break_ratio = last / capacity;
@@ -99,12 +100,12 @@ Outcome drive(const ParallelBondParams& p, Load load) {
 template <int D>
 void tension() {
   const Outcome o = drive<D>(params(20e6, 1e12), Load::Tension);
-  CHECK(o.stiffness_ratio == doctest::Approx(1.0).epsilon(1e-9));  // exact increments: only round-off
+  CHECK(o.stiffness_ratio == mc::test::relative(1.0, 1e-9));  // exact increments: only round-off
   CHECK(o.break_ratio ==
-        doctest::Approx(1.0).epsilon(5e-3));  // 0.5 %: one step's overshoot at most; the scheme gives 0.025 %
+        mc::test::relative(1.0, 5e-3));  // 0.5 %: one step's overshoot at most; the scheme gives 0.025 %
   CHECK(o.break_ratio <= 1.0);
   CHECK(o.mode == CrackMode::Tensile);
-  CHECK(o.crack_x == doctest::Approx(kR).epsilon(1e-2));  // the crack sits at the contact point, midway
+  CHECK(o.crack_x == mc::test::relative(kR, 1e-2));  // the crack sits at the contact point, midway
 }
 
 template <int D>
@@ -112,16 +113,16 @@ void shear() {
   const Outcome o = drive<D>(params(1e12, 20e6), Load::Shear);
   // B slides by ~1e-6 m on a 2 mm lever: the contact plane tilts by 5e-4 rad, turning a part (1 − cos) ~ 1e-7
   // of the shear force out of the plane.
-  CHECK(o.stiffness_ratio == doctest::Approx(1.0).epsilon(1e-5));
-  CHECK(o.break_ratio == doctest::Approx(1.0).epsilon(5e-3));
+  CHECK(o.stiffness_ratio == mc::test::relative(1.0, 1e-5));
+  CHECK(o.break_ratio == mc::test::relative(1.0, 5e-3));
   CHECK(o.mode == CrackMode::Shear);
 }
 
 template <int D>
 void bending() {
   const Outcome o = drive<D>(params(20e6, 1e12), Load::Bending);
-  CHECK(o.stiffness_ratio == doctest::Approx(1.0).epsilon(1e-9));
-  CHECK(o.break_ratio == doctest::Approx(1.0).epsilon(5e-3));
+  CHECK(o.stiffness_ratio == mc::test::relative(1.0, 1e-9));
+  CHECK(o.break_ratio == mc::test::relative(1.0, 5e-3));
   CHECK(o.mode == CrackMode::Tensile);  // bending breaks the beam by the tension on its outer fibre
 }
 

@@ -9,6 +9,7 @@
 #include "scene/build_world.hpp"
 #include "scene/scene.hpp"
 #include "scene/toml_reader.hpp"
+#include "tests/common/relative.hpp"
 #include "tests/common/test_worlds.hpp"
 
 using namespace mc;
@@ -34,7 +35,7 @@ void series_springs() {
   const double kn =
       D == 2 ? 2 * p.modulus * fa * fb / (fa + fb) : 4 * p.modulus * (ra * fa) * (rb * fb) / (ra * fa + rb * fb);
   // Overlap 1e-7 m out of coordinates ~ 1e-3 m: round-off ~ 1e-9 relative.
-  CHECK(w.contact_force(0, 0)[0] == doctest::Approx(kn * overlap).epsilon(1e-6));
+  CHECK(w.contact_force(0, 0)[0] == mc::test::relative(kn * overlap, 1e-6));
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "contact_models/softening_bond.hpp"
+#include "tests/common/relative.hpp"
 #include "tests/common/test_worlds.hpp"
 
 using namespace mc;
@@ -85,7 +86,7 @@ void pulled_apart_dissipates_the_area_under_its_softening_curve() {
           ", residual / boundary work = ", w.energy.residual() / w.energy.boundary_work,
           ", loading steps = ", r.force.size());
   // Each step adds 1/1000 of the strength: the force passes the peak within 0.1 % of it, never above.
-  CHECK(peak / r.strength == doctest::Approx(1.0).epsilon(1e-3));
+  CHECK(peak / r.strength == mc::test::relative(1.0, 1e-3));
   CHECK(peak <= r.strength);
   // Yielded once, broke once, in that order, both opened in tension.
   REQUIRE(w.cracks.size() == 2);
@@ -96,7 +97,7 @@ void pulled_apart_dissipates_the_area_under_its_softening_curve() {
   // All the work of the pull is dissipated, the triangle under the curve. The dissipation is the trapezoid
   // rule along U_p, exact on the softening line; only the step that turns onto it at the peak errs, by
   // ~(k_n Δx)(ΔU_p)/(F_c^n U_p,max) ~ 1e-7 (one step in 1000 times one in 4000).
-  CHECK(w.energy.dissipated_bonds / area == doctest::Approx(1.0).epsilon(1e-5));
+  CHECK(w.energy.dissipated_bonds / area == mc::test::relative(1.0, 1e-5));
   // The balance closes exactly but for round-off: positions ~2e-3 m move by steps of 5e-12 m (2D), each
   // rounded to ~4e-19 m, 1e-7 of a step, partly cancelling over the 5000 steps.
   CHECK(std::abs(w.energy.residual()) < 1e-6 * w.energy.boundary_work);
@@ -115,7 +116,7 @@ void strength_decreases_linearly_with_plastic_displacement() {
       MESSAGE("U_p / U_p,max = ", up / r.limit, ": F / F_c^n(U_p) - 1 = ", r.force[k] / expected - 1);
       // The return solves for the softened strength exactly; what is left is the round-off of an opening
       // (≥ 1e-8 m) taken from coordinates ~2e-3 m: ~4e-19 m, ~1e-10 of the force even at U_p = 0.8 U_p,max.
-      CHECK(r.force[k] / expected == doctest::Approx(1.0).epsilon(1e-6));
+      CHECK(r.force[k] / expected == mc::test::relative(1.0, 1e-6));
       ++checked;
       break;
     }
@@ -138,7 +139,7 @@ void fracture_energy_sets_the_plastic_limit() {
           ", dissipated / (G_f A) - 1 = ", r.w.energy.dissipated_bonds / (p.bond_fracture_energy * area) - 1);
   CHECK(r.strength != p.bond_normal_strength.mean);  // drawn
   // As in the pull above: exact but for the step onto the softening line at the peak, ~1e-7.
-  CHECK(r.w.energy.dissipated_bonds / (p.bond_fracture_energy * area) == doctest::Approx(1.0).epsilon(1e-5));
+  CHECK(r.w.energy.dissipated_bonds / (p.bond_fracture_energy * area) == mc::test::relative(1.0, 1e-5));
 }
 
 template <int D>
@@ -180,7 +181,7 @@ void in_compression_slips_at_mu_fn_plus_softened_cohesion() {
   // Peak: μF_n + F_c^s; each step adds 1/1000 of it.
   const auto peak = *std::max_element(bonded.begin(), bonded.end(), [](auto a, auto b) { return a.fs < b.fs; });
   MESSAGE("peak / (μF_n + F_c^s) - 1 = ", peak.fs / (mu * peak.fn + fcs) - 1);
-  CHECK(peak.fs / (mu * peak.fn + fcs) == doctest::Approx(1.0).epsilon(1e-3));
+  CHECK(peak.fs / (mu * peak.fn + fcs) == mc::test::relative(1.0, 1e-3));
   // Softening: F_s = μF_n + F_c^s (1 − U_p/U_p,max), U_p the slide the shear spring does not hold. The slide
   // is measured along y, not in the turning contact plane: off by ~θ²/2 ≲ 2e-6 of it (3D).
   int checked = 0;
@@ -190,7 +191,7 @@ void in_compression_slips_at_mu_fn_plus_softened_cohesion() {
       if (up < q * p.bond_plastic_limit) continue;
       const double expected = mu * s.fn + fcs * (1.0 - up / p.bond_plastic_limit);  // Tang (3.47)–(3.48)
       MESSAGE("U_p / U_p,max = ", up / p.bond_plastic_limit, ": F_s / (μF_n + F_c^s(U_p)) - 1 = ", s.fs / expected - 1);
-      CHECK(s.fs / expected == doctest::Approx(1.0).epsilon(1e-4));
+      CHECK(s.fs / expected == mc::test::relative(1.0, 1e-4));
       ++checked;
       break;
     }
@@ -198,7 +199,7 @@ void in_compression_slips_at_mu_fn_plus_softened_cohesion() {
   CHECK(checked == 4);
   // Sliding after the break: |F_s| = μF_n exactly, the normal force that of the overlap.
   MESSAGE("after the break: F_s / μF_n - 1 = ", after.fs / (mu * after.fn) - 1);
-  CHECK(after.fs / (mu * after.fn) == doctest::Approx(1.0).epsilon(1e-6));  // round-off of |F_s| ≪ |F|
+  CHECK(after.fs / (mu * after.fn) == mc::test::relative(1.0, 1e-6));  // round-off of |F_s| ≪ |F|
   // Work of the moving pair = the softening and friction work. The last force pass books its force over the
   // whole step after it, while the strain is taken where it saw the particles: ½ μF_n Δs (4e-5 of the work)
   // is in the balance; all else closes but for the turn of the contact plane (3D), ~1e-7.
@@ -233,7 +234,7 @@ void slid_without_normal_load_dissipates_its_mode_ii_fracture_energy() {
   MESSAGE("dissipated / A = ", g, " N/m against G_II = ", p.bond_fracture_energy, " N/m (", g / p.bond_fracture_energy - 1,
           "); breaks in shear: ", w.crack_count(CrackKind::Break, CrackMode::Shear));
   CHECK(w.crack_count(CrackKind::Break, CrackMode::Shear) == 1);
-  CHECK(g == doctest::Approx(p.bond_fracture_energy).epsilon(0.01));
+  CHECK(g == mc::test::relative(p.bond_fracture_energy, 0.01));
 }
 
 }  // namespace

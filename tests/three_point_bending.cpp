@@ -11,6 +11,7 @@
 #include "engine/wall.hpp"
 #include "preprocess/regular_packing.hpp"
 #include "tests/common/cli_harness.hpp"
+#include "tests/common/relative.hpp"
 
 namespace {
 
@@ -150,7 +151,7 @@ history_every = 20
   MESSAGE("Timoshenko k = ", expected, " N/m (shear ", shear / (bending + shear) * 100,
           " % of the compliance), measured ", measured, " N/m (ratio ", measured / expected, "), run ", r.seconds,
           " s");
-  CHECK(measured == doctest::Approx(expected).epsilon(0.05));
+  CHECK(measured == mc::test::relative(expected, 0.05));
 }
 
 // The notched beam under CMOD control, in one run (with energy tracing, which changes no force):
@@ -185,12 +186,12 @@ TEST_CASE("notched_beam_under_cmod_control_holds_its_opening_rate_and_closes_its
     for (int k = 0; k < 5; ++k) {
       const double s = slope(t, cmod, from + k * fifth, from + (k + 1) * fifth);
       MESSAGE("CMOD rate over fifth ", k + 1, ": ", s * 1e3, " mm/s");
-      CHECK(s == doctest::Approx(rate).epsilon(0.05));
+      CHECK(s == mc::test::relative(rate, 0.05));
     }
     const std::size_t half = (to - from) / 20;
     const double at_peak = slope(t, cmod, peak - half, peak + half);
     MESSAGE("CMOD rate around the peak: ", at_peak * 1e3, " mm/s");
-    CHECK(at_peak == doctest::Approx(rate).epsilon(0.05));
+    CHECK(at_peak == mc::test::relative(rate, 0.05));
   }
   {  // the energy balance
     const Json& e = j["bending"]["energy"];
@@ -216,13 +217,13 @@ TEST_CASE("opening_servo_is_proportional_inside_its_band_and_backs_off_no_faster
   w.opening_rate = 10e-3, w.opening_gain = 8000, w.servo_max_speed = 30e-3, w.retreat_speed = 10e-3;
   const double t = 2e-3, dt = 1e-7, target = w.opening_rate * (t + dt);  // no ramp: τ(t) = t
   w.control_velocity(t, dt, target - 1e-6);                              // 1 µm behind: 8 mm/s
-  CHECK(w.velocity.dot(w.normal) == doctest::Approx(8e-3).epsilon(1e-9));
+  CHECK(w.velocity.dot(w.normal) == mc::test::relative(8e-3, 1e-9));
   w.control_velocity(t, dt, target + 0.5e-6);  // 0.5 µm ahead: backs off at 4 mm/s, inside the retreat limit
-  CHECK(w.velocity.dot(w.normal) == doctest::Approx(-4e-3).epsilon(1e-9));
+  CHECK(w.velocity.dot(w.normal) == mc::test::relative(-4e-3, 1e-9));
   w.control_velocity(t, dt, target - 1e-3);  // far behind: advances at max_speed
-  CHECK(w.velocity.dot(w.normal) == doctest::Approx(30e-3).epsilon(1e-12));
+  CHECK(w.velocity.dot(w.normal) == mc::test::relative(30e-3, 1e-12));
   w.control_velocity(t, dt, target + 1e-3);  // far ahead: backs off at retreat_speed only
-  CHECK(w.velocity.dot(w.normal) == doctest::Approx(-10e-3).epsilon(1e-12));
+  CHECK(w.velocity.dot(w.normal) == mc::test::relative(-10e-3, 1e-12));
   CHECK(std::abs(w.velocity.dot(w.axis[0])) < 1e-15);  // along the normal only
 }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "tests/common/relative.hpp"
 #include "tests/common/test_worlds.hpp"
 
 using namespace mc;
@@ -54,10 +55,10 @@ void linear_elastic_impact() {
   const double kn = Linear::series(Linear::ball_kn<D>(p, r), Linear::ball_kn<D>(p, r));
   const double t_c = M_PI * std::sqrt(0.5 * m / kn);  // half period of the relative oscillation
   // The contact start and end are known only to within one step each: 2 dt out of ~60 steps of 0.05 t_crit.
-  CHECK(im.duration == doctest::Approx(t_c).epsilon(0.02));
+  CHECK(im.duration == mc::test::relative(t_c, 0.02));
   // Central differences conserve the energy of a linear spring exactly; only the step in which the contact
   // opens or closes can gain or lose a little (≈ (ω dt)² / 8 with ω dt ≈ 0.05 here).
-  CHECK(im.rebound_speed == doctest::Approx(v).epsilon(1e-3));
+  CHECK(im.rebound_speed == mc::test::relative(v, 1e-3));
 }
 
 template <int D>
@@ -69,7 +70,7 @@ void viscous_impact(double zeta) {
   const Impact im = collide<D, Linear>(p, 1e-3, 2600, v, 0.02);
   const double e = std::exp(-M_PI * zeta / std::sqrt(1 - zeta * zeta));
   // Same one-step uncertainty as above, at 0.02 t_crit per step.
-  CHECK(im.rebound_speed / v == doctest::Approx(e).epsilon(5e-3));
+  CHECK(im.rebound_speed / v == mc::test::relative(e, 5e-3));
 }
 
 template <int D>
@@ -86,9 +87,9 @@ void hertz_impact() {
   // F = c u^{3/2}: energy ½ m* v² = ⅖ c u_max^{5/2}; duration 2.94320 u_max / v (Hertz 1882, Johnson 1985).
   const double u_max = std::pow(1.25 * m_eff * v * v / c.cn, 0.4);
   const double t_c = 2.9432 * u_max / v;
-  CHECK(im.max_overlap == doctest::Approx(u_max).epsilon(0.01));
-  CHECK(im.duration == doctest::Approx(t_c).epsilon(0.01));
-  CHECK(im.rebound_speed == doctest::Approx(v).epsilon(1e-3));
+  CHECK(im.max_overlap == mc::test::relative(u_max, 0.01));
+  CHECK(im.duration == mc::test::relative(t_c, 0.01));
+  CHECK(im.rebound_speed == mc::test::relative(v, 1e-3));
 }
 
 }  // namespace

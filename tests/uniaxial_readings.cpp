@@ -5,6 +5,7 @@
 
 #include "scene/analyses/uniaxial.hpp"
 #include "tests/common/cli_harness.hpp"
+#include "tests/common/relative.hpp"
 
 namespace {
 
@@ -43,16 +44,16 @@ TEST_CASE("plane strain reading of a 2D assembly: nu = nu2/(1+nu2), E = E2 (1 - 
   const mc::UniaxialResult strain = analysis(2, true).result(h);
   const double nu = kNu2 / (1 + kNu2);  // 0.2
   // Linear rows, interpolated exactly: only rounding remains (1e-9).
-  CHECK(strain.poisson == doctest::Approx(nu).epsilon(1e-9));
-  CHECK(strain.modulus == doctest::Approx(kE2 * (1 - nu * nu)).epsilon(1e-9));
-  CHECK(strain.modulus_raw_2d == doctest::Approx(kE2).epsilon(1e-9));
-  CHECK(strain.poisson_raw_2d == doctest::Approx(kNu2).epsilon(1e-9));
+  CHECK(strain.poisson == mc::test::relative(nu, 1e-9));
+  CHECK(strain.modulus == mc::test::relative(kE2 * (1 - nu * nu), 1e-9));
+  CHECK(strain.modulus_raw_2d == mc::test::relative(kE2, 1e-9));
+  CHECK(strain.poisson_raw_2d == mc::test::relative(kNu2, 1e-9));
   const mc::UniaxialResult stress = analysis(2, false).result(h);
-  CHECK(stress.modulus == doctest::Approx(kE2).epsilon(1e-9));
-  CHECK(stress.poisson == doctest::Approx(kNu2).epsilon(1e-9));
+  CHECK(stress.modulus == mc::test::relative(kE2, 1e-9));
+  CHECK(stress.poisson == mc::test::relative(kNu2, 1e-9));
   // 3D specimens give E and ν directly.
   const mc::UniaxialResult direct = analysis(3, true).result(h);
-  CHECK(direct.modulus == doctest::Approx(kE2).epsilon(1e-9));
+  CHECK(direct.modulus == mc::test::relative(kE2, 1e-9));
   CHECK(std::isnan(direct.modulus_raw_2d));
 }
 
@@ -65,11 +66,11 @@ TEST_CASE("the three E windows of a parabolic curve match their closed forms") {
   const double sp = kE2 * kPeak / 2;
   auto at = [](double f) { return kPeak * (1 - std::sqrt(1 - f)); };
   // Rows every 1e-3 ε_p, linearly interpolated on a curve: 1e-5 relative.
-  CHECK(r.modulus == doctest::Approx(0.25 * sp / (at(0.5) - at(0.25))).epsilon(1e-5));
-  CHECK(r.modulus_secant_0_50 == doctest::Approx(0.5 * sp / at(0.5)).epsilon(1e-5));
-  CHECK(r.modulus_tangent_50 == doctest::Approx(0.1 * sp / (at(0.55) - at(0.45))).epsilon(1e-5));
-  CHECK(r.modulus_tangent_50 == doctest::Approx(kE2 * std::sqrt(0.5)).epsilon(1.5e-3));
-  CHECK(r.ucs == doctest::Approx(sp).epsilon(1e-9));
+  CHECK(r.modulus == mc::test::relative(0.25 * sp / (at(0.5) - at(0.25)), 1e-5));
+  CHECK(r.modulus_secant_0_50 == mc::test::relative(0.5 * sp / at(0.5), 1e-5));
+  CHECK(r.modulus_tangent_50 == mc::test::relative(0.1 * sp / (at(0.55) - at(0.45)), 1e-5));
+  CHECK(r.modulus_tangent_50 == mc::test::relative(kE2 * std::sqrt(0.5), 1.5e-3));
+  CHECK(r.ucs == mc::test::relative(sp, 1e-9));
 }
 
 TEST_CASE("inside axial strain equals the supports' strain in a bonded hexagonal lattice pulled with free sides") {
@@ -98,5 +99,5 @@ TEST_CASE("inside axial strain equals the supports' strain in a bonded hexagonal
   REQUIRE(supports.size() == inside.size());
   REQUIRE(supports.back() > 4e-4);  // 20 mm/s for 1 ms over 40 mm: 5e-4
   for (std::size_t k = supports.size() / 4; k < supports.size(); ++k)
-    CHECK(inside[k] == doctest::Approx(supports[k]).epsilon(0.005));
+    CHECK(inside[k] == mc::test::relative(supports[k], 0.005));
 }

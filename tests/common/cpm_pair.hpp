@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "contact_models/cpm.hpp"
+#include "tests/common/relative.hpp"
 #include "tests/common/test_worlds.hpp"
 
 namespace mc::test {
@@ -60,7 +61,7 @@ inline CpmPair cpm_pair(const CpmParams& p, double gap = 0.1 * kCpmR) {
   CpmPair c{held_bonded_pair<3, Cpm>(p, kCpmR, kCpmR, -gap)};
   c.length = 2 * kCpmR + gap;
   c.area = M_PI * kCpmR * kCpmR;
-  REQUIRE(c.state().length == doctest::Approx(c.length).epsilon(1e-14));
+  REQUIRE(c.state().length == mc::test::relative(c.length, 1e-14));
   return c;
 }
 

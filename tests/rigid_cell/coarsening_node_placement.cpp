@@ -7,6 +7,7 @@
 
 #include "rigid_cell/node_placement.hpp"
 #include "rigid_cell/tessellation.hpp"
+#include "tests/common/relative.hpp"
 
 using namespace mc;
 using namespace mc::rigid_cell;
@@ -36,13 +37,13 @@ TEST_CASE("coarsening cells keep the mean spacing of every pair and the density 
   // 5 % of a uniform placement at l_min on the same box (both random, about 500 nodes: ±4.5 % is 1 σ of neither).
   const auto uniform_fine = place_nodes(SpecimenShape<2>::box(Vec<2>(0.04, 0.05)), s.l_min, 7, 2000);
   const double in_box = count_in(nodes, [&](const Vec<2>& x) { return x[0] > 0.08 && x[0] < 0.12; });
-  CHECK(in_box == doctest::Approx(static_cast<double>(uniform_fine.size())).epsilon(0.05));
+  CHECK(in_box == mc::test::relative(static_cast<double>(uniform_fine.size()), 0.05));
   // Beyond (l_max − l_min)/grading = 16 mm from the box the spacing is l_max: the ends as a uniform placement at
   // l_max, within 15 % (about 60 nodes each, and the transition's finer nodes reach into the first row).
   const double ends = count_in(nodes, [](const Vec<2>& x) { return x[0] < 0.05 || x[0] > 0.15; });
   const double uniform_coarse = 0.62 * 2 * (0.05 - s.l_max) * (0.05 - s.l_max / 2) / (s.l_max * s.l_max);
-  CHECK(ends == doctest::Approx(uniform_coarse).epsilon(0.15));
+  CHECK(ends == mc::test::relative(uniform_coarse, 0.15));
   CHECK(nodes.size() < 0.5 * 0.62 * 0.2 * 0.05 / (s.l_min * s.l_min));  // fewer than half the uniform l_min cells
   const auto t = tessellate(nodes, shape, 3 * s.l_max);
-  CHECK(t.volume() == doctest::Approx(shape.volume()).epsilon(1e-10));
+  CHECK(t.volume() == mc::test::relative(shape.volume(), 1e-10));
 }

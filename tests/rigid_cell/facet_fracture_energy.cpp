@@ -7,6 +7,7 @@
 
 #include "engine/errors.hpp"
 #include "rigid_cell/cell_assembly.hpp"
+#include "tests/common/relative.hpp"
 
 using namespace mc;
 using namespace mc::rigid_cell;
@@ -41,7 +42,7 @@ double work_to_separate(double h, const FacetParams& p, int direction, double pe
   }
   // The elastic limit f_eq of (3.16), sampled: the first step past it lies at most dw beyond, where the
   // softening (length G_t/f_t in opening, 1 000 steps in tension, 7 500 in shear) has shed at most 0.1 %.
-  CHECK(peak == doctest::Approx(peak_over_ft * p.tensile_strength).epsilon(2e-3));
+  CHECK(peak == mc::test::relative(peak_over_ft * p.tensile_strength, 2e-3));
   return work / area;
 }
 
@@ -52,8 +53,8 @@ TEST_CASE("one facet pulled apart dissipates G_t per unit area whatever its size
   const FacetParams p{48e9, 0.29, 3e6, 80.0};
   for (double h : {1e-3, 4e-3, 10e-3}) {
     CAPTURE(h);
-    CHECK(work_to_separate<3>(h, p, 0, 1.0) == doctest::Approx(p.fracture_energy).epsilon(0.01));
-    CHECK(work_to_separate<2>(h, p, 0, 1.0) == doctest::Approx(p.fracture_energy).epsilon(0.01));
+    CHECK(work_to_separate<3>(h, p, 0, 1.0) == mc::test::relative(p.fracture_energy, 0.01));
+    CHECK(work_to_separate<2>(h, p, 0, 1.0) == mc::test::relative(p.fracture_energy, 0.01));
   }
 }
 
@@ -64,38 +65,38 @@ TEST_CASE("facet_law_at_a_strain_rate_raises_its_elastic_limit_by_F_and_dissipat
   // F f_t × f_t/K_t, with K_t of (3.20)); at F = 1 that is G_t.
   FacetParams p{48e9, 0.29, 3e6, 80.0, 1e-5, 0.05};
   const double rate = 1.0, F = rate_increase(p, rate);
-  CHECK(F == doctest::Approx(1 + 0.05 * std::asinh(1e5)).epsilon(1e-14));
+  CHECK(F == mc::test::relative(1 + 0.05 * std::asinh(1e5), 1e-14));
   for (double h : {1e-3, 4e-3}) {
     CAPTURE(h);
     const double L = h;  // the node distance of two cubes side by side
     const double expected = L * F * F * p.tensile_strength * p.tensile_strength / (2 * p.E0) + F * (p.fracture_energy - L * p.tensile_strength * p.tensile_strength / (2 * p.E0));
     // 1 %: as the rate-independent facet above (trapezoids and the tail err by less than 1e-4).
-    CHECK(work_to_separate<3>(h, p, 0, F, rate) == doctest::Approx(expected).epsilon(0.01));
+    CHECK(work_to_separate<3>(h, p, 0, F, rate) == mc::test::relative(expected, 0.01));
   }
   // Far below c₀ the law is the rate-independent one; without c₁ rates are ignored.
-  CHECK(rate_increase(p, 1e-9) == doctest::Approx(1).epsilon(1e-4));
+  CHECK(rate_increase(p, 1e-9) == mc::test::relative(1, 1e-4));
   p.rate_c1 = 0;
   CHECK(rate_increase(p, 1e3) == 1);
   // The strain rate of a facet: √(ė_N² + α ė_T²) (3.12).
   CHECK(strain_rate(Eigen::Vector3d(3e-2, 2e-2, 0), p) ==
-        doctest::Approx(std::sqrt(9e-4 + 0.29 * 4e-4)).epsilon(1e-14));
+        mc::test::relative(std::sqrt(9e-4 + 0.29 * 4e-4), 1e-14));
 }
 
 TEST_CASE("facet law: pure shear holds 3 f_t, softening starts at omega_0, compression holds 16 f_t (Kveton 3.16)") {
   const FacetParams p{48e9, 0.29, 3e6, 80.0};
   // Along the straining direction ω the elastic limit in equivalent stress: f_t in tension, 3 f_t/√α in pure
   // shear (so s_T = √α f_eq = 3 f_t), 16 f_t in compression.
-  CHECK(elastic_limit(M_PI / 2, p) == doctest::Approx(p.tensile_strength).epsilon(1e-12));
-  CHECK(elastic_limit(0.0, p) * std::sqrt(p.alpha) == doctest::Approx(3 * p.tensile_strength).epsilon(1e-12));
-  CHECK(elastic_limit(-M_PI / 2, p) == doctest::Approx(16 * p.tensile_strength).epsilon(1e-12));
+  CHECK(elastic_limit(M_PI / 2, p) == mc::test::relative(p.tensile_strength, 1e-12));
+  CHECK(elastic_limit(0.0, p) * std::sqrt(p.alpha) == mc::test::relative(3 * p.tensile_strength, 1e-12));
+  CHECK(elastic_limit(-M_PI / 2, p) == mc::test::relative(16 * p.tensile_strength, 1e-12));
   // The two branches meet at ω₀.
   const double w0 = omega_0(p.alpha);
-  CHECK(elastic_limit(w0 - 1e-9, p) == doctest::Approx(elastic_limit(w0 + 1e-9, p)).epsilon(1e-6));
+  CHECK(elastic_limit(w0 - 1e-9, p) == mc::test::relative(elastic_limit(w0 + 1e-9, p), 1e-6));
   // Pure shear of one facet reaches s_T = 3 f_t and dissipates, since s·e = s_eq e_eq by (3.12)-(3.13), the
   // equivalent law's work L (f_eq²/2E₀ + f_eq²/K_s) with f_eq = 3 f_t/√α and K_s of (3.20).
   const double L = 4e-3, f_eq = 3 * p.tensile_strength / std::sqrt(p.alpha);
   const double Gs = L * (f_eq * f_eq / (2 * p.E0) + f_eq * f_eq / crack_band_slopes(p, L).Ks);
-  CHECK(work_to_separate<3>(L, p, 1, 3.0) == doctest::Approx(Gs).epsilon(0.01));
+  CHECK(work_to_separate<3>(L, p, 1, 3.0) == mc::test::relative(Gs, 0.01));
 }
 
 TEST_CASE("a facet whose crack band would snap back (Kveton 3.20: tension and shear) is refused, naming it") {

@@ -63,11 +63,11 @@ TEST_CASE("two_sided_pullout_scene_follows_the_crossing_law_through_debonding_th
   CHECK(largest_gap < 4e-3);
   // Květoň Fig. 6.1: the short side debonded whole at 2 v_d (v_d = 61.0 µm), 1.097 N; the drop to its friction
   // P_0 = π 3.5 mm d_f τ_0 = 0.880 N; pulled out after 3.5 mm more. A step is 2 µm: the peak is the step's.
-  CHECK(peak == doctest::Approx(debonding_force(f, full_debonding_slip(f, 3.5e-3))).epsilon(1e-3));
-  CHECK(peak_at == doctest::Approx(2 * full_debonding_slip(f, 3.5e-3)).epsilon(0.02));
+  CHECK(peak == mc::test::relative(debonding_force(f, full_debonding_slip(f, 3.5e-3)), 1e-3));
+  CHECK(peak_at == mc::test::relative(2 * full_debonding_slip(f, 3.5e-3), 0.02));
   const auto after = std::find_if(c.u.begin(), c.u.end(), [&](double u) { return u > peak_at + 1e-6; });
   const double dropped = c.force[static_cast<std::size_t>(after - c.u.begin())];
-  CHECK(dropped == doctest::Approx(friction_force(f, 3.5e-3)).epsilon(0.01));
+  CHECK(dropped == mc::test::relative(friction_force(f, 3.5e-3), 0.01));
   CHECK(c.force.back() == 0.0);
   CHECK(c.final_pulled_out == 1);
   CHECK(c.final_ruptured == 0);
@@ -87,7 +87,7 @@ TEST_CASE("two_sided_pullout_of_a_fibre_too_long_breaks_it_while_it_debonds") {
   const double at = c.u[static_cast<std::size_t>(broken - c.force.begin())];
   MESSAGE("peak " << peak << " N; broken at " << at * 1e6 << " um");
   CHECK(peak < 1000e6 * 0.25 * M_PI * 40e-6 * 40e-6);
-  CHECK(at == doctest::Approx(161.6e-6).epsilon(0.02));  // within the 2 µm step
+  CHECK(at == mc::test::relative(161.6e-6, 0.02));  // within the 2 µm step
   CHECK(c.final_ruptured == 1);
 }
 
@@ -277,7 +277,7 @@ TEST_CASE("central_differences_hold_a_free_cell_between_two_fibres_each_at_its_c
   CHECK(largest_asymmetry < 1e-6);
   // The peak: the 4 mm sides debonded whole at 2 v_d (Květoň Fig. 6.1), the step's sampling within 1 %.
   const double debonded = debonding_force(fibre, full_debonding_slip(fibre, 4e-3));
-  CHECK(right[top] - plate_damping == doctest::Approx(debonded).epsilon(0.01));
+  CHECK(right[top] - plate_damping == mc::test::relative(debonded, 0.01));
   // Past it two softening links in series: one opens on, the other unloads along its secant (the middle cell goes
   // back towards it), and the two forces stay equal but for the middle cell's inertia and damping.
   const double opened = std::max(m.back(), u.back() - m.back());

@@ -11,6 +11,7 @@
 #include "engine/errors.hpp"
 #include "rigid_cell/mass_properties.hpp"
 #include "rigid_cell/newmark.hpp"
+#include "tests/common/relative.hpp"
 #include "tests/rigid_cell/box_cell.hpp"
 
 using namespace mc;
@@ -52,7 +53,7 @@ TEST_CASE("cell_mass_matrix_gives_the_kinetic_energy_of_every_rigid_motion_about
     q << v, w;
     const double expected = box_kinetic_energy(lo, hi, node, density, v, w);
     // Both sides are exact: only round-off separates them.
-    CHECK(0.5 * q.dot(M * q) == doctest::Approx(expected).epsilon(1e-12));
+    CHECK(0.5 * q.dot(M * q) == mc::test::relative(expected, 1e-12));
   }
 }
 
@@ -71,7 +72,7 @@ TEST_CASE("cell_mass_matrix_2d_gives_the_kinetic_energy_of_a_rigid_motion") {
   const double expected = 0.5 * mass * (vx * vx + vy * vy) + mass * w * (-vx * c.y() + vy * c.x()) +
                           0.5 * w * w * (mass * h * h / 6 + mass * c.squaredNorm());
   const Eigen::Vector3d q(vx, vy, w);
-  CHECK(0.5 * q.dot(M * q) == doctest::Approx(expected).epsilon(1e-12));
+  CHECK(0.5 * q.dot(M * q) == mc::test::relative(expected, 1e-12));
 }
 
 TEST_CASE("newmark_oscillator_has_the_closed_form_period_elongation_and_amplitude_decay") {
@@ -106,8 +107,8 @@ TEST_CASE("newmark_oscillator_has_the_closed_form_period_elongation_and_amplitud
       // Ω/(2 atan(Ω/2)); γ > ½ damps.
       const double W = omega * s.dt;
       if (gamma == 0.5) {
-        CHECK(closed.decay_per_period() == doctest::Approx(1.0).epsilon(1e-12));
-        CHECK(closed.period_ratio(s, omega) == doctest::Approx(W / (2 * std::atan(W / 2))).epsilon(1e-12));
+        CHECK(closed.decay_per_period() == mc::test::relative(1.0, 1e-12));
+        CHECK(closed.period_ratio(s, omega) == mc::test::relative(W / (2 * std::atan(W / 2)), 1e-12));
       } else {
         CHECK(closed.decay_per_period() < 1);
       }

@@ -14,6 +14,7 @@
 #include "engine/errors.hpp"
 #include "engine/random_stream.hpp"
 #include "rigid_cell/random_field.hpp"
+#include "tests/common/relative.hpp"
 
 using namespace mc;
 using namespace mc::rigid_cell;
@@ -114,10 +115,10 @@ TEST_CASE("random field: a long axis's correlation eigenvalues fill the kernel's
   const Eigen::VectorXd& lambda = field.eigenvalues(0);
   REQUIRE(lambda.size() == 300);
   const double f0 = std::sqrt(M_PI) * lc / h;
-  CHECK(lambda[0] == doctest::Approx(f0).epsilon(5e-4));  // measured: 2.4e-4 below (finite-size)
+  CHECK(lambda[0] == mc::test::relative(f0, 5e-4));  // measured: 2.4e-4 below (finite-size)
   const auto above = std::count_if(lambda.begin(), lambda.end(), [&](double l) { return l > f0 / 2; });
   CHECK(std::abs(above - 300 * 2 * (h / lc) * std::sqrt(std::log(2.0)) / M_PI) <= 1);
-  CHECK(lambda.sum() == doctest::Approx(300).epsilon(1e-12));  // the trace: the variance of 300 nodes
+  CHECK(lambda.sum() == mc::test::relative(300, 1e-12));  // the trace: the variance of 300 nodes
   CHECK(field.variance_fraction() >= 0.99);
 }
 
@@ -176,17 +177,17 @@ TEST_CASE("grafted distribution: Weibull of modulus m below P_gr, density contin
   // On Weibull paper, ln(−ln(1 − F)) against ln x, the tail is a line of slope m up to the graft.
   const auto weibull_paper = [&](double p) {
     const double x = F.of_normal(normal_quantile(p));
-    CHECK(F.cdf(x) == doctest::Approx(p).epsilon(1e-10));  // of_normal inverts cdf
+    CHECK(F.cdf(x) == mc::test::relative(p, 1e-10));  // of_normal inverts cdf
     return std::array<double, 2>{std::log(x), std::log(-std::log1p(-p))};
   };
   const auto a = weibull_paper(1e-8), b = weibull_paper(1e-5), c = weibull_paper(tail.probability);
-  CHECK((b[1] - a[1]) / (b[0] - a[0]) == doctest::Approx(24).epsilon(1e-9));
-  CHECK((c[1] - b[1]) / (c[0] - b[0]) == doctest::Approx(24).epsilon(1e-9));
-  CHECK(std::exp(c[0]) == doctest::Approx(F.graft()).epsilon(1e-12));
+  CHECK((b[1] - a[1]) / (b[0] - a[0]) == mc::test::relative(24, 1e-9));
+  CHECK((c[1] - b[1]) / (c[0] - b[0]) == mc::test::relative(24, 1e-9));
+  CHECK(std::exp(c[0]) == mc::test::relative(F.graft(), 1e-12));
   // The density on either side of the graft (Bažant & Pang's continuity), by differences of the cdf.
   const double x = F.graft(), e = 1e-7;
   const double left = (F.cdf(x) - F.cdf(x - e)) / e, right = (F.cdf(x + e) - F.cdf(x)) / e;
-  CHECK(left == doctest::Approx(right).epsilon(1e-4));
+  CHECK(left == mc::test::relative(right, 1e-4));
   // Mean and deviation: ∫ F⁻¹(Φ(g)) φ(g) dg by Simpson's rule over |g| ≤ 10 (the rest weighs 1e-23).
   const int n = 200000;
   const double step = 20.0 / n;
@@ -197,8 +198,8 @@ TEST_CASE("grafted distribution: Weibull of modulus m below P_gr, density contin
     m1 += w * v * phi;
     m2 += w * v * v * phi;
   }
-  CHECK(m1 == doctest::Approx(1).epsilon(1e-8));
-  CHECK(std::sqrt(m2 - m1 * m1) == doctest::Approx(0.25).epsilon(1e-7));
+  CHECK(m1 == mc::test::relative(1, 1e-8));
+  CHECK(std::sqrt(m2 - m1 * m1) == mc::test::relative(0.25, 1e-7));
 }
 
 TEST_CASE("grafted distribution: a deviation its tail cannot give is refused with the range it can") {
