@@ -14,6 +14,7 @@ facets, the less so the finer the cells. Output (--out): discretized_facets.md, 
 """
 import argparse
 import os
+import signal
 import subprocess
 import sys
 import time
@@ -29,17 +30,27 @@ SCENES = {"tension": ROOT / "scenes" / "rigid_cell_tension_prism_3d.toml",
 INTEGRATIONS = ("simple", "discretized")
 
 
-def run(exe, scene, h5, sets):
-    """One run on one thread; its CPU seconds."""
+def run(exe, scene, h5, sets, limit):
+    """One run on one thread: its CPU seconds, and whether --limit stopped it (Ctrl-C, which finishes the step under
+    way and writes the file; a second one two minutes later if that step does not end)."""
     cmd = [exe, "run", str(scene), "-o", str(h5), "--threads", "1"]
     for s in sets:
         cmd += ["--set", s]
-    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    _, status, usage = os.wait4(p.pid, 0)
-    err = p.stderr.read()
-    if os.waitstatus_to_exitcode(status) != 0:
-        sys.exit(f"{' '.join(cmd)}: exit {os.waitstatus_to_exitcode(status)}\n{err}")
-    return usage.ru_utime + usage.ru_stime
+    log = open(Path(h5).with_suffix(".log"), "w")
+    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=log)
+    start, limited, signals = time.time(), False, 0
+    while True:  # wait4 reaps the run and gives its CPU time; Popen.wait would reap it first
+        pid, status, usage = os.wait4(p.pid, os.WNOHANG)
+        if pid:
+            break
+        if time.time() - start > limit + 120 * signals and signals < 2:
+            limited, signals = True, signals + 1
+            p.send_signal(signal.SIGINT)
+        time.sleep(0.2)
+    code = os.waitstatus_to_exitcode(status)
+    if code != 0 and not limited:
+        sys.exit(f"{' '.join(cmd)}: exit {code}\n{Path(log.name).read_text()}")
+    return usage.ru_utime + usage.ru_stime, limited
 
 
 def curve(h5, test):
@@ -61,6 +72,7 @@ def main():
     p.add_argument("--out", default=str(ROOT / "benchmarks" / "results" / "rigid_cell_discretized_facets"))
     p.add_argument("--l-min", type=float, nargs="+", default=[8.0, 4.0], help="cell sizes [mm]")
     p.add_argument("--seeds", type=int, nargs="+", default=[3, 1], help="node placements at each cell size")
+    p.add_argument("--limit", type=float, default=1200, help="wall seconds a run may take before it is stopped")
     a = p.parse_args()
     if len(a.seeds) != len(a.l_min):
         sys.exit("--seeds takes one count per --l-min")
@@ -68,15 +80,19 @@ def main():
     out.mkdir(parents=True, exist_ok=True)
     jobs = [(test, l, seed, integ) for l, n in zip(a.l_min, a.seeds) for seed in range(1, n + 1)
             for test in SCENES for integ in INTEGRATIONS]
+    jobs.sort(key=lambda j: j[1])  # the finest cells, the longest runs, first
 
     def one(job):
         test, l, seed, integ = job
         h5 = out / f"{test}_l{l:g}mm_s{seed}_{integ}.h5"
-        cpu = run(a.exe, SCENES[test], h5, [f"specimen.l_min={l:g} mm", f"seed={seed}",
-                                              f"rigid_cell.facet_integration={integ}"])
+        cpu, limited = run(a.exe, SCENES[test], h5, [f"specimen.l_min={l:g} mm", f"seed={seed}",
+                                                     f"rigid_cell.facet_integration={integ}"], a.limit)
         u, load, cells = curve(h5, test)
-        print(f"{test} l_min {l:g} mm placement {seed} {integ}: peak {load.max():.3f} kN, {cpu:.0f} s", flush=True)
-        return job, {"u": u, "load": load, "cells": cells, "cpu": cpu}
+        stopped = f", stopped by --limit at {load[-1] / load.max():.2f} of its peak" if limited else ""
+        print(f"{test} l_min {l:g} mm placement {seed} {integ}: peak {load.max():.3f} kN, {cpu:.0f} s{stopped}",
+              flush=True)
+        return job, {"u": u, "load": load, "cells": cells, "cpu": cpu, "limited": limited,
+                     "left": load[-1] / load.max()}
 
     wall = time.time()
     with ThreadPoolExecutor(2) as pool:
@@ -84,7 +100,7 @@ def main():
     wall = time.time() - wall
     write_table(out, a, results, wall)
     plot(out, a, results)
-    for pattern in ("*.h5", "*.xdmf", "*_history.csv"):  # the runs: the table and the figure say what they gave
+    for pattern in ("*.h5", "*.xdmf", "*_history.csv", "*.log"):  # the runs: the table and the figure say what they gave
         for f in out.glob(pattern):
             f.unlink()
 
@@ -109,7 +125,12 @@ def write_table(out, a, results, wall):
             lines.append(f"| {test} | {l:g} mm | {cells:.0f} | {n} | {spread(peaks['simple'])} | "
                          f"{spread(peaks['discretized'])} | {spread(ratio)} | {cpu['simple']:.0f} | "
                          f"{cpu['discretized']:.0f} |")
-    lines += ["", f"All runs: {wall / 60:.1f} min wall on two processes.", ""]
+    limited = [f"{t} l_min {l:g} mm placement {seed} {i} (at {r['left']:.2f} of its peak)"
+               for (t, l, seed, i), r in sorted(results.items()) if r["limited"]]
+    lines += ["", f"All runs: {wall / 60:.1f} min wall on two processes, each at most {a.limit:.0f} s."]
+    if limited:
+        lines.append("Stopped by that limit after their peak, their CPU time a lower bound: " + "; ".join(limited) + ".")
+    lines.append("")
     (out / "discretized_facets.md").write_text("\n".join(lines))
 
 
