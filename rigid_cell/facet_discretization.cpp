@@ -65,6 +65,10 @@ FacetParts<D> discretize_facets(const Tessellation<D>& t) {
   return out;
 }
 
+std::size_t facet_of_part(const std::vector<std::size_t>& first, std::size_t part) {
+  return static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), part) - first.begin() - 1);
+}
+
 template <int D>
 std::size_t part_holding(const Tessellation<D>& parts, const std::vector<std::size_t>& first, std::size_t f,
                          const Vec<D>& x) {

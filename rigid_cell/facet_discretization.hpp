@@ -27,6 +27,9 @@ FacetParts<D> discretize_facets(const Tessellation<D>& t);
 
 // The part of contact facet f (parts [first[f], first[f + 1]) of `parts`) that holds the point x of its plane (the
 // nearest one when x lies just outside all: round-off on an edge).
+// The contact facet whose parts include `part`.
+std::size_t facet_of_part(const std::vector<std::size_t>& first, std::size_t part);
+
 template <int D>
 std::size_t part_holding(const Tessellation<D>& parts, const std::vector<std::size_t>& first, std::size_t f,
                          const Vec<D>& x);

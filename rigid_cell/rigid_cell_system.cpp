@@ -216,8 +216,7 @@ void RigidCellSystem<D>::build_fibres() {
     // The walk leaves a cell through any part of a facet's plane; a crossing belongs to the part that holds it.
     if (!part_first_.empty())
       for (FibreCrossing& c : crossings) {
-        const auto after = std::upper_bound(part_first_.begin(), part_first_.end(), static_cast<std::size_t>(c.facet));
-        const auto facet = static_cast<std::size_t>(after - part_first_.begin() - 1);
+        const std::size_t facet = facet_of_part(part_first_, static_cast<std::size_t>(c.facet));
         c.facet = static_cast<int>(part_holding(tessellation_, part_first_, facet, c.point));
       }
     bridges_ = std::make_unique<FibreBridges<3>>(tessellation_, *model_, std::move(materials),

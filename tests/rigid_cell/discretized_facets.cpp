@@ -136,6 +136,7 @@ TEST_CASE("a_point_of_a_discretized_facet_belongs_to_the_triangle_that_holds_it"
     const Vec<3> c = simple.facets[0].centroid, x = c + 0.4 * h * towards + 0.05 * h * Vec<3>(0, 1, 1);
     const std::size_t k = part_holding(d.parts, d.first, 0, x);
     CHECK((d.parts.facets[k].centroid - (c + h / 3 * towards)).norm() < 1e-9 * h);
+    CHECK(facet_of_part(d.first, k) == 0);  // the way back, as a fibre crossing found on any part takes it
   }
 }
 
